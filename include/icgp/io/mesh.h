@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core/mat.hpp>
+#include <string>
+#include <vector>
+
+#include "icgp/geometry/pose.h"
+
+namespace icgp {
+
+/// Appearance of one part of a mesh: a diffuse texture when present, else a flat colour.
+struct Material {
+  Eigen::Vector3f diffuse_rgb{0.8f, 0.8f, 0.8f};  ///< linear 0..1
+  cv::Mat texture_bgr;                             ///< CV_8UC3, empty when untextured
+};
+
+/// Triangles sharing one material. Texture coordinates are empty or one per vertex, with
+/// (0,0) at the bottom-left of the texture image (OBJ/glTF-as-loaded-by-assimp convention).
+struct MeshPart {
+  std::vector<Eigen::Vector3f> vertices;  ///< metres, in the mesh (body) frame
+  std::vector<Eigen::Vector2f> texcoords;
+  std::vector<Eigen::Vector3i> triangles;  ///< indices into vertices
+  Material material;
+};
+
+/// A triangle mesh in metres, the one geometry type every loader produces and every
+/// consumer (renderer, model generation, metrics) reads.
+struct Mesh {
+  std::string source;  ///< file it was loaded from, for messages
+  std::vector<MeshPart> parts;
+
+  std::size_t vertex_count() const;
+  std::size_t triangle_count() const;
+  bool empty() const { return triangle_count() == 0; }
+  /// All vertices of all parts, in order.
+  std::vector<Eigen::Vector3f> all_vertices() const;
+  /// Axis-aligned bounds; throws std::runtime_error for an empty mesh.
+  void bounds(Eigen::Vector3f& min_corner, Eigen::Vector3f& max_corner) const;
+  /// Radius of the smallest origin-centred sphere containing the mesh: views are rendered
+  /// looking at the body origin, so this (not the tight bounding sphere) sizes them.
+  float radius_about_origin() const;
+  /// Transforms every vertex in place: X <- T X.
+  void transform(const Posef& T);
+  /// Appends the parts of another mesh.
+  void append(const Mesh& other);
+};
+
+}  // namespace icgp

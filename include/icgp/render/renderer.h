@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "icgp/geometry/intrinsics.h"
+#include "icgp/geometry/pose.h"
+#include "icgp/io/mesh.h"
+
+namespace icgp {
+
+class EglContext;
+
+/// What a render call should produce; combine with |.
+enum RenderTarget : unsigned {
+  kRenderDepth = 1u << 0,    ///< CV_32FC1 metric Z in metres, 0 on background
+  kRenderNormals = 1u << 1,  ///< CV_32FC3 unit face normals in the camera frame, 0 on background
+  kRenderIds = 1u << 2,      ///< CV_8UC1 id of the visible body, 0 on background
+  kRenderColor = 1u << 3,    ///< CV_8UC3 BGR shaded colour (textures or material colours)
+};
+
+struct RenderOutput {
+  cv::Mat depth, normals, ids, color;
+};
+
+/// Headlight-style Lambertian shading for colour renders.
+struct Lighting {
+  Eigen::Vector3f direction_in_camera{0.f, 0.f, 1.f};  ///< direction the light travels
+  float ambient = 0.35f;
+  float diffuse = 0.65f;
+  Eigen::Vector3f background_rgb{0.f, 0.f, 0.f};
+};
+
+/// Offscreen renderer of rigid bodies for a pinhole camera, exact to the pixel-centre
+/// convention of Intrinsics. Owns its EGL context: create and use it on one thread.
+class Renderer {
+ public:
+  using BodyHandle = int;
+
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Uploads a mesh. `id` (1..255) is what the id image shows for it; several bodies may
+  /// share an id. The body starts at world_T_body = identity.
+  BodyHandle add_body(const Mesh& mesh, std::uint8_t id);
+  void set_body_pose(BodyHandle body, const Pose& world_T_body);
+  const Pose& body_pose(BodyHandle body) const;
+  /// Hidden bodies are not drawn (and do not occlude).
+  void set_body_visible(BodyHandle body, bool visible);
+  void set_lighting(const Lighting& lighting);
+
+  /// Renders every visible body seen from a camera at camera_T_world with `intrinsics`
+  /// (its width/height is the output size). Only the requested targets are filled.
+  /// Throws std::invalid_argument for invalid intrinsics.
+  RenderOutput render(const Intrinsics& intrinsics, const Pose& camera_T_world, unsigned targets);
+
+  /// Renders only the crop [u_min, u_min+size) x [v_min, v_min+size) of the image that
+  /// `intrinsics` describes, resampled to out_size x out_size pixels (a "focused" render
+  /// for small, fast per-frame renders). `crop_intrinsics` receives the intrinsics of
+  /// the output so pixels can be mapped back.
+  RenderOutput render_focused(const Intrinsics& intrinsics, const Pose& camera_T_world, double u_min, double v_min,
+                              double size, int out_size, unsigned targets, Intrinsics* crop_intrinsics = nullptr);
+
+  std::string description() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace icgp
