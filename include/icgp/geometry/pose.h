@@ -107,4 +107,18 @@ Eigen::Matrix<T, 3, 6> point_jacobian_body_variation(const Eigen::Matrix<T, 3, 3
   return J;
 }
 
+/// camera_T_world of a camera at `eye` looking at `target` (ViSP camera frame: z forward,
+/// y down), with the image's up direction as close to `up` as the view allows.
+/// `up` must not be parallel to the viewing direction.
+template <typename T>
+PoseT<T> look_at(const Eigen::Matrix<T, 3, 1>& eye, const Eigen::Matrix<T, 3, 1>& target,
+                 const Eigen::Matrix<T, 3, 1>& up) {
+  const Eigen::Matrix<T, 3, 1> z = (target - eye).normalized();
+  const Eigen::Matrix<T, 3, 1> x = z.cross(up).normalized();  // = y × z with y along -up
+  const Eigen::Matrix<T, 3, 1> y = z.cross(x);
+  Eigen::Matrix<T, 3, 3> world_R_camera;
+  world_R_camera << x, y, z;
+  return PoseT<T>(world_R_camera, eye).inverse();
+}
+
 }  // namespace icgp

@@ -14,6 +14,17 @@ namespace icgp {
 
 class EglContext;
 
+/// A square image region in pixel-edge coordinates: [u_min, u_min+size) x [v_min, v_min+size).
+struct ImageSquare {
+  double u_min = 0.0, v_min = 0.0, size = 0.0;
+};
+
+/// The square that encloses the projection of a sphere (centre in the camera frame, Z > 0),
+/// enlarged by `margin` (a fraction of its size). This is the focused crop of the paper:
+/// renders and keypoint detection look only where the object can be.
+ImageSquare square_around_sphere(const Intrinsics& intrinsics, const Eigen::Vector3d& centre, double radius,
+                                 double margin = 0.1);
+
 /// What a render call should produce; combine with |.
 enum RenderTarget : unsigned {
   kRenderDepth = 1u << 0,    ///< CV_32FC1 metric Z in metres, 0 on background

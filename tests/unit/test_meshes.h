@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Meshes with exactly known geometry, built in code so tests do not depend on loaders.
+#pragma once
+
+#include "icgp/io/mesh.h"
+
+namespace icgp::test {
+
+/// Axis-aligned box centred on the origin with the given side lengths (12 triangles).
+inline Mesh make_box(float sx, float sy, float sz) {
+  MeshPart part;
+  const float x = sx / 2, y = sy / 2, z = sz / 2;
+  for (int i = 0; i < 8; ++i)
+    part.vertices.emplace_back((i & 1) ? x : -x, (i & 2) ? y : -y, (i & 4) ? z : -z);
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    part.triangles.emplace_back(q[0], q[1], q[2]);
+    part.triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  Mesh mesh;
+  mesh.source = "box";
+  mesh.parts.push_back(part);
+  return mesh;
+}
+
+/// One triangle with the given vertices.
+inline Mesh make_triangle(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c) {
+  MeshPart part;
+  part.vertices = {a, b, c};
+  part.triangles = {Eigen::Vector3i(0, 1, 2)};
+  Mesh mesh;
+  mesh.source = "triangle";
+  mesh.parts.push_back(part);
+  return mesh;
+}
+
+}  // namespace icgp::test
