@@ -1,1 +1,174 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/io/mesh_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace icgp {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw std::runtime_error("load_mesh: '" + path + "': " + what);
+}
+
+void check_scale(const std::string& path, double scale) {
+  if (!std::isfinite(scale) || scale <= 0.0)
+    throw std::invalid_argument("load_mesh: '" + path + "': scale " + std::to_string(scale) +
+                                " is invalid; expected a finite number > 0");
+}
+
+void check_is_file(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) fail(path, "no such file; expected a mesh file assimp can read");
+}
+
+unsigned int import_flags() {
+  // No normal generation: icgp::Mesh stores none, and smooth normals would only split
+  // vertices. SortByPType gives points and lines meshes of their own, which load_mesh
+  // skips. RemoveComponent strips normals and vertex colours before
+  // JoinIdenticalVertices so that vertices differing only by those (e.g. STL facet
+  // normals) are shared.
+  return aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+         aiProcess_SortByPType | aiProcess_RemoveComponent | aiProcess_ValidateDataStructure;
+}
+
+const aiScene* read_scene(Assimp::Importer& importer, const std::string& path) {
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
+                                                          aiComponent_COLORS | aiComponent_BONEWEIGHTS |
+                                                          aiComponent_ANIMATIONS | aiComponent_LIGHTS |
+                                                          aiComponent_CAMERAS);
+  const aiScene* scene = importer.ReadFile(path, import_flags());
+  if (scene == nullptr)
+    fail(path, std::string("cannot be read as a triangle mesh: ") + importer.GetErrorString());
+  return scene;
+}
+
+std::vector<Eigen::Vector3f> scaled_vertices(const aiMesh& mesh, double scale) {
+  std::vector<Eigen::Vector3f> vertices(mesh.mNumVertices);
+  const float s = static_cast<float>(scale);
+  for (unsigned int i = 0; i < mesh.mNumVertices; ++i) {
+    const aiVector3D& v = mesh.mVertices[i];
+    vertices[i] = s * Eigen::Vector3f(v.x, v.y, v.z);
+  }
+  return vertices;
+}
+
+std::vector<Eigen::Vector2f> texcoords_of(const aiMesh& mesh) {
+  if (!mesh.HasTextureCoords(0)) return {};
+  std::vector<Eigen::Vector2f> texcoords(mesh.mNumVertices);
+  for (unsigned int i = 0; i < mesh.mNumVertices; ++i)
+    texcoords[i] = Eigen::Vector2f(mesh.mTextureCoords[0][i].x, mesh.mTextureCoords[0][i].y);
+  return texcoords;
+}
+
+/// mesh: triangles only (Triangulate and SortByPType make that so for a triangle mesh).
+std::vector<Eigen::Vector3i> triangles_of(const aiMesh& mesh) {
+  std::vector<Eigen::Vector3i> triangles;
+  triangles.reserve(mesh.mNumFaces);
+  for (unsigned int f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
+  }
+  return triangles;
+}
+
+Eigen::Vector3f diffuse_colour_of(const aiMaterial& material, const Eigen::Vector3f& fallback) {
+  aiColor3D colour;
+  if (material.Get(AI_MATKEY_COLOR_DIFFUSE, colour) != AI_SUCCESS) return fallback;
+  return Eigen::Vector3f(colour.r, colour.g, colour.b);
+}
+
+/// Embedded textures are either a compressed file image (mHeight == 0, mWidth bytes) or
+/// raw BGRA texels.
+cv::Mat decode_embedded_texture(const aiTexture& texture) {
+  if (texture.mHeight == 0) {
+    if (texture.mWidth == 0) return {};  // cv::imdecode asserts on an empty buffer
+    const cv::Mat bytes(1, static_cast<int>(texture.mWidth), CV_8UC1, texture.pcData);
+    return cv::imdecode(bytes, cv::IMREAD_COLOR);
+  }
+  const cv::Mat bgra(static_cast<int>(texture.mHeight), static_cast<int>(texture.mWidth), CV_8UC4,
+                     texture.pcData);
+  cv::Mat bgr;
+  cv::cvtColor(bgra, bgr, cv::COLOR_BGRA2BGR);
+  return bgr;
+}
+
+cv::Mat embedded_texture(const aiScene& scene, const std::string& reference, const std::string& path) {
+  const aiTexture* texture = scene.GetEmbeddedTexture(reference.c_str());
+  if (texture == nullptr) fail(path, "embedded texture '" + reference + "' does not exist in the file");
+  cv::Mat bgr = decode_embedded_texture(*texture);
+  if (bgr.empty()) fail(path, "embedded texture '" + reference + "' cannot be decoded; expected PNG/JPEG data");
+  return bgr;
+}
+
+cv::Mat texture_file(const std::string& reference, const std::string& path) {
+  // Models exported on Windows often write backslashes in texture paths.
+  std::string relative = reference;
+  std::replace(relative.begin(), relative.end(), '\\', '/');
+  const fs::path file = fs::path(path).parent_path() / relative;
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec))
+    fail(path, "texture '" + file.string() + "' does not exist; expected it relative to the model's folder");
+  cv::Mat bgr = cv::imread(file.string(), cv::IMREAD_COLOR);
+  if (bgr.empty()) fail(path, "texture '" + file.string() + "' cannot be read; expected an image file (PNG, JPEG...)");
+  return bgr;
+}
+
+cv::Mat diffuse_texture_of(const aiMaterial& material, const aiScene& scene, const std::string& path) {
+  aiString reference;
+  if (material.GetTexture(aiTextureType_DIFFUSE, 0, &reference) != AI_SUCCESS) return {};
+  const std::string name = reference.C_Str();
+  // "*N" names the N-th embedded texture; other names may also match an embedded one
+  // (e.g. FBX), and only otherwise refer to a file.
+  if (name.rfind('*', 0) == 0 || scene.GetEmbeddedTexture(name.c_str()) != nullptr)
+    return embedded_texture(scene, name, path);
+  return texture_file(name, path);
+}
+
+Material material_of(const aiMesh& mesh, const aiScene& scene, const std::string& path) {
+  Material material;
+  if (mesh.mMaterialIndex >= scene.mNumMaterials) return material;
+  const aiMaterial& source = *scene.mMaterials[mesh.mMaterialIndex];
+  material.diffuse_rgb = diffuse_colour_of(source, material.diffuse_rgb);
+  material.texture_bgr = diffuse_texture_of(source, scene, path);
+  return material;
+}
+
+MeshPart part_of(const aiMesh& mesh, const aiScene& scene, const std::string& path, double scale) {
+  MeshPart part;
+  part.vertices = scaled_vertices(mesh, scale);
+  part.texcoords = texcoords_of(mesh);
+  part.triangles = triangles_of(mesh);
+  part.material = material_of(mesh, scene, path);
+  return part;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::string& path, const MeshLoadOptions& options) {
+  check_scale(path, options.scale);
+  check_is_file(path);
+  Assimp::Importer importer;  // owns the scene: keep it alive while copying
+  const aiScene& scene = *read_scene(importer, path);
+  Mesh mesh;
+  mesh.source = path;
+  for (unsigned int m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& source = *scene.mMeshes[m];
+    if ((source.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;  // points or lines
+    mesh.parts.push_back(part_of(source, scene, path, options.scale));
+  }
+  if (mesh.empty()) fail(path, "contains no triangles; expected a surface mesh (points and lines are ignored)");
+  return mesh;
+}
+
+}  // namespace icgp
