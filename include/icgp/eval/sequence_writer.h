@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core/mat.hpp>
+#include <string>
+#include <vector>
+
+#include "icgp/geometry/intrinsics.h"
+#include "icgp/geometry/pose.h"
+#include "icgp/io/mesh.h"
+
+namespace icgp {
+
+/// How a synthetic camera moves: it circles a target point on the +Z side of the world
+/// (where the background plane faces), looking roughly at the target, with distance,
+/// viewing direction, roll and the looked-at point each varying as a smooth random signal.
+struct OrbitOptions {
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();  ///< world point circled and looked at
+  double distance = 0.5;                             ///< mean camera-target distance, metres
+  double distance_variation = 0.1;                   ///< metres either side of the mean
+  /// Largest swing of the viewing direction away from the world -Z axis, per axis (about
+  /// world x and y). Kept well below 90 deg so the background plane stays behind.
+  double max_tilt_deg = 35.0;
+  double max_roll_deg = 25.0;  ///< rotation about the optical axis
+  /// The looked-at point wanders this far (metres) from the target, so the object also
+  /// translates in the image instead of staying centred.
+  double look_at_wander = 0.02;
+  /// Typical frequency of every component, in cycles per second: with the defaults the
+  /// camera sweeps its range in about ten seconds.
+  double cycles_per_second = 0.1;
+  /// Multiplies every frequency: 1 is a calm hand-held motion, 3-5 makes a "fast motion"
+  /// sequence with the same range of views.
+  double speed = 1.0;
+};
+
+/// Seeded smooth random camera motion (OrbitOptions). Each component is a normalised sum
+/// of a few sinusoids with random frequencies and phases, so the motion is smooth at any
+/// speed, bounded, and a pure function of (options, seed, time).
+class OrbitTrajectory {
+ public:
+  OrbitTrajectory(const OrbitOptions& options, std::uint64_t seed);
+  Pose camera_T_world(double seconds) const;
+
+ private:
+  /// A smooth signal in [-1, 1].
+  struct Signal {
+    double frequency[3], phase[3], weight[3];
+    double at(double seconds) const;
+  };
+  OrbitOptions options_;
+  Signal distance_, tilt_x_, tilt_y_, roll_, wander_[3];
+};
+
+/// Sensor imperfections added to the rendered images. Zero = exact renders.
+struct SensorNoise {
+  double color_sigma = 0.0;        ///< Gaussian noise on each colour channel, 8-bit levels
+  /// Depth noise sigma = this * Z^2 (metres at 1 m): stereo and structured-light sensors'
+  /// error grows with the square of the distance.
+  double depth_sigma_at_1m = 0.0;
+  double depth_dropout = 0.0;  ///< fraction of depth pixels randomly reported as missing (0)
+};
+
+/// A large textured plane behind the objects (at world Z = target.z - distance), so region
+/// and texture cues see clutter rather than a flat colour.
+struct BackgroundPlane {
+  bool enabled = true;
+  double distance = 0.4;  ///< metres behind the orbit target
+  cv::Mat texture_bgr;    ///< CV_8UC3 image tiled over the plane; empty = procedural clutter
+  double tile_size = 0.3; ///< metres covered by one copy of the texture
+};
+
+struct SequenceWriterOptions {
+  int frame_count = 100;
+  double frame_rate = 30.0;
+  std::uint64_t seed = 1;
+  Intrinsics color_intrinsics;  ///< required: size and calibration of the colour images
+  Intrinsics depth_intrinsics;  ///< required: size and calibration of the depth images
+  Pose depth_T_color;           ///< colour camera -> depth camera
+  /// Metres per unit of the 16-bit depth PNGs. 0.1 mm quantises Z to within 0.05 mm, far
+  /// below real sensor noise and the tracker's sub-millimetre target, while 16 bits still
+  /// reach 6.5 m; depth beyond 65535 units is stored as 0 (out of range, as on a sensor).
+  double depth_scale = 1e-4;
+  OrbitOptions motion;
+  BackgroundPlane background;
+  SensorNoise noise;
+  bool progress = true;  ///< report progress on stderr
+};
+
+/// Renders synthetic RGB-D sequences with exact ground truth in the "icgp" layout that
+/// Sequence reads:
+///
+///   sequence.yaml       format, frame count and rate, depth_scale, both cameras'
+///                       intrinsics and image sizes, depth_T_color, object names and meshes
+///   color/%06d.png      8-bit BGR, from 000000 (lossless, so added noise is kept exactly)
+///   depth/%06d.png      16-bit, Z = value * depth_scale metres, 0 = no measurement
+///   poses/<object>.txt  one line per frame: color_T_object (cMo), 16 numbers row-major,
+///                       each in the shortest decimal form that reads back bit-exactly
+///
+/// The colour camera follows OrbitTrajectory(motion, seed); depth is rendered with the
+/// depth intrinsics at depth_T_color * color_T_world. The same options and seed give
+/// byte-identical files (own random generators, independent of the standard library's
+/// distributions); changing the noise does not change the trajectory or background.
+class SequenceWriter {
+ public:
+  /// Throws std::invalid_argument for invalid options.
+  explicit SequenceWriter(SequenceWriterOptions options);
+
+  /// Adds an object at world_T_object. `name` ([A-Za-z0-9_.-], unique) labels its ground
+  /// truth; `mesh_path` is recorded in sequence.yaml (empty: the mesh's source when it is
+  /// a file).
+  void add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object = Pose(),
+                  const std::string& mesh_path = "");
+
+  /// The colour camera pose of frame `index`.
+  Pose color_T_world(int index) const;
+
+  /// Renders every frame into `dir`. The folder is created when absent; an existing one
+  /// must be empty or hold an earlier icgp sequence, whose files are replaced (other
+  /// folders are refused so a mistyped path cannot wipe unrelated data). Needs a headless
+  /// OpenGL context (throws RenderError without one).
+  void write(const std::string& dir) const;
+
+ private:
+  struct Object {
+    std::string name;
+    Mesh mesh;
+    Pose world_T_object;
+    std::string mesh_path;
+  };
+
+  SequenceWriterOptions options_;
+  OrbitTrajectory trajectory_;
+  std::vector<Object> objects_;
+};
+
+}  // namespace icgp

@@ -1,0 +1,362 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/eval/sequence_writer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "icgp/render/renderer.h"
+
+namespace icgp {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+double radians(double degrees) { return degrees * kPi / 180.0; }
+
+/// splitmix64: a tiny generator whose output is fully specified, unlike the standard
+/// library's distributions, so a seed gives the same sequence with every compiler.
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return double(next() >> 11) * 0x1.0p-53; }  ///< [0, 1)
+  double uniform(double low, double high) { return low + (high - low) * uniform(); }
+  double normal() {  // Box-Muller; 1 - uniform() is in (0, 1] so the log is finite
+    const double radius = std::sqrt(-2.0 * std::log(1.0 - uniform()));
+    return radius * std::cos(2.0 * kPi * uniform());
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
+/// Separate generator streams per purpose (and per frame for noise): changing the noise
+/// must not move the camera, and each frame's noise must not depend on the others.
+enum Stream : std::uint64_t { kTrajectoryStream = 1, kBackgroundStream = 2, kNoiseStream = 3 };
+Random stream(std::uint64_t seed, Stream purpose, std::uint64_t index = 0) {
+  Random mixer(seed ^ (std::uint64_t(purpose) << 56));
+  return Random(mixer.next() ^ (index * 0xD1B54A32D192ED03ull));
+}
+
+/// Shortest decimal form of `value` that parses back to the same double.
+std::string exact(double value) {
+  char text[40];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
+}
+
+void require(bool condition, const std::string& message) {
+  if (!condition) throw std::invalid_argument("SequenceWriter: " + message);
+}
+
+/// Clutter for the background: random filled rectangles, discs and thick lines on a
+/// random base colour, so edges and colours vary at several scales.
+cv::Mat procedural_texture(Random& random) {
+  const auto colour = [&random] {
+    return cv::Scalar(random.uniform(0, 256), random.uniform(0, 256), random.uniform(0, 256));
+  };
+  const auto point = [&random](int size) { return cv::Point(int(random.uniform(0, size)), int(random.uniform(0, size))); };
+  constexpr int kSize = 512;
+  cv::Mat texture(kSize, kSize, CV_8UC3, colour());
+  for (int i = 0; i < 160; ++i) {
+    switch (random.next() % 3) {
+      case 0:
+        cv::rectangle(texture, point(kSize), point(kSize), colour(), cv::FILLED);
+        break;
+      case 1:
+        cv::circle(texture, point(kSize), int(random.uniform(4, 60)), colour(), cv::FILLED, cv::LINE_AA);
+        break;
+      default:
+        cv::line(texture, point(kSize), point(kSize), colour(), int(random.uniform(1, 8)), cv::LINE_AA);
+    }
+  }
+  return texture;
+}
+
+/// Widest angle between the optical axis and the ray through an image corner.
+double half_diagonal_fov(const Intrinsics& k) {
+  double widest = 0.0;
+  for (const double u : {-0.5, k.width - 0.5})
+    for (const double v : {-0.5, k.height - 0.5})
+      widest = std::max(widest, std::atan(std::hypot((u - k.pu) / k.fu, (v - k.pv) / k.fv)));
+  return widest;
+}
+
+/// Half the side of a plane that fills every view of the orbit: camera offset from the
+/// target axis plus how far the widest ray travels sideways before reaching the plane.
+/// Rays steeper than 80 deg from the plane normal are not covered (they would need an
+/// unbounded plane and meet it beyond any depth range anyway).
+double background_half_extent(const SequenceWriterOptions& o) {
+  const OrbitOptions& m = o.motion;
+  const double max_tilt = radians(m.max_tilt_deg);
+  const double tilt = std::acos(std::cos(max_tilt) * std::cos(max_tilt));
+  const double far = m.distance + m.distance_variation;
+  const double near = m.distance - m.distance_variation;
+  const double wander = m.look_at_wander * std::sqrt(3.0);
+  const double fov = std::max(half_diagonal_fov(o.color_intrinsics), half_diagonal_fov(o.depth_intrinsics));
+  const double ray = std::min(tilt + fov + std::atan(wander / near), radians(80.0));
+  return far * std::sin(tilt) + o.depth_T_color.translation().norm() + wander +
+         (far + o.background.distance) * std::tan(ray);
+}
+
+/// A square plane at world Z = z facing +Z, made of tiles that each map the whole texture,
+/// so the texture repeats without relying on the renderer's wrap mode.
+Mesh background_plane(const cv::Mat& texture, const Eigen::Vector2d& centre, double z, double half_extent,
+                      double tile) {
+  MeshPart part;
+  part.material.texture_bgr = texture;
+  const int tiles = int(std::ceil(half_extent / tile));
+  for (int i = -tiles; i < tiles; ++i) {
+    for (int j = -tiles; j < tiles; ++j) {
+      const int first = int(part.vertices.size());
+      const double x = centre.x() + i * tile, y = centre.y() + j * tile;
+      part.vertices.emplace_back(float(x), float(y), float(z));
+      part.vertices.emplace_back(float(x + tile), float(y), float(z));
+      part.vertices.emplace_back(float(x + tile), float(y + tile), float(z));
+      part.vertices.emplace_back(float(x), float(y + tile), float(z));
+      part.texcoords.insert(part.texcoords.end(), {{0.f, 0.f}, {1.f, 0.f}, {1.f, 1.f}, {0.f, 1.f}});
+      part.triangles.emplace_back(first, first + 1, first + 2);
+      part.triangles.emplace_back(first, first + 2, first + 3);
+    }
+  }
+  Mesh mesh;
+  mesh.source = "background plane";
+  mesh.parts.push_back(std::move(part));
+  return mesh;
+}
+
+void add_color_noise(cv::Mat& image, double sigma, Random& random) {
+  for (auto it = image.begin<cv::Vec3b>(); it != image.end<cv::Vec3b>(); ++it)
+    for (int c = 0; c < 3; ++c) (*it)[c] = cv::saturate_cast<uchar>((*it)[c] + sigma * random.normal());
+}
+
+void add_depth_noise(cv::Mat& depth, const SensorNoise& noise, Random& random) {
+  for (auto it = depth.begin<float>(); it != depth.end<float>(); ++it) {
+    if (*it <= 0.f) continue;
+    if (noise.depth_dropout > 0.0 && random.uniform() < noise.depth_dropout)
+      *it = 0.f;
+    else if (noise.depth_sigma_at_1m > 0.0)
+      *it += float(noise.depth_sigma_at_1m * double(*it) * double(*it) * random.normal());
+  }
+}
+
+cv::Mat quantise_depth(const cv::Mat& depth, double scale) {
+  cv::Mat stored(depth.size(), CV_16UC1);
+  for (int r = 0; r < depth.rows; ++r)
+    for (int c = 0; c < depth.cols; ++c) {
+      const double units = std::round(depth.at<float>(r, c) / scale);
+      stored.at<std::uint16_t>(r, c) = units > 0.0 && units <= 65535.0 ? std::uint16_t(units) : 0;
+    }
+  return stored;
+}
+
+void write_image(const fs::path& path, const cv::Mat& image) {
+  if (!cv::imwrite(path.string(), image)) throw std::runtime_error(path.string() + ": cannot write image");
+}
+
+std::string yaml_camera(const std::string& name, const Intrinsics& k) {
+  return "{name: " + name + ", width: " + std::to_string(k.width) + ", height: " + std::to_string(k.height) +
+         ", fu: " + exact(k.fu) + ", fv: " + exact(k.fv) + ", pu: " + exact(k.pu) + ", pv: " + exact(k.pv) + "}";
+}
+
+std::string yaml_quoted(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+/// The 16 entries of the pose's 4x4 matrix, row-major, joined by `separator`.
+std::string row_major(const Pose& pose, const std::string& separator) {
+  const Eigen::Matrix4d m = pose.matrix();
+  std::string line;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) line += (line.empty() ? "" : separator) + exact(m(r, c));
+  return line;
+}
+
+/// Creates `dir`, or empties it when it holds an earlier icgp sequence; anything else is
+/// refused so a mistyped path cannot delete unrelated files.
+void prepare_folder(const fs::path& dir) {
+  if (fs::exists(dir)) {
+    if (!fs::is_directory(dir)) throw std::runtime_error(dir.string() + ": exists and is not a folder");
+    if (!fs::is_empty(dir)) {
+      if (!fs::is_regular_file(dir / "sequence.yaml"))
+        throw std::runtime_error(dir.string() + ": refusing to write into a non-empty folder that does not hold an "
+                                               "icgp sequence (no sequence.yaml)");
+      for (const char* name : {"sequence.yaml", "color", "depth", "poses"}) fs::remove_all(dir / name);
+    }
+  }
+  for (const char* name : {"color", "depth", "poses"}) fs::create_directories(dir / name);
+}
+
+bool is_file_name_safe(const std::string& name) {
+  return !name.empty() && name[0] != '.' && std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '_' || c == '-' || c == '.';
+  });
+}
+
+}  // namespace
+
+double OrbitTrajectory::Signal::at(double seconds) const {
+  double sum = 0.0, total_weight = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    sum += weight[k] * std::sin(2.0 * kPi * frequency[k] * seconds + phase[k]);
+    total_weight += weight[k];
+  }
+  return sum / total_weight;
+}
+
+OrbitTrajectory::OrbitTrajectory(const OrbitOptions& options, std::uint64_t seed) : options_(options) {
+  require(options.distance > 0.0 && options.distance_variation >= 0.0 &&
+              options.distance_variation < options.distance,
+          "orbit distance must be positive and larger than its variation");
+  require(options.max_tilt_deg >= 0.0 && options.max_tilt_deg <= 60.0, "max_tilt_deg must be in [0, 60]");
+  require(options.cycles_per_second > 0.0 && options.speed > 0.0, "cycles_per_second and speed must be positive");
+  require(options.look_at_wander >= 0.0, "look_at_wander must not be negative");
+  Random random = stream(seed, kTrajectoryStream);
+  const double base = options.cycles_per_second * options.speed;
+  for (Signal* signal : {&distance_, &tilt_x_, &tilt_y_, &roll_, &wander_[0], &wander_[1], &wander_[2]})
+    for (int k = 0; k < 3; ++k) {
+      signal->frequency[k] = base * random.uniform(0.5, 1.5);
+      signal->phase[k] = random.uniform(0.0, 2.0 * kPi);
+      signal->weight[k] = random.uniform(0.5, 1.0);
+    }
+}
+
+Pose OrbitTrajectory::camera_T_world(double seconds) const {
+  const OrbitOptions& o = options_;
+  const double distance = o.distance + o.distance_variation * distance_.at(seconds);
+  const double ax = radians(o.max_tilt_deg) * tilt_x_.at(seconds);
+  const double ay = radians(o.max_tilt_deg) * tilt_y_.at(seconds);
+  const Eigen::Vector3d towards_camera(std::cos(ay) * std::sin(ax), std::sin(ay), std::cos(ay) * std::cos(ax));
+  const Eigen::Vector3d position = o.target + distance * towards_camera;
+  const Eigen::Vector3d look_at =
+      o.target + o.look_at_wander * Eigen::Vector3d(wander_[0].at(seconds), wander_[1].at(seconds), wander_[2].at(seconds));
+
+  // Camera axes (x right, y down, z forward) with world +Y up in the image before roll;
+  // z never nears +-Y because the tilt is bounded.
+  const Eigen::Vector3d z = (look_at - position).normalized();
+  const Eigen::Vector3d x = Eigen::Vector3d(0.0, -1.0, 0.0).cross(z).normalized();
+  const Eigen::Vector3d y = z.cross(x);
+  Eigen::Matrix3d world_R_camera;
+  world_R_camera << x, y, z;
+  const Eigen::Matrix3d roll =
+      Eigen::AngleAxisd(radians(o.max_roll_deg) * roll_.at(seconds), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  return Pose(world_R_camera * roll, position).inverse();
+}
+
+SequenceWriter::SequenceWriter(SequenceWriterOptions options)
+    : options_(std::move(options)), trajectory_(options_.motion, options_.seed) {
+  const SequenceWriterOptions& o = options_;
+  require(o.frame_count > 0, "frame_count must be positive");
+  require(o.frame_rate > 0.0, "frame_rate must be positive");
+  require(o.depth_scale > 0.0, "depth_scale must be positive");
+  o.color_intrinsics.validate("SequenceWriter: color_intrinsics");
+  o.depth_intrinsics.validate("SequenceWriter: depth_intrinsics");
+  require(o.noise.color_sigma >= 0.0 && o.noise.depth_sigma_at_1m >= 0.0, "noise sigmas must not be negative");
+  require(o.noise.depth_dropout >= 0.0 && o.noise.depth_dropout < 1.0, "depth_dropout must be in [0, 1)");
+  require(!o.background.enabled || (o.background.distance > 0.0 && o.background.tile_size > 0.0),
+          "background distance and tile_size must be positive");
+  require(o.background.texture_bgr.empty() || o.background.texture_bgr.type() == CV_8UC3,
+          "background texture must be CV_8UC3");
+}
+
+void SequenceWriter::add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object,
+                                const std::string& mesh_path) {
+  require(is_file_name_safe(name), "object name '" + name + "' must be non-empty [A-Za-z0-9_.-] (it names a file)");
+  require(std::none_of(objects_.begin(), objects_.end(), [&](const Object& o) { return o.name == name; }),
+          "object name '" + name + "' is used twice");
+  require(!mesh.empty(), "mesh of object '" + name + "' has no triangles");
+  require(objects_.size() < 254, "at most 254 objects");
+  std::string path = mesh_path;
+  if (path.empty() && fs::is_regular_file(mesh.source)) path = fs::absolute(mesh.source).string();
+  objects_.push_back({name, mesh, world_T_object, path});
+}
+
+Pose SequenceWriter::color_T_world(int index) const { return trajectory_.camera_T_world(index / options_.frame_rate); }
+
+void SequenceWriter::write(const std::string& dir_name) const {
+  const SequenceWriterOptions& o = options_;
+  require(!objects_.empty(), "add at least one object before writing");
+  const fs::path dir(dir_name);
+  prepare_folder(dir);
+
+  Renderer renderer;
+  for (std::size_t i = 0; i < objects_.size(); ++i)
+    renderer.set_body_pose(renderer.add_body(objects_[i].mesh, std::uint8_t(i + 1)), objects_[i].world_T_object);
+  if (o.background.enabled) {
+    Random random = stream(o.seed, kBackgroundStream);
+    const cv::Mat texture = o.background.texture_bgr.empty() ? procedural_texture(random) : o.background.texture_bgr;
+    const Eigen::Vector3d& target = o.motion.target;
+    renderer.add_body(background_plane(texture, target.head<2>(), target.z() - o.background.distance,
+                                       background_half_extent(o), o.background.tile_size),
+                      255);
+  }
+
+  std::ofstream yaml(dir / "sequence.yaml");
+  yaml << "# icgp RGB-D sequence written by icgp::SequenceWriter. color/%06d.png: 8-bit BGR;\n"
+          "# depth/%06d.png: 16-bit, Z = value * depth_scale metres, 0 = no measurement;\n"
+          "# poses/<object>.txt: one line per frame, color_T_object as 16 numbers row-major.\n"
+       << "format: icgp-sequence\nversion: 1\n"
+       << "frame_count: " << o.frame_count << "\nframe_rate: " << exact(o.frame_rate)
+       << "\ndepth_scale: " << exact(o.depth_scale) << "\nseed: " << o.seed << "\n"
+       << "color_camera: " << yaml_camera("Camera1", o.color_intrinsics) << "\n"
+       << "depth_camera: " << yaml_camera("Camera2", o.depth_intrinsics) << "\n"
+       << "depth_T_color: [" << row_major(o.depth_T_color, ", ") << "]\n"
+       << "objects:\n";
+  for (const Object& object : objects_) {
+    yaml << "  - name: " << object.name << "\n";
+    if (!object.mesh_path.empty()) yaml << "    mesh: " << yaml_quoted(object.mesh_path) << "\n";
+  }
+  yaml.close();
+  if (!yaml) throw std::runtime_error((dir / "sequence.yaml").string() + ": cannot write");
+
+  std::vector<std::ofstream> pose_files;
+  for (const Object& object : objects_) pose_files.emplace_back(dir / "poses" / (object.name + ".txt"));
+
+  char name[32];
+  for (int i = 0; i < o.frame_count; ++i) {
+    const Pose camera_T_world = color_T_world(i);
+    cv::Mat color = renderer.render(o.color_intrinsics, camera_T_world, kRenderColor).color;
+    cv::Mat depth = renderer.render(o.depth_intrinsics, o.depth_T_color * camera_T_world, kRenderDepth).depth;
+    Random noise = stream(o.seed, kNoiseStream, std::uint64_t(i));
+    if (o.noise.color_sigma > 0.0) add_color_noise(color, o.noise.color_sigma, noise);
+    add_depth_noise(depth, o.noise, noise);
+
+    std::snprintf(name, sizeof name, "%06d.png", i);
+    write_image(dir / "color" / name, color);
+    write_image(dir / "depth" / name, quantise_depth(depth, o.depth_scale));
+    for (std::size_t k = 0; k < objects_.size(); ++k)
+      pose_files[k] << row_major(camera_T_world * objects_[k].world_T_object, " ") << "\n";
+
+    if (o.progress && ((i + 1) * 10 / o.frame_count != i * 10 / o.frame_count || i + 1 == o.frame_count))
+      std::cerr << "icgp sequence writer: " << dir.string() << ": frame " << i + 1 << "/" << o.frame_count << "\n";
+  }
+  for (std::size_t k = 0; k < objects_.size(); ++k)
+    if (!pose_files[k].flush())
+      throw std::runtime_error((dir / "poses" / (objects_[k].name + ".txt")).string() + ": cannot write");
+}
+
+}  // namespace icgp
