@@ -1,1 +1,20 @@
-int main() { return 0; }
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include <iostream>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"icgp: ICG+ multi-modality 6-DoF object tracking for ViSP"};
+  app.require_subcommand(1);
+  icgp::app::register_render_command(app);
+  icgp::app::register_bench_render_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "icgp: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
