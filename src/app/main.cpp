@@ -8,6 +8,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   icgp::app::register_render_command(app);
   icgp::app::register_bench_render_command(app);
+  icgp::app::register_make_sequence_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -43,7 +43,8 @@ void run_render(const RenderOptions& o) {
             << "renderer   " << renderer.description() << "\n"
             << "view       " << k.width << "x" << k.height << ", object " << o.view.distance_for(mesh.radius_about_origin())
             << " m away\n"
-            << "object px  " << cv::countNonZero(out.ids) << " pixels, depth " << ms << " ms for all four targets\n"
+            << "object px  " << cv::countNonZero(out.ids) << " pixels, rendered in " << ms
+            << " ms (all four targets, first render: includes shader compilation)\n"
             << "wrote      " << o.out << " (colour | depth / normals | ids)\n";
 }
 
