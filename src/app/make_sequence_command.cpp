@@ -22,14 +22,7 @@ struct MakeSequenceOptions {
 };
 
 void run_make_sequence(MakeSequenceOptions o) {
-  Intrinsics k;
-  k.fu = k.fv = o.focal;
-  k.pu = (o.width - 1) / 2.0;
-  k.pv = (o.height - 1) / 2.0;
-  k.width = o.width;
-  k.height = o.height;
-  o.writer.color_intrinsics = k;
-  o.writer.depth_intrinsics = k;
+  o.writer.color_intrinsics = o.writer.depth_intrinsics = Intrinsics::centred(o.width, o.height, o.focal);
   o.writer.depth_T_color = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0 - o.baseline, 0.0, 0.0));
 
   const Mesh mesh = load_any_mesh(o.model, o.scale);

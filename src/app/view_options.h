@@ -18,15 +18,7 @@ struct ViewOptions {
   double distance = 0.0;     ///< metres from the body origin; 0 = frame the object
   double roll = 0.0;         ///< degrees about the optical axis
 
-  Intrinsics intrinsics() const {
-    Intrinsics k;
-    k.fu = k.fv = focal;
-    k.pu = (width - 1) / 2.0;
-    k.pv = (height - 1) / 2.0;
-    k.width = width;
-    k.height = height;
-    return k;
-  }
+  Intrinsics intrinsics() const { return Intrinsics::centred(width, height, focal); }
 
   /// The distance at which an object of this radius spans about 60 % of the shorter side.
   double distance_for(double radius) const {

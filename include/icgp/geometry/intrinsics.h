@@ -17,6 +17,12 @@ struct Intrinsics {
   int width = 0;
   int height = 0;
 
+  /// A camera of the given size and focal length with the principal point at the image
+  /// centre ((width - 1) / 2, (height - 1) / 2 in the pixel-centre convention).
+  static Intrinsics centred(int width, int height, double focal) {
+    return {focal, focal, (width - 1) / 2.0, (height - 1) / 2.0, width, height};
+  }
+
   /// Throws std::invalid_argument naming `what` when focal lengths or the image size are
   /// not positive and finite.
   void validate(const std::string& what = "intrinsics") const;
