@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "icgp/modality/modality.h"
+#include "icgp/model/viewpoint_model.h"
+
+namespace icgp {
+
+/// Parameters of the region modality (ALGORITHMS.md §4, §7) with the reference defaults.
+/// Iteration-indexed lists use entry corr_iter, and their last entry afterwards.
+struct RegionParams {
+  std::string color_camera = "Camera1";
+  std::string depth_camera = "Camera2";  ///< for measured occlusions; empty: none
+  int n_lines_max = 200;
+  double min_continuous_distance = 3.0;  ///< segments
+  int function_length = 8;
+  int distribution_length = 12;
+  double function_amplitude = 0.43;  ///< α of the smoothed step
+  double function_slope = 0.5;       ///< s_h; 0 = hard step
+  double learning_rate = 1.3;
+  int n_global_iterations = 1;
+  std::vector<int> scales = {6, 4, 2, 1};
+  std::vector<double> standard_deviations = {15.0, 5.0, 3.5, 1.5};  ///< pixels
+  int n_histogram_bins = 16;
+  double learning_rate_f = 0.2;
+  double learning_rate_b = 0.2;
+  double unconsidered_line_length = 0.5;  ///< pixels
+  double max_considered_line_length = 20.0;  ///< pixels
+  bool measure_occlusions = true;
+  double occlusion_radius = 0.01;     ///< metres
+  double occlusion_threshold = 0.03;  ///< metres
+  int n_unoccluded_iterations = 10;   ///< frames after a (re)start without occlusion tests
+  int min_n_unoccluded_lines = 0;
+};
+
+/// Parameters of the depth modality (ALGORITHMS.md §5, §7) with the reference defaults.
+struct DepthParams {
+  std::string depth_camera = "Camera2";
+  int n_points_max = 200;
+  double stride_length = 0.005;  ///< metres between window samples
+  std::vector<double> considered_distances = {0.05, 0.02, 0.01};  ///< metres
+  std::vector<double> standard_deviations = {0.05, 0.03, 0.02};   ///< metres
+  bool measure_occlusions = true;
+  double occlusion_radius = 0.01;
+  double occlusion_threshold = 0.03;
+  int n_unoccluded_iterations = 10;
+  int min_n_unoccluded_points = 0;
+};
+
+}  // namespace icgp

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "icgp/modality/modality_params.h"
+#include "icgp/model/viewpoint_model.h"
+#include "icgp/tracker/tracker.h"
+
+namespace icgp {
+
+/// Everything that configures a tracker, with the reference defaults; a YAML file sets any
+/// subset of it (see docs/configuration.md).
+struct TrackerConfig {
+  TrackerParams tracker;
+  std::vector<std::string> modalities = {"region", "depth"};
+  ViewpointModelParams region_model;
+  ViewpointModelParams depth_model;
+  RegionParams region;
+  DepthParams depth;
+  std::string cache_dir;  ///< empty: $ICGP_CACHE_DIR, else $XDG_CACHE_HOME/icgp, else ~/.cache/icgp
+};
+
+/// Reads a YAML configuration over the defaults. Unknown keys and values of the wrong type
+/// or range throw std::runtime_error naming the file and the key.
+TrackerConfig load_tracker_config(const std::string& path);
+/// A tracker for one body with the configured modalities. Viewpoint models come from the
+/// cache (config.cache_dir), generated with progress output on first use. The body starts
+/// at the identity pose: set tracker.body(body_name).reference_T_body, then start().
+/// Throws std::invalid_argument for an unknown or unavailable modality name.
+std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name);
+
+/// The configuration as YAML (every key, so `icgp config` can print the defaults).
+std::string to_yaml(const TrackerConfig& config);
+
+}  // namespace icgp

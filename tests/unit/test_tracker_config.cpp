@@ -1,0 +1,314 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Tracker configuration files: the reference defaults, partial files, the YAML round trip
+// and error messages that name the file and the key.
+#include <yaml-cpp/yaml.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+
+#include "icgp/tracker/tracker_config.h"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+using icgp::load_tracker_config;
+using icgp::to_yaml;
+using icgp::TrackerConfig;
+
+namespace {
+
+/// A directory of configuration files written by a test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "icgp-config-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const fs::path& path() const { return path_; }
+  std::string write(const std::string& name, const std::string& content) const {
+    const fs::path file = path_ / name;
+    std::ofstream(file) << content;
+    return file.string();
+  }
+
+ private:
+  fs::path path_;
+};
+
+/// Every value of a YAML document by its dotted key ("region.scales" -> "[6, 4, 2, 1]").
+std::map<std::string, std::string> flatten(const YAML::Node& node, const std::string& prefix = "") {
+  std::map<std::string, std::string> values;
+  if (node.IsMap()) {
+    for (const auto& entry : node) {
+      auto nested = flatten(entry.second, prefix + entry.first.Scalar() + ".");
+      values.insert(nested.begin(), nested.end());
+    }
+  } else {
+    std::string text = node.Scalar();
+    if (node.IsSequence()) {
+      text = "[";
+      for (const auto& item : node) text += (text.size() > 1 ? ", " : "") + item.Scalar();
+      text += "]";
+    }
+    values[prefix.substr(0, prefix.size() - 1)] = text;
+  }
+  return values;
+}
+
+std::map<std::string, std::string> flatten_yaml(const std::string& text) { return flatten(YAML::Load(text)); }
+
+/// Every key, none with its default value (written the way to_yaml writes values).
+const char* const kEveryKey = R"(tracker:
+  n_corr_iterations: 4
+  n_update_iterations: 3
+  tikhonov_rotation: 500.0
+  tikhonov_translation: 10000.0
+  quality_threshold: 0.25
+modalities: [depth, texture, region]
+region_model:
+  n_divides: 3
+  sphere_radius: 1.2
+  image_size: 1000
+  image_margin: 10
+  n_points: 150
+  stride_depth_offset: 0.004
+  max_radius_depth_offset: 0.04
+  min_contour_length: 10
+  normal_chord_offset: 2
+  seed: 18446744073709551615
+depth_model:
+  n_divides: 0
+  sphere_radius: 0.6
+  image_size: 64
+  image_margin: 0
+  n_points: 100
+  stride_depth_offset: 0.001
+  max_radius_depth_offset: 0.03
+  min_contour_length: 0
+  normal_chord_offset: 1
+  seed: 11
+region:
+  color_camera: rgb
+  depth_camera: ""
+  n_lines_max: 150
+  min_continuous_distance: 2.5
+  function_length: 7
+  distribution_length: 11
+  function_amplitude: 0.36
+  function_slope: 0.0
+  learning_rate: 1.1
+  n_global_iterations: 0
+  scales: [5, 3, 1]
+  standard_deviations: [20.0, 2.0]
+  n_histogram_bins: 32
+  learning_rate_f: 0.1
+  learning_rate_b: 1.0
+  unconsidered_line_length: 1.0
+  max_considered_line_length: 30.0
+  measure_occlusions: false
+  occlusion_radius: 0.02
+  occlusion_threshold: 0.05
+  n_unoccluded_iterations: 0
+  min_n_unoccluded_lines: 5
+depth:
+  depth_camera: depth
+  n_points_max: 300
+  stride_length: 0.01
+  considered_distances: [0.1, 0.03]
+  standard_deviations: [0.04]
+  measure_occlusions: false
+  occlusion_radius: 0.005
+  occlusion_threshold: 0.04
+  n_unoccluded_iterations: 3
+  min_n_unoccluded_points: 7
+cache_dir: /tmp/icgp cache
+)";
+
+}  // namespace
+
+TEST_CASE("tracker config: defaults are the reference values of ALGORITHMS.md") {
+  const TrackerConfig c;
+  CHECK(c.tracker.tikhonov_rotation == 1000.0);
+  CHECK(c.tracker.tikhonov_translation == 30000.0);
+  CHECK(c.tracker.n_corr_iterations == 5);
+  CHECK(c.tracker.n_update_iterations == 2);
+  CHECK(c.modalities == std::vector<std::string>{"region", "depth"});
+  for (const icgp::ViewpointModelParams& m : {c.region_model, c.depth_model}) {
+    CHECK(m.n_divides == 4);
+    CHECK(m.sphere_radius == 0.8);
+    CHECK(m.image_size == 2000);
+    CHECK(m.image_margin == 20);
+    CHECK(m.n_points == 200);
+    CHECK(m.stride_depth_offset == 0.002);
+    CHECK(m.max_radius_depth_offset == 0.05);
+    CHECK(m.min_contour_length == 15);
+    CHECK(m.normal_chord_offset == 3);
+  }
+  CHECK(c.region.n_lines_max == 200);
+  CHECK(c.region.min_continuous_distance == 3.0);
+  CHECK(c.region.function_length == 8);
+  CHECK(c.region.distribution_length == 12);
+  CHECK(c.region.function_amplitude == 0.43);
+  CHECK(c.region.function_slope == 0.5);
+  CHECK(c.region.learning_rate == 1.3);
+  CHECK(c.region.n_global_iterations == 1);
+  CHECK(c.region.scales == std::vector<int>{6, 4, 2, 1});
+  CHECK(c.region.standard_deviations == std::vector<double>{15.0, 5.0, 3.5, 1.5});
+  CHECK(c.region.n_histogram_bins == 16);
+  CHECK(c.region.learning_rate_f == 0.2);
+  CHECK(c.region.learning_rate_b == 0.2);
+  CHECK(c.region.unconsidered_line_length == 0.5);
+  CHECK(c.region.max_considered_line_length == 20.0);
+  CHECK(c.region.occlusion_radius == 0.01);
+  CHECK(c.region.occlusion_threshold == 0.03);
+  CHECK(c.depth.n_points_max == 200);
+  CHECK(c.depth.stride_length == 0.005);
+  CHECK(c.depth.considered_distances == std::vector<double>{0.05, 0.02, 0.01});
+  CHECK(c.depth.standard_deviations == std::vector<double>{0.05, 0.03, 0.02});
+  CHECK(c.depth.occlusion_radius == 0.01);
+  CHECK(c.depth.occlusion_threshold == 0.03);
+  CHECK(c.cache_dir.empty());
+}
+
+TEST_CASE("tracker config: empty files and empty sections give the defaults") {
+  TempDir dir;
+  const std::string defaults = to_yaml(TrackerConfig{});
+  CHECK(to_yaml(load_tracker_config(dir.write("empty.yaml", ""))) == defaults);
+  CHECK(to_yaml(load_tracker_config(dir.write("comments.yaml", "# nothing set\n"))) == defaults);
+  CHECK(to_yaml(load_tracker_config(dir.write("sections.yaml", "tracker:\nregion: {}\n"))) == defaults);
+}
+
+TEST_CASE("tracker config: a partial file overrides only its keys") {
+  TempDir dir;
+  const std::string file = dir.write("partial.yaml",
+                                     "tracker:\n  n_corr_iterations: 7\n"
+                                     "region:\n  scales: [3, 1]\n  function_amplitude: 0.4\n"
+                                     "depth_model: {n_points: 50}\n");
+  const TrackerConfig c = load_tracker_config(file);
+  CHECK(c.tracker.n_corr_iterations == 7);
+  CHECK(c.region.scales == std::vector<int>{3, 1});
+  CHECK(c.region.function_amplitude == 0.4);
+  CHECK(c.depth_model.n_points == 50);
+  CHECK(c.region_model.n_points == 200);
+
+  auto expected = flatten_yaml(to_yaml(TrackerConfig{}));
+  expected["tracker.n_corr_iterations"] = "7";
+  expected["region.scales"] = "[3, 1]";
+  expected["region.function_amplitude"] = "0.4";
+  expected["depth_model.n_points"] = "50";
+  CHECK(flatten_yaml(to_yaml(c)) == expected);
+}
+
+TEST_CASE("tracker config: to_yaml writes every key and round-trips exactly") {
+  TempDir dir;
+  const auto defaults = flatten_yaml(to_yaml(TrackerConfig{}));
+  const auto every_key = flatten_yaml(kEveryKey);
+  // The file sets every key to_yaml writes, each to a value other than its default ...
+  REQUIRE(every_key.size() == defaults.size());
+  for (const auto& [key, value] : defaults) {
+    INFO(key);
+    REQUIRE(every_key.count(key) == 1);
+    CHECK(every_key.at(key) != value);
+  }
+  // ... so reading it and writing it back proves every key is both read and written.
+  const TrackerConfig c = load_tracker_config(dir.write("every.yaml", kEveryKey));
+  CHECK(to_yaml(c) == kEveryKey);
+  CHECK(c.region.depth_camera.empty());
+  CHECK(c.region_model.seed == 18446744073709551615ull);
+  CHECK(c.cache_dir == "/tmp/icgp cache");
+
+  SECTION("doubles keep every bit") {
+    TrackerConfig awkward;
+    awkward.region.function_slope = 0.1 + 0.2;
+    awkward.depth.standard_deviations = {1.0 / 3.0, 1e-300, 1e300};
+    awkward.tracker.tikhonov_rotation = 123456789.0;
+    const TrackerConfig back = load_tracker_config(dir.write("awkward.yaml", to_yaml(awkward)));
+    CHECK(back.region.function_slope == awkward.region.function_slope);
+    CHECK(back.depth.standard_deviations == awkward.depth.standard_deviations);
+    CHECK(back.tracker.tikhonov_rotation == awkward.tracker.tikhonov_rotation);
+  }
+}
+
+TEST_CASE("tracker config: docs/configuration.md lists every key with its default") {
+  std::ifstream in(ICGP_DOCS_DIR "/configuration.md");
+  REQUIRE(in);
+  const std::regex section_name("`(\\w+)`"), row(R"(^\| `(\w+)` \| `([^`]*)` \|)");
+  std::vector<std::string> prefixes;  // of the keys in the current section's table
+  std::map<std::string, std::string> documented;
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (line.rfind("## ", 0) == 0) {
+      prefixes.clear();
+      if (line == "## Top level") prefixes.push_back("");
+      for (std::sregex_iterator it(line.begin(), line.end(), section_name), end; it != end; ++it)
+        prefixes.push_back((*it)[1].str() + ".");
+    } else if (std::regex_search(line, m, row)) {
+      for (const std::string& prefix : prefixes) documented[prefix + m[1].str()] = m[2] == "\"\"" ? "" : m[2].str();
+    }
+  }
+  CHECK(documented == flatten_yaml(to_yaml(TrackerConfig{})));
+}
+
+TEST_CASE("tracker config: unreadable files and YAML syntax errors name the file") {
+  TempDir dir;
+  const std::string missing = (dir.path() / "missing.yaml").string();
+  CHECK_THROWS_WITH(load_tracker_config(missing), StartsWith(missing + ": ") && Contains("no such file"));
+  const std::string folder = dir.path().string();
+  CHECK_THROWS_WITH(load_tracker_config(folder), StartsWith(folder + ": ") && Contains("cannot read"));
+  const std::string broken = dir.write("broken.yaml", "tracker:\n  n_corr_iterations: [1, 2\nregion: {}\n");
+  CHECK_THROWS_WITH(load_tracker_config(broken), StartsWith(broken + ": line ") && Contains("YAML syntax error"));
+}
+
+TEST_CASE("tracker config: bad keys, types and values name the file and the full key") {
+  struct Case {
+    const char* yaml;
+    const char* message;  ///< after "<file>: "
+  };
+  const Case cases[] = {
+      {"regoin: {}", "regoin: unknown key (valid keys: tracker, modalities, region_model, depth_model, region, depth, "
+                     "cache_dir)"},
+      {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
+      {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
+      {"- tracker\n- region\n", "expected a map with the keys tracker, modalities,"},
+      {"region: 3", "region: expected a map with the keys color_camera,"},
+      {"tracker: {n_corr_iterations: 2.5}", "tracker.n_corr_iterations: expected a positive integer"},
+      {"tracker: {n_corr_iterations: 0}", "tracker.n_corr_iterations: expected a positive integer"},
+      {"tracker: {tikhonov_rotation: -1}", "tracker.tikhonov_rotation: expected a positive number"},
+      {"tracker: {quality_threshold: 2}", "tracker.quality_threshold: expected a number in [0, 1]"},
+      {"region: {scales: []}", "region.scales: expected a non-empty list of positive integers"},
+      {"region: {scales: [2, 0]}", "region.scales: expected a non-empty list of positive integers"},
+      {"region: {scales: 6}", "region.scales: expected a non-empty list of positive integers"},
+      {"region: {standard_deviations: [15, x]}", "region.standard_deviations: expected a non-empty list of positive"},
+      {"region: {function_amplitude: 0.5}", "region.function_amplitude: expected a number between 0 and 0.5"},
+      {"region: {learning_rate_f: 1.5}", "region.learning_rate_f: expected a number in [0, 1]"},
+      {"region: {measure_occlusions: maybe}", "region.measure_occlusions: expected true or false"},
+      {"region: {n_histogram_bins: 12}", "region.n_histogram_bins: expected one of 2, 4, 8, 16, 32, 64"},
+      {"region: {color_camera: ''}", "region.color_camera: expected a non-empty string"},
+      {"region_model: {n_divides: 7}", "region_model.n_divides: expected an integer from 0 to 6"},
+      {"region_model: {seed: -1}", "region_model.seed: expected a non-negative integer"},
+      {"depth_model: {image_size: 32}", "depth_model.image_size: expected an integer of at least 64"},
+      {"depth: {considered_distances: [0.05, -0.01]}", "depth.considered_distances: expected a non-empty list of"},
+      {"depth: {stride_length: .inf}", "depth.stride_length: expected a positive number"},
+      {"depth: {n_unoccluded_iterations: -2}", "depth.n_unoccluded_iterations: expected a non-negative integer"},
+      {"modalities: [region, regoin]", "modalities: expected a non-empty list of distinct names from region, depth"},
+      {"modalities: [depth, depth]", "modalities: expected a non-empty list of distinct names"},
+      {"modalities: []", "modalities: expected a non-empty list of distinct names"},
+      {"cache_dir: [a]", "cache_dir: expected a string"},
+  };
+  TempDir dir;
+  const std::string file = (dir.path() / "config.yaml").string();
+  for (const Case& c : cases) {
+    INFO(c.yaml);
+    dir.write("config.yaml", c.yaml);
+    CHECK_THROWS_WITH(load_tracker_config(file), StartsWith(file + ": " + c.message));
+  }
+}
