@@ -4,8 +4,11 @@
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
+#include <opencv2/core.hpp>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -81,6 +84,21 @@ void main() {
 }
 )";
 
+// Silhouette renders for model generation: ids only, depth comes from the depth buffer.
+// Without shading, colour outputs or a geometry shader this is several times cheaper per
+// pixel on llvmpipe, which matters for thousands of 2000x2000 views.
+constexpr const char* kSilhouetteVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 body_position;
+uniform mat4 projection_T_body;
+void main() { gl_Position = projection_T_body * vec4(body_position, 1.0); }
+)";
+
+constexpr const char* kSilhouetteFragmentShader = R"(#version 330 core
+uniform uint body_id;
+layout(location = 0) out uint out_id;
+void main() { out_id = body_id; }
+)";
+
 enum Attachment { kDepthAttachment = 0, kNormalAttachment, kIdAttachment, kColorAttachment, kAttachmentCount };
 
 GLuint compile_shader(GLenum type, const char* source) {
@@ -98,10 +116,7 @@ GLuint compile_shader(GLenum type, const char* source) {
   return shader;
 }
 
-GLuint link_program() {
-  const GLuint shaders[] = {compile_shader(GL_VERTEX_SHADER, kVertexShader),
-                            compile_shader(GL_GEOMETRY_SHADER, kGeometryShader),
-                            compile_shader(GL_FRAGMENT_SHADER, kFragmentShader)};
+GLuint link_program(const std::vector<GLuint>& shaders) {
   GLuint program = glCreateProgram();
   for (GLuint s : shaders) glAttachShader(program, s);
   glLinkProgram(program);
@@ -120,18 +135,18 @@ GLuint link_program() {
 /// Offscreen render targets of one image size.
 struct Framebuffer {
   GLuint fbo = 0;
-  std::array<GLuint, kAttachmentCount> color{};
+  std::vector<GLuint> color;
   GLuint depth_buffer = 0;
 
-  Framebuffer(int width, int height) {
+  Framebuffer(int width, int height, const std::vector<GLenum>& color_formats) : color(color_formats.size()) {
     glGenFramebuffers(1, &fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    const GLenum formats[kAttachmentCount] = {GL_R32F, GL_RGBA32F, GL_R8UI, GL_RGBA8};
-    glGenRenderbuffers(kAttachmentCount, color.data());
-    for (int i = 0; i < kAttachmentCount; ++i) {
+    glGenRenderbuffers(static_cast<GLsizei>(color.size()), color.data());
+    for (std::size_t i = 0; i < color.size(); ++i) {
       glBindRenderbuffer(GL_RENDERBUFFER, color[i]);
-      glRenderbufferStorage(GL_RENDERBUFFER, formats[i], width, height);
-      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_RENDERBUFFER, color[i]);
+      glRenderbufferStorage(GL_RENDERBUFFER, color_formats[i], width, height);
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), GL_RENDERBUFFER,
+                                color[i]);
     }
     glGenRenderbuffers(1, &depth_buffer);
     glBindRenderbuffer(GL_RENDERBUFFER, depth_buffer);
@@ -142,7 +157,7 @@ struct Framebuffer {
                         " is incomplete");
   }
   ~Framebuffer() {
-    glDeleteRenderbuffers(kAttachmentCount, color.data());
+    glDeleteRenderbuffers(static_cast<GLsizei>(color.size()), color.data());
     glDeleteRenderbuffers(1, &depth_buffer);
     glDeleteFramebuffers(1, &fbo);
   }
@@ -163,7 +178,27 @@ struct GpuBody {
   bool visible = true;
   Eigen::Vector3d centre;  ///< of the bounding sphere, body frame
   double radius = 0.0;
+  Eigen::Vector3d box_min, box_max;  ///< axis-aligned bounding box, body frame
 };
+
+/// Zeroes the part of `old` that `now` does not cover in both images.
+void zero_uncovered(const cv::Rect& old, const cv::Rect& now, SilhouetteImages& images) {
+  const cv::Rect keep = old & now;
+  std::vector<cv::Rect> bands;
+  if (keep.empty()) {
+    bands.push_back(old);
+  } else {
+    bands = {{old.x, old.y, old.width, keep.y - old.y},
+             {old.x, keep.br().y, old.width, old.br().y - keep.br().y},
+             {old.x, keep.y, keep.x - old.x, keep.height},
+             {keep.br().x, keep.y, old.br().x - keep.br().x, keep.height}};
+  }
+  for (const cv::Rect& band : bands)
+    if (!band.empty()) {
+      images.ids(band).setTo(0);
+      images.inverse_depth(band).setTo(0);
+    }
+}
 
 GLuint upload_texture(const cv::Mat& bgr) {
   const cv::Mat image = bgr.isContinuous() ? bgr : bgr.clone();
@@ -235,17 +270,26 @@ void validate_mesh(const Mesh& mesh) {
 struct Renderer::Impl {
   EglContext context;
   GLuint program = 0;
+  GLuint silhouette_program = 0;
   bool reversed_z = false;  ///< glClipControl available: float depth with uniform precision
   std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> framebuffers;
+  std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> silhouette_framebuffers;
   std::vector<GpuBody> bodies;
   Lighting lighting;
   struct {
     GLint camera_T_body, projection, body_id, has_texture, diffuse_texture, diffuse_rgb, light_direction, ambient,
         diffuse;
   } uniforms{};
+  struct {
+    GLint projection_T_body, body_id;
+  } silhouette_uniforms{};
 
   Impl() {
-    program = link_program();
+    program = link_program({compile_shader(GL_VERTEX_SHADER, kVertexShader),
+                            compile_shader(GL_GEOMETRY_SHADER, kGeometryShader),
+                            compile_shader(GL_FRAGMENT_SHADER, kFragmentShader)});
+    silhouette_program = link_program({compile_shader(GL_VERTEX_SHADER, kSilhouetteVertexShader),
+                                       compile_shader(GL_FRAGMENT_SHADER, kSilhouetteFragmentShader)});
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);
@@ -255,6 +299,8 @@ struct Renderer::Impl {
                 glGetUniformLocation(program, "diffuse_texture"), glGetUniformLocation(program, "diffuse_rgb"),
                 glGetUniformLocation(program, "light_direction"), glGetUniformLocation(program, "ambient"),
                 glGetUniformLocation(program, "diffuse")};
+    silhouette_uniforms = {glGetUniformLocation(silhouette_program, "projection_T_body"),
+                           glGetUniformLocation(silhouette_program, "body_id")};
   }
 
   ~Impl() {
@@ -262,13 +308,37 @@ struct Renderer::Impl {
     for (auto& body : bodies)
       for (auto& part : body.parts) release_part(part);
     framebuffers.clear();
+    silhouette_framebuffers.clear();
     glDeleteProgram(program);
+    glDeleteProgram(silhouette_program);
   }
 
   Framebuffer& framebuffer(int width, int height) {
     auto& fb = framebuffers[{width, height}];
-    if (!fb) fb = std::make_unique<Framebuffer>(width, height);
+    if (!fb)
+      fb = std::make_unique<Framebuffer>(width, height, std::vector<GLenum>{GL_R32F, GL_RGBA32F, GL_R8UI, GL_RGBA8});
     return *fb;
+  }
+
+  Framebuffer& silhouette_framebuffer(int width, int height) {
+    auto& fb = silhouette_framebuffers[{width, height}];
+    if (!fb) fb = std::make_unique<Framebuffer>(width, height, std::vector<GLenum>{GL_R8UI});
+    return *fb;
+  }
+
+  /// Depth test towards the camera and a cleared depth buffer, for the bound framebuffer.
+  void clear_depth_for_drawing() const {
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    if (reversed_z) {
+      glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+      glDepthFunc(GL_GREATER);
+      glClearDepth(0.0);
+    } else {
+      glDepthFunc(GL_LESS);
+      glClearDepth(1.0);
+    }
+    glClear(GL_DEPTH_BUFFER_BIT);
   }
 
   GpuBody& body(BodyHandle handle) {
@@ -339,6 +409,57 @@ struct Renderer::Impl {
     }
     glBindVertexArray(0);
   }
+
+  void draw_silhouette(const Intrinsics& k, const Pose& camera_T_world, double near, double far) {
+    glUseProgram(silhouette_program);
+    const Eigen::Matrix4d P = projection(k, near, far).cast<double>();
+    for (const auto& b : bodies) {
+      if (!b.visible) continue;
+      const Eigen::Matrix4f projection_T_body = (P * (camera_T_world * b.world_T_body).matrix()).cast<float>();
+      glUniformMatrix4fv(silhouette_uniforms.projection_T_body, 1, GL_FALSE, projection_T_body.data());
+      glUniform1ui(silhouette_uniforms.body_id, b.id);
+      for (const auto& part : b.parts) {
+        glBindVertexArray(part.vao);
+        glDrawElements(GL_TRIANGLES, part.index_count, GL_UNSIGNED_INT, nullptr);
+      }
+    }
+    glBindVertexArray(0);
+  }
+
+  /// The pixels the visible bodies can cover: the bounding rectangle of their projected
+  /// bounding-box corners plus a pixel, clipped to the image; the whole image when a corner
+  /// is not in front of the camera.
+  cv::Rect footprint(const Intrinsics& k, const Pose& camera_T_world) const {
+    const cv::Rect image(0, 0, k.width, k.height);
+    double u_min = std::numeric_limits<double>::max(), v_min = u_min, u_max = -u_min, v_max = -u_min;
+    for (const auto& b : bodies) {
+      if (!b.visible) continue;
+      const Pose camera_T_body = camera_T_world * b.world_T_body;
+      for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d corner((c & 1) ? b.box_max.x() : b.box_min.x(), (c & 2) ? b.box_max.y() : b.box_min.y(),
+                                     (c & 4) ? b.box_max.z() : b.box_min.z());
+        const Eigen::Vector3d X = camera_T_body * corner;
+        if (!(X.z() > 0.0)) return image;
+        const Eigen::Vector2d x = k.project<double>(X);
+        u_min = std::min(u_min, x.x()), u_max = std::max(u_max, x.x());
+        v_min = std::min(v_min, x.y()), v_max = std::max(v_max, x.y());
+      }
+    }
+    if (u_min > u_max) return {};
+    auto clamp = [](double x, int size) { return static_cast<int>(std::clamp(x, -1.0, static_cast<double>(size))); };
+    const int x0 = clamp(std::floor(u_min) - 1, k.width), x1 = clamp(std::ceil(u_max) + 1, k.width);
+    const int y0 = clamp(std::floor(v_min) - 1, k.height), y1 = clamp(std::ceil(v_max) + 1, k.height);
+    return cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1) & image;
+  }
+
+  /// The id of the only visible body, or 0 when several bodies are visible.
+  std::uint8_t single_visible_id() const {
+    std::uint8_t id = 0;
+    int visible = 0;
+    for (const auto& b : bodies)
+      if (b.visible) id = b.id, ++visible;
+    return visible == 1 ? id : 0;
+  }
 };
 
 ImageSquare square_around_sphere(const Intrinsics& k, const Eigen::Vector3d& centre, double radius, double margin) {
@@ -365,6 +486,8 @@ Renderer::BodyHandle Renderer::add_body(const Mesh& mesh, std::uint8_t id) {
   Eigen::Vector3f lo, hi;
   mesh.bounds(lo, hi);
   body.centre = (0.5f * (lo + hi)).cast<double>();
+  body.box_min = lo.cast<double>();
+  body.box_max = hi.cast<double>();
   for (const auto& part : mesh.parts) {
     for (const auto& v : part.vertices) body.radius = std::max(body.radius, (v.cast<double>() - body.centre).norm());
     body.parts.push_back(upload_part(part));
@@ -409,18 +532,7 @@ RenderOutput Renderer::render(const Intrinsics& intrinsics, const Pose& camera_T
   if (targets & kRenderNormals) glClearBufferfv(GL_COLOR, kNormalAttachment, zeros);
   if (targets & kRenderIds) glClearBufferuiv(GL_COLOR, kIdAttachment, zero_id);
   if (targets & kRenderColor) glClearBufferfv(GL_COLOR, kColorAttachment, background.data());
-
-  glEnable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  if (impl_->reversed_z) {
-    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-    glDepthFunc(GL_GREATER);
-    glClearDepth(0.0);
-  } else {
-    glDepthFunc(GL_LESS);
-    glClearDepth(1.0);
-  }
-  glClear(GL_DEPTH_BUFFER_BIT);
+  impl_->clear_depth_for_drawing();
   impl_->draw(intrinsics, camera_T_world, near, far);
 
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -445,6 +557,70 @@ RenderOutput Renderer::render_focused(const Intrinsics& intrinsics, const Pose& 
   const Intrinsics crop = intrinsics.cropped(u_min, v_min, size, size, out_size, out_size);
   if (crop_intrinsics) *crop_intrinsics = crop;
   return render(crop, camera_T_world, targets);
+}
+
+void Renderer::render_silhouette(const Intrinsics& intrinsics, const Pose& camera_T_world, SilhouetteImages& out) {
+  intrinsics.validate("silhouette render intrinsics");
+  const int W = intrinsics.width, H = intrinsics.height;
+  if (out.ids.size() != cv::Size(W, H) || out.ids.type() != CV_8UC1 || out.inverse_depth.size() != cv::Size(W, H) ||
+      out.inverse_depth.type() != CV_32FC1) {
+    out.ids = cv::Mat::zeros(H, W, CV_8UC1);
+    out.inverse_depth = cv::Mat::zeros(H, W, CV_32FC1);
+    out.footprint = cv::Rect();
+  }
+  double near = 0.0, far = 0.0;
+  const cv::Rect footprint =
+      impl_->depth_range(camera_T_world, near, far) ? impl_->footprint(intrinsics, camera_T_world) : cv::Rect();
+  // Only the previous footprint can hold anything: clear what the new one does not redraw.
+  zero_uncovered(out.footprint, footprint, out);
+  out.footprint = footprint;
+  out.depth_scale = near > 0.0 ? near : 1.0;
+  if (footprint.empty()) return;  // nothing in front of the camera
+
+  impl_->context.make_current();
+  Framebuffer& fb = impl_->silhouette_framebuffer(W, H);
+  glBindFramebuffer(GL_FRAMEBUFFER, fb.fbo);
+  glViewport(0, 0, W, H);
+  glEnable(GL_SCISSOR_TEST);  // clears and draws stay in the footprint
+  glScissor(footprint.x, footprint.y, footprint.width, footprint.height);
+  // One body's ids follow from where its depth was written: skip drawing them.
+  const std::uint8_t single_id = impl_->single_visible_id();
+  const GLenum draw_buffer = single_id ? GL_NONE : GL_COLOR_ATTACHMENT0;
+  glDrawBuffers(1, &draw_buffer);
+  if (!single_id) {
+    const GLuint zero_id[4] = {0, 0, 0, 0};
+    glClearBufferuiv(GL_COLOR, 0, zero_id);
+  }
+  impl_->clear_depth_for_drawing();
+  impl_->draw_silhouette(intrinsics, camera_T_world, near, far);
+  glDisable(GL_SCISSOR_TEST);
+
+  // Read the footprint straight into its place in the images.
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_PACK_ROW_LENGTH, W);
+  cv::Mat inverse_depth = out.inverse_depth(footprint), ids = out.ids(footprint);
+  glReadPixels(footprint.x, footprint.y, footprint.width, footprint.height, GL_DEPTH_COMPONENT, GL_FLOAT,
+               inverse_depth.data);
+  if (!single_id) {
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(footprint.x, footprint.y, footprint.width, footprint.height, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+                 ids.data);
+  }
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!impl_->reversed_z) {
+    // Conventional depth d in [0, 1] is 1/Z mapped affinely: near/Z = ((f+n) - (2d-1)(f-n)) / 2f.
+    for (int i = 0; i < inverse_depth.rows; ++i) {
+      float* row = inverse_depth.ptr<float>(i);
+      for (int j = 0; j < inverse_depth.cols; ++j)
+        row[j] = row[j] < 1.f ? static_cast<float>(((far + near) - (2.0 * row[j] - 1.0) * (far - near)) / (2.0 * far))
+                              : 0.f;
+    }
+  }
+  if (single_id) {
+    cv::compare(inverse_depth, 0.f, ids, cv::CMP_GT);  // 255 where drawn
+    if (single_id != 255) ids &= single_id;             // 255 & id == id
+  }
 }
 
 std::string Renderer::description() const {

@@ -37,6 +37,25 @@ struct RenderOutput {
   cv::Mat depth, normals, ids, color;
 };
 
+/// The images of a silhouette render (Renderer::render_silhouette), what model generation
+/// reads at every pixel. Depth comes as inverse depth because that is what the depth buffer
+/// holds, so it needs no per-pixel conversion, and because its maximum over a region is the
+/// nearest surface there, with the background (0) never winning.
+struct SilhouetteImages {
+  cv::Mat ids;               ///< CV_8UC1 id of the visible body, 0 on background
+  cv::Mat inverse_depth;     ///< CV_32FC1 depth_scale / Z (larger is closer), 0 on background
+  double depth_scale = 0.0;  ///< metres
+  /// Every body pixel lies inside (the projected bounding boxes): work per pixel need not look
+  /// further. The images are valid everywhere, zero outside.
+  cv::Rect footprint;
+
+  /// Metric Z at a pixel, 0 on background.
+  float depth(int row, int col) const {
+    const float w = inverse_depth.at<float>(row, col);
+    return w > 0.f ? static_cast<float>(depth_scale) / w : 0.f;
+  }
+};
+
 /// Headlight-style Lambertian shading for colour renders.
 struct Lighting {
   Eigen::Vector3f direction_in_camera{0.f, 0.f, 1.f};  ///< direction the light travels
@@ -76,6 +95,14 @@ class Renderer {
   /// the output so pixels can be mapped back.
   RenderOutput render_focused(const Intrinsics& intrinsics, const Pose& camera_T_world, double u_min, double v_min,
                               double size, int out_size, unsigned targets, Intrinsics* crop_intrinsics = nullptr);
+
+  /// Renders the ids and inverse depth of every visible body into `out`, reusing its images
+  /// when they already have the size of `intrinsics` (no allocation in a loop of renders).
+  /// The same ids and depths as render(kRenderIds | kRenderDepth), several times faster at
+  /// model-generation sizes: no shading, depth read straight from the depth buffer, with a
+  /// single visible body no id image on the GPU at all, and only the footprint of the
+  /// bodies cleared, drawn and read back.
+  void render_silhouette(const Intrinsics& intrinsics, const Pose& camera_T_world, SilhouetteImages& out);
 
   std::string description() const;
 

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "icgp/io/mesh.h"
+#include "icgp/model/viewpoint_model.h"
+#include "icgp/model/viewpoint_model_generator.h"
+
+namespace icgp {
+
+/// Why a model file cannot be used: missing, unreadable, foreign, of another version,
+/// truncated or corrupted. The message names the file and the reason.
+class ModelFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// $ICGP_CACHE_DIR, else $XDG_CACHE_HOME/icgp, else $HOME/.cache/icgp, else icgp-cache in
+/// the temporary directory.
+std::string default_model_cache_dir();
+
+/// <cache_dir>/<name>-<kind>-<key as 16 hex digits>.icgpmodel, the name reduced to
+/// letters, digits, '.', '_' and '-'.
+std::string model_cache_path(const std::string& cache_dir, const std::string& name, ViewpointModel::Kind kind,
+                             std::uint64_t key);
+
+/// Writes a model file: magic, version, kind, key, parameters, counts, payload (views,
+/// point counts, points, depth offsets as little-endian floats) and a checksum over all of
+/// it. Atomic: written to a temporary file next to `path`, then renamed, so readers never
+/// see half a file. Creates missing directories. Throws ModelFileError on failure.
+void save_viewpoint_model(const ViewpointModel& model, const std::string& path);
+
+/// Maps a model file and verifies it (magic, version, sizes, checksum); throws
+/// ModelFileError saying why it is unusable. Does not check what model it is: compare its
+/// kind(), key() and params() with what you expect. The model uses the mapped file in place
+/// (a 68 MB model loads in about 10 ms): replace model files by renaming over them, as
+/// save_viewpoint_model does, never by rewriting them in place while a program uses them.
+ViewpointModel load_viewpoint_model(const std::string& path);
+
+/// What load_or_generate did for one model.
+struct CachedModelInfo {
+  std::string path;        ///< its cache file
+  bool generated = false;  ///< not in the cache (or unusable there), so generated
+  bool saved = false;      ///< written to the cache (false when the cache is not writable)
+};
+
+/// The models of the requests, from the cache when a file there fits (same kind, key and
+/// parameters, intact), else generated (together, sharing renders) and saved. Every file
+/// that is not used is reported in one line on stderr saying why (missing, stale, foreign,
+/// truncated, corrupted); an unwritable cache gives a warning, never an error.
+/// `cache_dir` empty: default_model_cache_dir(). Files are named after options.name, else
+/// the mesh file's stem.
+std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector<ModelRequest>& requests,
+                                             const std::string& cache_dir = {},
+                                             const ModelGenerationOptions& options = {},
+                                             std::vector<CachedModelInfo>* info = nullptr);
+
+/// One model: load_or_generate with a single request.
+ViewpointModel load_or_generate(ViewpointModel::Kind kind, const Mesh& mesh, const ViewpointModelParams& params,
+                                const std::string& cache_dir = {}, const ModelGenerationOptions& options = {});
+
+}  // namespace icgp

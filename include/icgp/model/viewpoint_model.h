@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+
+namespace icgp {
+
+/// How a sparse viewpoint model is generated (ALGORITHMS.md §3). Every field is part of
+/// the cache key: changing any of them regenerates the model.
+struct ViewpointModelParams {
+  int n_divides = 4;                      ///< icosphere subdivisions: 4 -> 2562 views
+  double sphere_radius = 0.8;             ///< metres, camera distance to the body origin
+  int image_size = 2000;                  ///< square render size in pixels
+  int image_margin = 20;                  ///< pixels between the bounding sphere and the border
+  int n_points = 200;                     ///< points per view
+  double stride_depth_offset = 0.002;     ///< metres between depth-offset radii
+  double max_radius_depth_offset = 0.05;  ///< metres, largest depth-offset radius
+  int min_contour_length = 15;            ///< region: contours shorter than this (px) are dropped
+  int normal_chord_offset = 3;            ///< region: contour pixels ±k apart give the normal
+  std::uint64_t seed = 7;                 ///< point sampling; fixed for deterministic models
+
+  int n_depth_offsets() const;  ///< radii (k+1) * stride_depth_offset up to max_radius_depth_offset
+  int n_views() const;          ///< 10 * 4^n_divides + 2
+  /// Throws std::invalid_argument naming the first field out of range.
+  void validate() const;
+};
+
+bool operator==(const ViewpointModelParams& a, const ViewpointModelParams& b);
+inline bool operator!=(const ViewpointModelParams& a, const ViewpointModelParams& b) { return !(a == b); }
+
+/// One sampled model point of a view, in the body frame. Plain floats: the cache stores it
+/// byte for byte.
+struct ModelPoint {
+  Eigen::Vector3f position;
+  Eigen::Vector3f normal;         ///< region: contour normal (outwards); depth: surface normal
+  float foreground_distance = 0;  ///< region: metres inside the silhouette along -normal
+  float background_distance = 0;  ///< region: metres outside along +normal (inf: to the border)
+};
+
+/// The points seen from one viewpoint.
+struct ModelView {
+  Eigen::Vector3f direction;  ///< unit vector body origin -> camera, body frame
+  float measure = 0;          ///< region: contour length (m); depth: visible surface area (m²)
+};
+
+/// A sparse viewpoint model: for each of n_views directions, n_points sampled points with
+/// their depth offsets (for occlusion tests). Made by generate_viewpoint_models
+/// (viewpoint_model_generator.h), usually through the disk cache (model_cache.h).
+///
+/// All arrays live in one block laid out exactly as the payload of a cache file, so a cached
+/// model is the mapped file itself: loading copies nothing. Models are immutable once made;
+/// copies share the block.
+class ViewpointModel {
+ public:
+  enum class Kind : std::uint32_t { kRegion = 1, kDepth = 2 };
+
+  ViewpointModel() = default;
+  /// A model of all views of `params` with every array zero, for the generator to fill.
+  ViewpointModel(Kind kind, ViewpointModelParams params, std::uint64_t key);
+  /// A model over an existing payload (payload_size(params) bytes, 4-byte aligned) that
+  /// `owner` keeps alive; for the cache reader.
+  ViewpointModel(Kind kind, ViewpointModelParams params, std::uint64_t key, std::shared_ptr<const void> owner,
+                 const unsigned char* payload);
+
+  Kind kind() const { return kind_; }
+  const ViewpointModelParams& params() const { return params_; }
+  /// Hash of the mesh geometry and every generation parameter.
+  std::uint64_t key() const { return key_; }
+
+  int n_views() const { return n_views_; }
+  int n_points() const { return params_.n_points; }
+  int n_depth_offsets() const { return n_depth_offsets_; }
+
+  /// Index of the view whose direction is closest to `direction` (body frame, unit).
+  int closest_view(const Eigen::Vector3f& direction) const;
+  const ModelView& view(int v) const { return views_[v]; }
+  /// The points of view v: n_points() slots of which the first view_point_count(v) are
+  /// valid (the rest are zero). They are in random order, so any prefix of them is itself a
+  /// uniform sample of the view's contour or surface.
+  const ModelPoint* points(int v) const { return points_ + static_cast<std::size_t>(v) * n_points(); }
+  int view_point_count(int v) const { return counts_[v]; }
+  /// Depth offsets of point p of view v: entry k is for radius (k+1) * stride_depth_offset.
+  const float* depth_offsets(int v, int p) const {
+    return depth_offsets_ + (static_cast<std::size_t>(v) * n_points() + p) * n_depth_offsets();
+  }
+
+  /// The block of all arrays: views (ModelView), point counts (int32 per view), points
+  /// (n_points slots per view), depth offsets (n_depth_offsets floats per slot).
+  const unsigned char* payload() const { return payload_; }
+  std::size_t payload_size() const { return payload_size(params_); }
+  static std::size_t payload_size(const ViewpointModelParams& params);
+
+  // For the generator, on models it made with the first constructor (null otherwise).
+  ModelView* mutable_views() { return writable(views_); }
+  int* mutable_counts() { return writable(counts_); }
+  ModelPoint* mutable_points() { return writable(points_); }
+  float* mutable_depth_offsets() { return writable(depth_offsets_); }
+
+ private:
+  void point_into(const unsigned char* payload);
+  template <typename T>
+  T* writable(const T* p) {
+    return owns_writable_block_ ? const_cast<T*>(p) : nullptr;
+  }
+
+  Kind kind_ = Kind::kRegion;
+  ViewpointModelParams params_;
+  std::uint64_t key_ = 0;
+  int n_views_ = 0;
+  int n_depth_offsets_ = 0;
+  std::shared_ptr<const void> storage_;  ///< keeps the payload alive: a heap block or a mapped file
+  bool owns_writable_block_ = false;
+  const unsigned char* payload_ = nullptr;
+  const ModelView* views_ = nullptr;
+  const int* counts_ = nullptr;         ///< valid points per view (<= n_points)
+  const ModelPoint* points_ = nullptr;  ///< n_views * n_points, row per view
+  const float* depth_offsets_ = nullptr;
+};
+
+}  // namespace icgp

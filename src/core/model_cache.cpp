@@ -1,0 +1,312 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/model/model_cache.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "icgp/model/model_key.h"
+
+namespace icgp {
+namespace {
+
+namespace fs = std::filesystem;
+
+// File layout, little-endian (the byte order of every machine this runs on; a big-endian
+// reader sees a wrong version and regenerates):
+//   magic[8] version:u32 kind:u32 key:u64
+//   n_divides image_size image_margin n_points min_contour_length normal_chord_offset: i32
+//   sphere_radius stride_depth_offset max_radius_depth_offset: f64   seed: u64
+//   n_views n_points n_depth_offsets reserved: u32   payload_bytes: u64   checksum: u64
+//   payload: ViewpointModel::payload(), i.e. views (direction xyz, measure: f32), point
+//   counts (i32), points (position, normal, foreground and background distance: f32),
+//   depth offsets (f32)
+// The checksum covers the header before it and the payload. The header is a multiple of 8
+// bytes, so the payload of a mapped file is aligned for the model to use it in place.
+constexpr char kMagic[8] = {'I', 'C', 'G', 'P', 'M', 'O', 'D', 'L'};
+constexpr std::size_t kHeaderSize = 112;
+constexpr std::size_t kChecksumOffset = kHeaderSize - 8;
+
+/// A 64-bit checksum in the style of xxHash64: four independent lanes, so it runs at memory
+/// speed (a byte-wise hash would take longer than reading the file). The header's sum seeds
+/// the payload's.
+std::uint64_t checksum(const void* data, std::size_t size, std::uint64_t seed) {
+  constexpr std::uint64_t p1 = 11400714785074694791ull, p2 = 14029467366897019727ull, p3 = 1609587929392839161ull,
+                          p4 = 9650029242287828579ull, p5 = 2870177450012600261ull;
+  auto rotl = [](std::uint64_t x, int r) { return (x << r) | (x >> (64 - r)); };
+  auto round = [&](std::uint64_t acc, std::uint64_t input) { return rotl(acc + input * p2, 31) * p1; };
+  auto word = [](const unsigned char* p) {
+    std::uint64_t w;
+    std::memcpy(&w, p, sizeof w);
+    return w;
+  };
+  const auto* p = static_cast<const unsigned char*>(data);
+  const unsigned char* end = p + size;
+  std::uint64_t lane[4] = {seed + p1 + p2, seed + p2, seed, seed - p1};
+  for (; p + 32 <= end; p += 32)
+    for (int l = 0; l < 4; ++l) lane[l] = round(lane[l], word(p + 8 * l));
+  std::uint64_t h = rotl(lane[0], 1) + rotl(lane[1], 7) + rotl(lane[2], 12) + rotl(lane[3], 18) + size;
+  for (; p + 8 <= end; p += 8) h = rotl(h ^ round(0, word(p)), 27) * p1 + p4;
+  for (; p < end; ++p) h = rotl(h ^ (*p * p5), 11) * p1;
+  h ^= h >> 33;
+  h *= p2;
+  h ^= h >> 29;
+  h *= p3;
+  return h ^ (h >> 32);
+}
+
+class HeaderWriter {
+ public:
+  template <typename T>
+  HeaderWriter& operator<<(const T& value) {
+    bytes_.append(reinterpret_cast<const char*>(&value), sizeof value);
+    return *this;
+  }
+  std::string& bytes() { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class HeaderReader {
+ public:
+  explicit HeaderReader(const unsigned char* bytes) : p_(bytes) {}
+  template <typename T>
+  HeaderReader& operator>>(T& value) {
+    std::memcpy(&value, p_, sizeof value);
+    p_ += sizeof value;
+    return *this;
+  }
+
+ private:
+  const unsigned char* p_;
+};
+
+std::string header(const ViewpointModel& m) {
+  const ViewpointModelParams& p = m.params();
+  HeaderWriter w;
+  w.bytes().append(kMagic, sizeof kMagic);
+  w << kViewpointModelVersion << static_cast<std::uint32_t>(m.kind()) << m.key();
+  w << p.n_divides << p.image_size << p.image_margin << p.n_points << p.min_contour_length << p.normal_chord_offset;
+  w << p.sphere_radius << p.stride_depth_offset << p.max_radius_depth_offset << p.seed;
+  w << static_cast<std::uint32_t>(m.n_views()) << static_cast<std::uint32_t>(m.n_points())
+    << static_cast<std::uint32_t>(m.n_depth_offsets()) << std::uint32_t{0};
+  w << static_cast<std::uint64_t>(m.payload_size());
+  std::string bytes = std::move(w.bytes());
+  if (bytes.size() != kChecksumOffset) throw std::logic_error("model file header layout changed: update kHeaderSize");
+  const std::uint64_t sum = checksum(m.payload(), m.payload_size(), checksum(bytes.data(), bytes.size(), 0));
+  bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+  return bytes;
+}
+
+ModelFileError file_error(const std::string& path, const std::string& why) {
+  return ModelFileError("model file " + path + " " + why);
+}
+
+/// The file mapped read-only (and pre-faulted: its pages are in the page cache right after
+/// a write, so this costs next to nothing).
+class MappedFile {
+ public:
+  explicit MappedFile(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+      throw file_error(path,
+                       errno == ENOENT ? "does not exist" : std::string("cannot be read: ") + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(fd, &st) == 0) size_ = static_cast<std::size_t>(st.st_size);
+    if (size_ > 0) {
+      void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+      if (p != MAP_FAILED) data_ = static_cast<const unsigned char*>(p);
+    }
+    const int mmap_errno = errno;
+    ::close(fd);
+    if (size_ > 0 && !data_) throw file_error(path, std::string("cannot be mapped: ") + std::strerror(mmap_errno));
+  }
+  ~MappedFile() {
+    if (data_) ::munmap(const_cast<unsigned char*>(data_), size_);
+  }
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+
+  const unsigned char* data() const { return data_; }
+  std::size_t size() const { return size_; }
+
+ private:
+  const unsigned char* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+std::string sanitised(const std::string& name) {
+  std::string out = name.empty() ? "mesh" : name;
+  for (char& c : out)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
+  return out;
+}
+
+std::string model_name(const Mesh& mesh, const ModelGenerationOptions& options) {
+  return options.name.empty() ? fs::path(mesh.source).stem().string() : options.name;
+}
+
+void report(const std::string& line) { std::cerr << ("icgp: " + line + "\n") << std::flush; }
+
+}  // namespace
+
+std::string default_model_cache_dir() {
+  if (const char* dir = std::getenv("ICGP_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return (fs::path(xdg) / "icgp").string();
+  if (const char* home = std::getenv("HOME"); home && *home) return (fs::path(home) / ".cache" / "icgp").string();
+  return (fs::temp_directory_path() / "icgp-cache").string();
+}
+
+std::string model_cache_path(const std::string& cache_dir, const std::string& name, ViewpointModel::Kind kind,
+                             std::uint64_t key) {
+  std::ostringstream file;
+  file << sanitised(name) << "-" << to_string(kind) << "-" << std::hex << std::setw(16) << std::setfill('0') << key
+       << ".icgpmodel";
+  return (fs::path(cache_dir) / file.str()).string();
+}
+
+void save_viewpoint_model(const ViewpointModel& model, const std::string& path) {
+  if (model.n_views() == 0) throw file_error(path, "cannot hold a model without views");
+  const fs::path target(path);
+  std::error_code ec;
+  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
+  if (ec) throw file_error(path, "cannot be written: " + ec.message());
+  // Unique per process and call, so concurrent writers of the same model never collide;
+  // the last rename wins with a complete file either way.
+  static std::atomic<unsigned> counter{0};
+  const std::string temporary = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (out) {
+      const std::string head = header(model);
+      out.write(head.data(), static_cast<std::streamsize>(head.size()));
+      out.write(reinterpret_cast<const char*>(model.payload()), static_cast<std::streamsize>(model.payload_size()));
+    }
+    if (!out) {
+      const std::string why = std::strerror(errno);
+      out.close();
+      fs::remove(temporary, ec);
+      throw file_error(path, "cannot be written: " + why);
+    }
+  }
+  fs::rename(temporary, target, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    throw file_error(path, "cannot be written: " + ec.message());
+  }
+}
+
+ViewpointModel load_viewpoint_model(const std::string& path) {
+  const auto mapped = std::make_shared<const MappedFile>(path);
+  const MappedFile& file = *mapped;
+  const unsigned char* p = file.data();
+  if (file.size() >= sizeof kMagic && std::memcmp(p, kMagic, sizeof kMagic) != 0)
+    throw file_error(path, "is not an icgp model file (foreign magic)");
+  if (file.size() < kHeaderSize)
+    throw file_error(path, "is truncated (" + std::to_string(file.size()) + " bytes, the header alone has " +
+                               std::to_string(kHeaderSize) + ")");
+  HeaderReader r(p + sizeof kMagic);
+  std::uint32_t version = 0, kind = 0, n_views = 0, n_points = 0, n_offsets = 0, reserved = 0;
+  std::uint64_t key = 0, payload = 0, stored_sum = 0;
+  ViewpointModelParams params;
+  r >> version >> kind >> key;
+  r >> params.n_divides >> params.image_size >> params.image_margin >> params.n_points >> params.min_contour_length >>
+      params.normal_chord_offset;
+  r >> params.sphere_radius >> params.stride_depth_offset >> params.max_radius_depth_offset >> params.seed;
+  r >> n_views >> n_points >> n_offsets >> reserved >> payload >> stored_sum;
+  if (version != kViewpointModelVersion)
+    throw file_error(path, "has model version " + std::to_string(version) + ", this program writes version " +
+                               std::to_string(kViewpointModelVersion));
+  const bool consistent =
+      (kind == static_cast<std::uint32_t>(ViewpointModel::Kind::kRegion) ||
+       kind == static_cast<std::uint32_t>(ViewpointModel::Kind::kDepth)) &&
+      params.n_divides >= 0 && params.n_divides <= 6 && static_cast<int>(n_views) == params.n_views() &&
+      static_cast<int>(n_points) == params.n_points && static_cast<int>(n_offsets) == params.n_depth_offsets() &&
+      payload == ViewpointModel::payload_size(params);
+  if (!consistent) throw file_error(path, "is corrupted (inconsistent header)");
+  if (file.size() < kHeaderSize + payload)
+    throw file_error(path, "is truncated (" + std::to_string(file.size()) + " of " +
+                               std::to_string(kHeaderSize + payload) + " bytes)");
+  if (file.size() > kHeaderSize + payload)
+    throw file_error(path, "is corrupted (" + std::to_string(file.size() - kHeaderSize - payload) + " trailing bytes)");
+  if (checksum(p + kHeaderSize, payload, checksum(p, kChecksumOffset, 0)) != stored_sum)
+    throw file_error(path, "is corrupted (checksum mismatch)");
+
+  // The model uses the mapped payload in place and keeps the mapping alive.
+  ViewpointModel model(static_cast<ViewpointModel::Kind>(kind), params, key, mapped, p + kHeaderSize);
+  for (int v = 0; v < model.n_views(); ++v)
+    if (model.view_point_count(v) < 0 || model.view_point_count(v) > model.n_points())
+      throw file_error(path, "is corrupted (point count out of range)");
+  return model;
+}
+
+std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector<ModelRequest>& requests,
+                                             const std::string& cache_dir, const ModelGenerationOptions& options,
+                                             std::vector<CachedModelInfo>* info) {
+  const std::string dir = cache_dir.empty() ? default_model_cache_dir() : cache_dir;
+  const std::string name = model_name(mesh, options);
+  std::vector<ViewpointModel> models(requests.size());
+  std::vector<CachedModelInfo> outcome(requests.size());
+  std::vector<ModelRequest> missing;
+  std::vector<std::size_t> missing_index;
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    const ModelRequest& r = requests[i];
+    r.params.validate();
+    const std::uint64_t key = viewpoint_model_key(r.kind, mesh, r.params);
+    outcome[i].path = model_cache_path(dir, name, r.kind, key);
+    const std::string what = to_string(r.kind) + " model cache " + outcome[i].path;
+    std::error_code ec;
+    if (!fs::exists(outcome[i].path, ec)) {
+      report(what + ": not found; generating");
+    } else {
+      try {
+        ViewpointModel cached = load_viewpoint_model(outcome[i].path);
+        if (cached.kind() == r.kind && cached.key() == key && cached.params() == r.params) {
+          models[i] = std::move(cached);
+          continue;
+        }
+        report(what + ": stale (made for another mesh, parameters or kind); regenerating");
+      } catch (const ModelFileError& e) {
+        report(to_string(r.kind) + " " + e.what() + "; regenerating");
+      }
+    }
+    missing.push_back(r);
+    missing_index.push_back(i);
+  }
+  if (!missing.empty()) {
+    std::vector<ViewpointModel> generated = generate_viewpoint_models(mesh, missing, options);
+    for (std::size_t m = 0; m < missing.size(); ++m) {
+      const std::size_t i = missing_index[m];
+      models[i] = std::move(generated[m]);
+      outcome[i].generated = true;
+      try {
+        save_viewpoint_model(models[i], outcome[i].path);
+        outcome[i].saved = true;
+      } catch (const ModelFileError& e) {
+        report("warning: " + std::string(e.what()) + "; continuing without the cache");
+      }
+    }
+  }
+  if (info) *info = std::move(outcome);
+  return models;
+}
+
+ViewpointModel load_or_generate(ViewpointModel::Kind kind, const Mesh& mesh, const ViewpointModelParams& params,
+                                const std::string& cache_dir, const ModelGenerationOptions& options) {
+  return std::move(load_or_generate(mesh, {{kind, params}}, cache_dir, options).front());
+}
+
+}  // namespace icgp
