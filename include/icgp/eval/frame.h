@@ -38,6 +38,18 @@ struct Frame {
   /// Ground-truth reference_T_object (ViSP cMo) per object name.
   std::map<std::string, Pose> ground_truth;
 
+  /// The colour / depth image of the named camera; nullptr when the frame has none.
+  const ColorImage* find_color(const std::string& camera) const {
+    for (const auto& c : colors)
+      if (c.camera == camera) return &c;
+    return nullptr;
+  }
+  const DepthImage* find_depth(const std::string& camera) const {
+    for (const auto& d : depths)
+      if (d.camera == camera) return &d;
+    return nullptr;
+  }
+
   /// The ground truth of `object`, or of the only object when `object` is empty;
   /// nullptr when there is none.
   const Pose* truth(const std::string& object = "") const {

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+namespace icgp {
+
+/// Foreground and background colour statistics p(y|f), p(y|b) over n_bins per channel
+/// (ALGORITHMS.md §4), with a lookup table of the pixel-wise posterior P_f(y).
+/// Works on BGR (n_bins³ bins) and grey images (n_bins bins).
+class ColorHistograms {
+ public:
+  /// n_bins must be a power of two in [2, 64]; channels 1 or 3.
+  ColorHistograms(int n_bins, int channels);
+
+  int channels() const { return channels_; }
+
+  /// Counting pass: clear(), add pixels, then set_from_counts() or blend_counts().
+  void clear_counts();
+  void add_foreground(const cv::Mat& image, int row, int col) { ++count_f_[bin(image, row, col)]; }
+  void add_background(const cv::Mat& image, int row, int col) { ++count_b_[bin(image, row, col)]; }
+  /// Histograms := normalised counts (on start). Returns false when either side is empty
+  /// (then nothing changes).
+  bool set_from_counts();
+  /// h <- (1 - rate) h + rate * normalised counts, per side (after each frame).
+  bool blend_counts(double rate_f, double rate_b);
+
+  /// P_f(y) of the pixel: p(y|f) / (p(y|f) + p(y|b)), 0.5 when both are 0, kept within
+  /// [0.001, 0.999].
+  float foreground_posterior(const cv::Mat& image, int row, int col) const {
+    return posterior_f_[bin(image, row, col)];
+  }
+  /// ln(P_f / (1 − P_f)) of the pixel: the product of several pixels' posteriors, normalised,
+  /// is the logistic function of the sum of their log-odds.
+  float foreground_log_odds(const cv::Mat& image, int row, int col) const { return log_odds_f_[bin(image, row, col)]; }
+
+ private:
+  int bin(const cv::Mat& image, int row, int col) const {
+    if (channels_ == 1) return image.ptr<std::uint8_t>(row)[col] >> shift_;
+    const std::uint8_t* p = image.ptr<std::uint8_t>(row) + 3 * col;
+    return ((p[0] >> shift_) * n_bins_ + (p[1] >> shift_)) * n_bins_ + (p[2] >> shift_);
+  }
+  void update_posteriors();
+
+  int n_bins_;
+  int channels_;
+  int shift_;
+  std::vector<float> hist_f_, hist_b_, posterior_f_, log_odds_f_;
+  std::vector<std::uint32_t> count_f_, count_b_;
+};
+
+}  // namespace icgp

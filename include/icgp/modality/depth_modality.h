@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "icgp/modality/measured_occlusion.h"
+#include "icgp/modality/modality.h"
+#include "icgp/modality/modality_params.h"
+#include "icgp/model/viewpoint_model.h"
+
+namespace icgp {
+
+/// Point-to-plane alignment of sparse model surface points with the closest measured
+/// points of a depth camera (ICG's depth modality, ALGORITHMS.md §5, §7).
+class DepthModality : public Modality {
+ public:
+  DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params);
+
+  std::string name() const override { return "depth"; }
+  void start(const Frame& frame) override;
+  void correspondences(const Frame& frame, int corr_iter) override;
+  void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
+  double log_likelihood(int corr_iter) const override;
+  void finish(const Frame& frame) override;
+  ModalityQuality quality() const override { return quality_; }
+
+  const DepthParams& params() const { return params_; }
+
+ private:
+  struct Correspondence {
+    Eigen::Vector3f body_point;
+    Eigen::Vector3f body_normal;
+    Eigen::Vector3f measured;  ///< in the depth camera frame
+  };
+
+  const DepthImage& depth_image(const Frame& frame) const;
+  bool find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point, float considered_distance,
+                                Eigen::Vector3f& closest) const;
+  Posef depth_T_body() const;
+  void update_quality();
+
+  std::shared_ptr<const ViewpointModel> model_;
+  DepthParams params_;
+  MeasuredOcclusion occlusion_;
+  int occlusion_offset_index_;
+  Posef depth_T_reference_;
+  std::vector<Correspondence> correspondences_;
+  std::vector<bool> occluded_;  ///< per point of occlusion_view_, measured at corr_iter 0
+  int occlusion_view_ = -1;
+  int n_considered_ = 0;
+  int frames_since_start_ = 0;
+  ModalityQuality quality_;
+};
+
+}  // namespace icgp

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "icgp/eval/frame.h"
+#include "icgp/tracker/body.h"
+
+namespace icgp {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat66 = Eigen::Matrix<double, 6, 6>;
+
+/// How well a modality's data fits the current pose, computed after the last correspondence
+/// iteration of a frame. `score` is in [0, 1] (1: perfect fit); `valid_fraction` is the
+/// share of the modality's model points that found usable data.
+struct ModalityQuality {
+  double score = 0.0;
+  double valid_fraction = 0.0;
+  int n_valid = 0;
+};
+
+/// One cue about one body's pose (ALGORITHMS.md §2): it supplies the gradient and Hessian of
+/// its log-likelihood with respect to a body-frame pose variation θ = [θ_r; θ_t] at θ = 0.
+/// The optimizer only sums them; a new cue needs nothing but a new subclass.
+class Modality {
+ public:
+  explicit Modality(Body& body) : body_(&body) {}
+  virtual ~Modality() = default;
+  Modality(const Modality&) = delete;
+  Modality& operator=(const Modality&) = delete;
+
+  virtual std::string name() const = 0;
+  /// (Re)initialises from the body's current pose: histograms, keyframes, ...
+  virtual void start(const Frame& frame) = 0;
+  /// Finds data associations at the current pose for correspondence iteration `corr_iter`.
+  virtual void correspondences(const Frame& frame, int corr_iter) = 0;
+  /// Adds this modality's gradient and Hessian at the current pose to g and H.
+  virtual void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) = 0;
+  /// The log-likelihood (up to a constant) that add_gradient_hessian differentiates, at
+  /// the current pose with the current correspondences. For tests and diagnostics.
+  virtual double log_likelihood(int corr_iter) const = 0;
+  /// After the frame has converged: update statistics (histograms, keyframes).
+  virtual void finish(const Frame& frame) = 0;
+  virtual ModalityQuality quality() const = 0;
+
+  Body& body() const { return *body_; }
+
+ private:
+  Body* body_;
+};
+
+}  // namespace icgp

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "icgp/modality/color_histograms.h"
+#include "icgp/modality/measured_occlusion.h"
+#include "icgp/modality/modality.h"
+#include "icgp/modality/modality_params.h"
+#include "icgp/model/viewpoint_model.h"
+
+namespace icgp {
+
+/// Colour-statistics contour alignment along sparse correspondence lines (SRT3D/ICG's
+/// region modality, ALGORITHMS.md §4, §7).
+///
+/// Sub-pixel conventions, which decide the modality's bias: pixel (j, i) has its centre
+/// at (u, v) = (j, i); a correspondence line samples whole pixels along its dominant axis,
+/// and the offset Δr between the projected contour point and the centre of the sampled
+/// pixels (measured along the normal) is carried into every later residual, so no
+/// rounding ever shifts the estimated contour.
+class RegionModality : public Modality {
+ public:
+  RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params);
+
+  std::string name() const override { return "region"; }
+  void start(const Frame& frame) override;
+  void correspondences(const Frame& frame, int corr_iter) override;
+  void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
+  double log_likelihood(int corr_iter) const override;
+  void finish(const Frame& frame) override;
+  ModalityQuality quality() const override { return quality_; }
+
+  const RegionParams& params() const { return params_; }
+
+ private:
+  /// A model contour point projected at the current pose.
+  struct ProjectedPoint {
+    Eigen::Vector2f centre;  ///< pixels
+    Eigen::Vector2f normal;  ///< unit image direction, from the object outwards
+    float depth;             ///< Z in the colour camera
+    float foreground_px, background_px;
+  };
+  struct Line {
+    Eigen::Vector3f body_point;
+    Eigen::Vector2f centre;
+    Eigen::Vector2f normal;
+    float delta_r;        ///< sampled line centre minus projected point, along normal (px)
+    float normal_factor;  ///< n̄ = |n_dominant| / scale: pixels along the normal -> segments
+    float mean;           ///< μ of the contour-location distribution (segments)
+    float variance;       ///< σ_d², clamped below by σ_min²
+  };
+
+  const ColorImage& color_image(const Frame& frame) const;
+  bool project(const ModelPoint& point, const Posef& camera_T_body, const Intrinsics& k, ProjectedPoint& out) const;
+  /// True when a measured depth hides the point (only when occlusion tests are active).
+  bool hidden(const Frame& frame, const Eigen::Vector3f& body_point, const float* depth_offsets) const;
+  /// Counts foreground/background pixels along every visible line at the current pose.
+  void count_line_pixels(const Frame& frame);
+  /// Samples the line in scale space and fills its segment posteriors; false if it leaves the image.
+  bool sample_segments(const cv::Mat& image, const ProjectedPoint& p, int scale, Line& line);
+  void compute_distribution(Line& line, float* distribution) const;
+  float line_position(const Line& line, const Posef& camera_T_body, const Intrinsics& k) const;
+  void update_quality(const Frame& frame);
+  Posef camera_T_body(const ColorImage& image) const;
+
+  std::shared_ptr<const ViewpointModel> model_;
+  RegionParams params_;
+  MeasuredOcclusion occlusion_;
+  int occlusion_offset_index_;
+  std::optional<ColorHistograms> histograms_;
+  std::vector<float> step_f_, step_b_;  ///< smoothed step h_f, h_b at the segment centres
+  float min_variance_;                  ///< σ_min²
+  int n_segments_;                      ///< function_length + distribution_length − 1
+
+  Intrinsics intrinsics_;                 ///< of the colour camera at the last correspondences
+  Posef camera_T_reference_;
+  std::vector<Line> lines_;
+  std::vector<bool> occluded_;  ///< per point of occlusion_view_, measured at corr_iter 0
+  int occlusion_view_ = -1;
+  std::vector<float> distributions_;      ///< distribution_length per line
+  std::vector<float> segment_f_;          ///< scratch: segment foreground posteriors
+  int n_considered_ = 0;
+  int frames_since_start_ = 0;
+  ModalityQuality quality_;
+};
+
+}  // namespace icgp

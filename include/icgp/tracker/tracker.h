@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "icgp/modality/modality.h"
+#include "icgp/tracker/body.h"
+
+namespace icgp {
+
+/// Newton–Tikhonov fusion and the iteration schedule (ALGORITHMS.md §2).
+struct TrackerParams {
+  int n_corr_iterations = 5;
+  int n_update_iterations = 2;
+  double tikhonov_rotation = 1000.0;      ///< λ_r
+  double tikhonov_translation = 30000.0;  ///< λ_t
+  /// A body whose combined quality (the mean of its modalities' scores) is below this is
+  /// reported lost.
+  double quality_threshold = 0.5;
+};
+
+/// Outcome of one frame for one body.
+struct BodyResult {
+  std::string body;
+  Pose reference_T_body;
+  double quality = 0.0;
+  bool tracked = false;
+  std::vector<ModalityQuality> modalities;  ///< in the order they were added
+};
+
+/// Tracks any number of bodies with any number of modalities on frames from any number of
+/// cameras. Each body's modalities are fused into one 6-DoF Newton step per update.
+class Tracker {
+ public:
+  explicit Tracker(TrackerParams params = {});
+  ~Tracker();
+  Tracker(Tracker&&) noexcept;
+  Tracker& operator=(Tracker&&) noexcept;
+
+  /// Adds a body; the returned reference stays valid for the tracker's lifetime.
+  Body& add_body(Body body);
+  /// Adds a modality bound to one of this tracker's bodies.
+  void add_modality(std::unique_ptr<Modality> modality);
+
+  const TrackerParams& params() const { return params_; }
+  std::vector<Body*> bodies();
+  Body& body(const std::string& name);
+
+  /// Initialises every modality at its body's current pose (call after setting the
+  /// initial poses, and again to restart after a loss).
+  void start(const Frame& frame);
+  /// Refines every body's pose on this frame and reports each body's quality.
+  std::vector<BodyResult> track(const Frame& frame);
+
+  /// g and H of the last update, per body (for covariance and diagnostics).
+  const Mat66& last_hessian(const std::string& body) const;
+
+ private:
+  struct BodyState;
+  TrackerParams params_;
+  std::vector<std::unique_ptr<BodyState>> states_;
+};
+
+}  // namespace icgp

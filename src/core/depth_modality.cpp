@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/modality/depth_modality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "icgp/modality/iteration_value.h"
+
+namespace icgp {
+
+DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params)
+    : Modality(body), model_(std::move(model)), params_(std::move(params)) {
+  if (!model_ || model_->kind() != ViewpointModel::Kind::kDepth)
+    throw std::invalid_argument("depth modality of '" + body.name + "' needs a depth viewpoint model");
+  occlusion_ = {params_.occlusion_radius, params_.occlusion_threshold};
+  occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion_radius);
+  correspondences_.reserve(params_.n_points_max);
+}
+
+const DepthImage& DepthModality::depth_image(const Frame& frame) const {
+  const DepthImage* depth = frame.find_depth(params_.depth_camera);
+  if (!depth)
+    throw std::invalid_argument("depth modality of '" + body().name + "': the frame has no depth camera '" +
+                                params_.depth_camera + "'");
+  if (depth->depth.type() != CV_32FC1 || depth->depth.cols != depth->intrinsics.width ||
+      depth->depth.rows != depth->intrinsics.height)
+    throw std::invalid_argument("depth modality of '" + body().name + "': camera '" + params_.depth_camera +
+                                "' must give a CV_32FC1 depth image of its intrinsics' size " +
+                                std::to_string(depth->intrinsics.width) + "x" +
+                                std::to_string(depth->intrinsics.height) + " (got " +
+                                std::to_string(depth->depth.cols) + "x" + std::to_string(depth->depth.rows) + ")");
+  return *depth;
+}
+
+Posef DepthModality::depth_T_body() const { return depth_T_reference_ * body().reference_T_body.cast<float>(); }
+
+void DepthModality::start(const Frame&) { frames_since_start_ = 0; }
+
+bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point,
+                                             float considered_distance, Eigen::Vector3f& closest) const {
+  const Intrinsics& k = depth.intrinsics;
+  const Eigen::Vector2f centre = k.project<float>(point);
+  const float half = considered_distance * static_cast<float>(k.fu) / point.z();
+  // At most considered_distance / stride_length samples along each side of the window: a
+  // sparse grid finds a surface point close enough for a point-to-plane error, and the
+  // first, widest search stays as cheap as the later ones.
+  const float samples_per_side = std::max(1.f, considered_distance / static_cast<float>(params_.stride_length));
+  const float step = std::max(1.f, 2.f * half / samples_per_side);
+  const int row_min = std::max(0, static_cast<int>(std::ceil(centre.y() - half)));
+  const int row_max = std::min(depth.depth.rows - 1, static_cast<int>(std::floor(centre.y() + half)));
+  const int col_min = std::max(0, static_cast<int>(std::ceil(centre.x() - half)));
+  const int col_max = std::min(depth.depth.cols - 1, static_cast<int>(std::floor(centre.x() + half)));
+  float best = considered_distance * considered_distance;
+  bool found = false;
+  const float ifu = static_cast<float>(1.0 / k.fu), ifv = static_cast<float>(1.0 / k.fv);
+  const float pu = static_cast<float>(k.pu), pv = static_cast<float>(k.pv);
+  for (float r = static_cast<float>(row_min); r <= row_max; r += step) {
+    const int row = static_cast<int>(r);
+    const float* depth_row = depth.depth.ptr<float>(row);
+    const float y_factor = (row - pv) * ifv;
+    for (float c = static_cast<float>(col_min); c <= col_max; c += step) {
+      const int col = static_cast<int>(c);
+      const float z = depth_row[col];
+      if (z <= 0.f) continue;
+      const Eigen::Vector3f P((col - pu) * ifu * z, y_factor * z, z);
+      const float d2 = (P - point).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        closest = P;
+        found = true;
+      }
+    }
+  }
+  return found;
+}
+
+void DepthModality::correspondences(const Frame& frame, int corr_iter) {
+  const DepthImage& depth = depth_image(frame);
+  depth_T_reference_ = depth.camera_T_reference.cast<float>();
+  const Posef depth_T_body_now = depth_T_body();
+  const Eigen::Vector3f camera_in_body = depth_T_body_now.inverse().translation();
+  const int view = model_->closest_view(camera_in_body.normalized());
+  const float considered = static_cast<float>(iteration_value(params_.considered_distances, corr_iter));
+  const bool test_occlusions = params_.measure_occlusions && frames_since_start_ >= params_.n_unoccluded_iterations;
+
+  n_considered_ = std::min(model_->view_point_count(view), params_.n_points_max);
+  const ModelPoint* points = model_->points(view);
+  // Occlusions are measured once per frame (and again if the view changes): the pose moves
+  // by far less than the occlusion radius between correspondence iterations.
+  if (test_occlusions && (corr_iter == 0 || view != occlusion_view_)) {
+    occluded_.assign(n_considered_, false);
+    for (int p = 0; p < n_considered_; ++p) {
+      const Eigen::Vector3f X = depth_T_body_now * points[p].position;
+      occluded_[p] = occlusion_.occluded(depth, X, model_->depth_offsets(view, p)[occlusion_offset_index_]);
+    }
+    occlusion_view_ = view;
+  }
+  auto collect = [&](bool with_occlusion_test) {
+    correspondences_.clear();
+    for (int p = 0; p < n_considered_; ++p) {
+      const Eigen::Vector3f X = depth_T_body_now * points[p].position;
+      if (X.z() <= 0.f) continue;
+      if (with_occlusion_test && occluded_[p]) continue;
+      Eigen::Vector3f measured;
+      if (!find_closest_measurement(depth, X, considered, measured)) continue;
+      correspondences_.push_back({points[p].position, points[p].normal, measured});
+    }
+  };
+  collect(test_occlusions);
+  if (test_occlusions && static_cast<int>(correspondences_.size()) < params_.min_n_unoccluded_points) collect(false);
+}
+
+void DepthModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
+  const Posef body_T_depth = depth_T_body().inverse();
+  const float sigma = static_cast<float>(iteration_value(params_.standard_deviations, corr_iter));
+  Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
+  Eigen::Matrix<float, 6, 6> H_sum = Eigen::Matrix<float, 6, 6>::Zero();
+  for (const Correspondence& c : correspondences_) {
+    const Eigen::Vector3f P = body_T_depth * c.measured;  // measured point, body frame
+    const float residual = c.body_normal.dot(c.body_point - P);
+    const float w2 = 1.f / (sigma * sigma * c.measured.z() * c.measured.z());
+    Eigen::Matrix<float, 6, 1> J;
+    J << P.cross(c.body_normal), c.body_normal;
+    g_sum -= (w2 * residual) * J;
+    H_sum.selfadjointView<Eigen::Lower>().rankUpdate(J, -w2);
+  }
+  g += g_sum.cast<double>();
+  H += H_sum.selfadjointView<Eigen::Lower>().toDenseMatrix().cast<double>();
+}
+
+double DepthModality::log_likelihood(int corr_iter) const {
+  // Double precision throughout: numeric derivatives of this function must resolve
+  // variations far below float resolution of a pose.
+  const Pose body_T_depth = (depth_T_reference_.cast<double>() * body().reference_T_body).inverse();
+  const double sigma = iteration_value(params_.standard_deviations, corr_iter);
+  double sum = 0.0;
+  for (const Correspondence& c : correspondences_) {
+    const double residual = c.body_normal.cast<double>().dot(c.body_point.cast<double>() -
+                                                             body_T_depth * c.measured.cast<double>());
+    const double z = c.measured.z();
+    sum -= 0.5 * residual * residual / (sigma * sigma * z * z);
+  }
+  return sum;
+}
+
+void DepthModality::finish(const Frame&) {
+  update_quality();
+  ++frames_since_start_;
+}
+
+void DepthModality::update_quality() {
+  // A point fits when its point-to-plane error is below half the last search radius
+  // (5 mm by default): far below what a wrong pose leaves, far above sensor noise.
+  const float inlier = 0.5f * static_cast<float>(params_.considered_distances.back());
+  const Posef body_T_depth = depth_T_body().inverse();
+  int n_inliers = 0;
+  for (const Correspondence& c : correspondences_)
+    if (std::abs(c.body_normal.dot(c.body_point - body_T_depth * c.measured)) < inlier) ++n_inliers;
+  quality_.n_valid = static_cast<int>(correspondences_.size());
+  quality_.valid_fraction = n_considered_ > 0 ? static_cast<double>(correspondences_.size()) / n_considered_ : 0.0;
+  quality_.score = n_considered_ > 0 ? static_cast<double>(n_inliers) / n_considered_ : 0.0;
+}
+
+}  // namespace icgp

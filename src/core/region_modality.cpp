@@ -1,0 +1,337 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/modality/region_modality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "icgp/geometry/rounding.h"
+#include "icgp/modality/iteration_value.h"
+
+namespace icgp {
+
+RegionModality::RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params)
+    : Modality(body), model_(std::move(model)), params_(std::move(params)) {
+  if (!model_ || model_->kind() != ViewpointModel::Kind::kRegion)
+    throw std::invalid_argument("region modality of '" + body.name + "' needs a region viewpoint model");
+  occlusion_ = {params_.occlusion_radius, params_.occlusion_threshold};
+  occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion_radius);
+  n_segments_ = params_.function_length + params_.distribution_length - 1;
+
+  // Smoothed step at the segment centres x_i = i − (function_length − 1)/2 (§4).
+  const double alpha = params_.function_amplitude, slope = params_.function_slope;
+  for (int i = 0; i < params_.function_length; ++i) {
+    const double x = i - (params_.function_length - 1) / 2.0;
+    const double h_f = slope > 0.0 ? 0.5 - alpha * std::tanh(x / (2.0 * slope)) : 0.5 - alpha * ((x > 0) - (x < 0));
+    step_f_.push_back(static_cast<float>(h_f));
+    step_b_.push_back(static_cast<float>(1.0 - h_f));
+  }
+  const double atanh_2alpha = std::atanh(2.0 * alpha);
+  min_variance_ = static_cast<float>(std::max(1.0 / (2.0 * atanh_2alpha * atanh_2alpha), slope));
+
+  lines_.reserve(params_.n_lines_max);
+  distributions_.resize(static_cast<std::size_t>(params_.n_lines_max) * params_.distribution_length);
+  segment_f_.resize(n_segments_);
+}
+
+const ColorImage& RegionModality::color_image(const Frame& frame) const {
+  const ColorImage* image = frame.find_color(params_.color_camera);
+  if (!image)
+    throw std::invalid_argument("region modality of '" + body().name + "': the frame has no colour camera '" +
+                                params_.color_camera + "'");
+  if (image->image.depth() != CV_8U || (image->image.channels() != 1 && image->image.channels() != 3))
+    throw std::invalid_argument("region modality of '" + body().name + "': camera '" + params_.color_camera +
+                                "' must give an 8-bit grey or BGR image");
+  if (image->image.cols != image->intrinsics.width || image->image.rows != image->intrinsics.height)
+    throw std::invalid_argument("region modality of '" + body().name + "': camera '" + params_.color_camera +
+                                "' image is " + std::to_string(image->image.cols) + "x" +
+                                std::to_string(image->image.rows) + " but its intrinsics are for " +
+                                std::to_string(image->intrinsics.width) + "x" +
+                                std::to_string(image->intrinsics.height));
+  return *image;
+}
+
+Posef RegionModality::camera_T_body(const ColorImage& image) const {
+  return (image.camera_T_reference * body().reference_T_body).cast<float>();
+}
+
+bool RegionModality::project(const ModelPoint& point, const Posef& camera_T_body, const Intrinsics& k,
+                             ProjectedPoint& out) const {
+  const Eigen::Vector3f X = camera_T_body * point.position;
+  if (X.z() <= 0.f) return false;
+  out.centre = k.project<float>(X);
+  // The image direction of the contour normal is the projection's derivative along it,
+  // exact also far from the optical axis.
+  const Eigen::Vector2f direction = k.projection_jacobian<float>(X) * (camera_T_body.rotation() * point.normal);
+  const float norm = direction.norm();
+  if (!(norm > 1e-6f)) return false;
+  out.normal = direction / norm;
+  out.depth = X.z();
+  const float px_per_metre = static_cast<float>(k.fu) / X.z();
+  out.foreground_px = point.foreground_distance * px_per_metre;
+  out.background_px = point.background_distance * px_per_metre;
+  return true;
+}
+
+bool RegionModality::hidden(const Frame& frame, const Eigen::Vector3f& body_point, const float* depth_offsets) const {
+  if (!params_.measure_occlusions || params_.depth_camera.empty() ||
+      frames_since_start_ < params_.n_unoccluded_iterations)
+    return false;
+  const DepthImage* depth = frame.find_depth(params_.depth_camera);
+  if (!depth) return false;
+  const Eigen::Vector3f X = (depth->camera_T_reference * body().reference_T_body).cast<float>() * body_point;
+  return occlusion_.occluded(*depth, X, depth_offsets[occlusion_offset_index_]);
+}
+
+void RegionModality::count_line_pixels(const Frame& frame) {
+  const ColorImage& image = color_image(frame);
+  const Intrinsics& k = image.intrinsics;
+  const Posef pose = camera_T_body(image);
+  const int view = model_->closest_view(pose.inverse().translation().normalized());
+  const int n = std::min(model_->view_point_count(view), params_.n_lines_max);
+  const ModelPoint* points = model_->points(view);
+  const float start = static_cast<float>(params_.unconsidered_line_length);
+  const float max_length = static_cast<float>(params_.max_considered_line_length);
+
+  histograms_->clear_counts();
+  ProjectedPoint p;
+  for (int i = 0; i < n; ++i) {
+    // The occlusions measured for this frame's correspondences still hold at its final pose.
+    const bool occluded = view == occlusion_view_ && i < static_cast<int>(occluded_.size())
+                              ? occluded_[i]
+                              : hidden(frame, points[i].position, model_->depth_offsets(view, i));
+    if (occluded || !project(points[i], pose, k, p)) continue;
+    auto walk = [&](float length, float sign, bool foreground) {
+      for (float t = start; t <= length; t += 1.f) {
+        const Eigen::Vector2f x = p.centre + sign * t * p.normal;
+        const int col = round_to_int(x.x()), row = round_to_int(x.y());
+        if (col < 0 || row < 0 || col >= image.image.cols || row >= image.image.rows) return;
+        if (foreground)
+          histograms_->add_foreground(image.image, row, col);
+        else
+          histograms_->add_background(image.image, row, col);
+      }
+    };
+    walk(std::min(max_length, p.foreground_px), -1.f, true);
+    walk(std::min(max_length, p.background_px), 1.f, false);
+  }
+}
+
+void RegionModality::start(const Frame& frame) {
+  frames_since_start_ = 0;
+  occlusion_view_ = -1;
+  histograms_.emplace(params_.n_histogram_bins, color_image(frame).image.channels());
+  count_line_pixels(frame);
+  if (!histograms_->set_from_counts())
+    throw std::runtime_error("region modality of '" + body().name +
+                             "': no foreground or background pixels at the start pose (is the object in view?)");
+}
+
+bool RegionModality::sample_segments(const cv::Mat& image, const ProjectedPoint& p, int scale, Line& line) {
+  const bool along_u = std::abs(p.normal.x()) >= std::abs(p.normal.y());
+  const float n_dom = along_u ? p.normal.x() : p.normal.y();
+  const float n_other = along_u ? p.normal.y() : p.normal.x();
+  const float c_dom = along_u ? p.centre.x() : p.centre.y();
+  const float c_other = along_u ? p.centre.y() : p.centre.x();
+  const int sign = n_dom > 0.f ? 1 : -1;
+  const int n_pixels = n_segments_ * scale;
+  const float half = (n_pixels - 1) / 2.f;
+
+  // Whole-pixel samples along the dominant axis, placed so their midpoint is nearest to
+  // the projected point; Δr keeps the remaining offset (|Δr| <= 0.5 / |n_dom| px).
+  const int first = round_to_int(c_dom - sign * half);
+  const float middle = first + sign * half;
+  line.delta_r = (middle - c_dom) / n_dom;
+  line.normal_factor = std::abs(n_dom) / static_cast<float>(scale);
+
+  const float slope = n_other / n_dom;  // other-axis pixels per dominant-axis pixel along +n
+  const int last = first + sign * (n_pixels - 1);
+  const int dom_limit = along_u ? image.cols : image.rows, other_limit = along_u ? image.rows : image.cols;
+  const float other_first = c_other + (first - c_dom) * slope, other_last = c_other + (last - c_dom) * slope;
+  if (std::min(first, last) < 0 || std::max(first, last) >= dom_limit ||
+      round_to_int(std::min(other_first, other_last)) < 0 || round_to_int(std::max(other_first, other_last)) >= other_limit)
+    return false;
+
+  // A segment's normalised product of pixel posteriors Π P_f / (Π P_f + Π P_b) is the
+  // logistic function of the sum of the pixels' log-odds.
+  float other = c_other + (first - c_dom) * slope;
+  const float other_step = sign * slope;
+  int a = first;
+  for (int s = 0; s < n_segments_; ++s) {
+    float log_odds = 0.f;
+    for (int i = 0; i < scale; ++i, a += sign, other += other_step) {
+      const int b = round_to_int(other);
+      log_odds += along_u ? histograms_->foreground_log_odds(image, b, a) : histograms_->foreground_log_odds(image, a, b);
+    }
+    segment_f_[s] = 1.f / (1.f + std::exp(-log_odds));
+  }
+  return true;
+}
+
+void RegionModality::compute_distribution(Line& line, float* distribution) const {
+  const int n_dist = params_.distribution_length;
+  float sum = 0.f;
+  for (int d = 0; d < n_dist; ++d) {
+    float product = 1.f;
+    for (int i = 0; i < params_.function_length; ++i) {
+      const float pf = segment_f_[d + i];
+      product *= step_f_[i] * pf + step_b_[i] * (1.f - pf);
+    }
+    distribution[d] = product;
+    sum += product;
+  }
+  const float centre = (n_dist - 1) / 2.f;
+  float mean = 0.f;
+  for (int d = 0; d < n_dist; ++d) {
+    distribution[d] /= sum;
+    mean += distribution[d] * (d - centre);
+  }
+  float variance = 0.f;
+  for (int d = 0; d < n_dist; ++d) variance += distribution[d] * (d - centre - mean) * (d - centre - mean);
+  line.mean = mean;
+  line.variance = std::max(variance, min_variance_);
+}
+
+void RegionModality::correspondences(const Frame& frame, int corr_iter) {
+  const ColorImage& image = color_image(frame);
+  if (image.image.channels() != histograms_->channels())
+    throw std::invalid_argument("region modality of '" + body().name + "': camera '" + params_.color_camera +
+                                "' changed between grey and colour images; restart tracking");
+  intrinsics_ = image.intrinsics;
+  camera_T_reference_ = image.camera_T_reference.cast<float>();
+  const Posef pose = camera_T_body(image);
+  const int view = model_->closest_view(pose.inverse().translation().normalized());
+  const int scale = iteration_value(params_.scales, corr_iter);
+  n_considered_ = std::min(model_->view_point_count(view), params_.n_lines_max);
+  const ModelPoint* points = model_->points(view);
+
+  // Occlusions are measured once per frame (and again if the view changes): the pose moves
+  // by far less than the occlusion radius between correspondence iterations.
+  if (corr_iter == 0 || view != occlusion_view_) {
+    occluded_.assign(n_considered_, false);
+    for (int i = 0; i < n_considered_; ++i)
+      occluded_[i] = hidden(frame, points[i].position, model_->depth_offsets(view, i));
+    occlusion_view_ = view;
+  }
+  auto collect = [&](bool test_occlusions) {
+    lines_.clear();
+    ProjectedPoint p;
+    for (int i = 0; i < n_considered_; ++i) {
+      if (!project(points[i], pose, intrinsics_, p)) continue;
+      if (std::min(p.foreground_px, p.background_px) / scale < params_.min_continuous_distance) continue;
+      if (test_occlusions && occluded_[i]) continue;
+      Line line;
+      line.body_point = points[i].position;
+      line.centre = p.centre;
+      line.normal = p.normal;
+      if (!sample_segments(image.image, p, scale, line)) continue;
+      compute_distribution(line, distributions_.data() + lines_.size() * params_.distribution_length);
+      lines_.push_back(line);
+    }
+  };
+  collect(true);
+  if (static_cast<int>(lines_.size()) < params_.min_n_unoccluded_lines) collect(false);
+}
+
+float RegionModality::line_position(const Line& line, const Posef& camera_T_body, const Intrinsics& k) const {
+  const Eigen::Vector2f x = k.project<float>(camera_T_body * line.body_point);
+  return line.normal_factor * (line.normal.dot(x - line.centre) - line.delta_r);
+}
+
+void RegionModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
+  const Posef pose = camera_T_reference_ * body().reference_T_body.cast<float>();
+  const Eigen::Matrix3f R_t = pose.rotation().transpose();
+  const float sigma_r = static_cast<float>(iteration_value(params_.standard_deviations, corr_iter));
+  const bool gaussian = corr_iter < params_.n_global_iterations;
+  const int n_dist = params_.distribution_length;
+  const float centre = (n_dist - 1) / 2.f;
+  const float learning_rate = static_cast<float>(params_.learning_rate);
+
+  Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
+  Eigen::Matrix<float, 6, 6> H_sum = Eigen::Matrix<float, 6, 6>::Zero();
+  for (std::size_t l = 0; l < lines_.size(); ++l) {
+    const Line& line = lines_[l];
+    const Eigen::Vector3f X = pose * line.body_point;
+    if (X.z() <= 0.f) continue;
+    const Eigen::Vector2f x = intrinsics_.project<float>(X);
+    const float delta = line.normal_factor * (line.normal.dot(x - line.centre) - line.delta_r);
+
+    float dloglikelihood;
+    if (gaussian) {
+      dloglikelihood = (line.mean - delta) / line.variance;
+    } else {
+      const float* distribution = distributions_.data() + l * n_dist;
+      const int lower = static_cast<int>(std::floor(delta + centre));
+      if (lower < 0 || lower + 1 >= n_dist) continue;
+      dloglikelihood = learning_rate * (std::log(distribution[lower + 1]) - std::log(distribution[lower])) /
+                       line.variance;
+    }
+
+    // J = n̄ nᵀ ∂π/∂X R [−[X_M]×, I]: with v = Rᵀ (n̄ ∂π/∂Xᵀ n), J = [X_M × v; v].
+    const Eigen::Vector3f a =
+        line.normal_factor * (intrinsics_.projection_jacobian<float>(X).transpose() * line.normal);
+    const Eigen::Vector3f v = R_t * a;
+    Eigen::Matrix<float, 6, 1> J;
+    J << line.body_point.cross(v), v;
+    const float weight = min_variance_ / (line.normal_factor * line.normal_factor * sigma_r * sigma_r);
+    g_sum += (weight * dloglikelihood) * J;
+    H_sum.selfadjointView<Eigen::Lower>().rankUpdate(J, -weight / line.variance);
+  }
+  g += g_sum.cast<double>();
+  H += H_sum.selfadjointView<Eigen::Lower>().toDenseMatrix().cast<double>();
+}
+
+double RegionModality::log_likelihood(int corr_iter) const {
+  // The integral of the derivative add_gradient_hessian uses: a Gaussian around μ in the
+  // global iterations, afterwards the linear interpolation of ln p(d) (scaled alike).
+  const Pose pose = camera_T_reference_.cast<double>() * body().reference_T_body;
+  const double sigma_r = iteration_value(params_.standard_deviations, corr_iter);
+  const int n_dist = params_.distribution_length;
+  const double centre = (n_dist - 1) / 2.0;
+  double sum = 0.0;
+  for (std::size_t l = 0; l < lines_.size(); ++l) {
+    const Line& line = lines_[l];
+    const Eigen::Vector2d x = intrinsics_.project<double>(pose * line.body_point.cast<double>());
+    const double delta = line.normal_factor * (line.normal.cast<double>().dot(x - line.centre.cast<double>()) - line.delta_r);
+    const double weight = min_variance_ / (line.normal_factor * line.normal_factor * sigma_r * sigma_r);
+    if (corr_iter < params_.n_global_iterations) {
+      sum -= weight * 0.5 * (delta - line.mean) * (delta - line.mean) / line.variance;
+      continue;
+    }
+    const float* distribution = distributions_.data() + l * n_dist;
+    const int lower = static_cast<int>(std::floor(delta + centre));
+    if (lower < 0 || lower + 1 >= n_dist) continue;
+    const double fraction = delta + centre - lower;
+    const double log_p = (1.0 - fraction) * std::log(distribution[lower]) + fraction * std::log(distribution[lower + 1]);
+    sum += weight * params_.learning_rate * log_p / line.variance;
+  }
+  return sum;
+}
+
+void RegionModality::finish(const Frame& frame) {
+  update_quality(frame);
+  ++frames_since_start_;
+  count_line_pixels(frame);
+  histograms_->blend_counts(params_.learning_rate_f, params_.learning_rate_b);
+}
+
+void RegionModality::update_quality(const Frame&) {
+  // A line agrees with the pose when its contour-location distribution holds its mass
+  // within ±1.5 segments of where the model's contour now projects. Lines that could not
+  // be used count as disagreeing, so leaving the image or being hidden lowers the score.
+  const Posef pose = camera_T_reference_ * body().reference_T_body.cast<float>();
+  const int n_dist = params_.distribution_length;
+  const float centre = (n_dist - 1) / 2.f;
+  double agreement = 0.0;
+  for (std::size_t l = 0; l < lines_.size(); ++l) {
+    const float delta = line_position(lines_[l], pose, intrinsics_);
+    const float* distribution = distributions_.data() + l * n_dist;
+    for (int d = 0; d < n_dist; ++d)
+      if (std::abs(d - centre - delta) <= 1.5f) agreement += distribution[d];
+  }
+  quality_.n_valid = static_cast<int>(lines_.size());
+  quality_.valid_fraction = n_considered_ > 0 ? static_cast<double>(lines_.size()) / n_considered_ : 0.0;
+  quality_.score = n_considered_ > 0 ? agreement / n_considered_ : 0.0;
+}
+
+}  // namespace icgp
