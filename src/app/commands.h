@@ -10,6 +10,10 @@ namespace icgp::app {
 void register_render_command(CLI::App& app);
 void register_bench_render_command(CLI::App& app);
 void register_make_sequence_command(CLI::App& app);
+void register_track_command(CLI::App& app);
+void register_bench_command(CLI::App& app);
+void register_model_command(CLI::App& app);
+void register_config_command(CLI::App& app);
 
 /// The folder of models shipped with icgp: $ICGP_MODELS_DIR, else the installed share
 /// folder next to the program, else the source tree's models/.

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "icgp/eval/frame.h"
+#include "icgp/geometry/pose.h"
+
+class vpMbGenericTracker;
+
+namespace icgp {
+
+/// Which of its features ViSP's vpMbGenericTracker combines: moving edges and KLT points
+/// on the colour camera, dense depth on the depth camera.
+struct VispTrackerConfiguration {
+  std::string name;  ///< e.g. "edge + dense depth"
+  bool edge = false;
+  bool klt = false;
+  bool dense_depth = false;
+};
+
+/// The configurations of ViSP's own results in tests/data/README.md, in its table order:
+/// edge + dense depth, KLT + dense depth, edge + KLT + dense depth, edge + KLT (no depth).
+std::vector<VispTrackerConfiguration> visp_reference_configurations();
+
+/// A ViSP model and the tracker settings that go with it.
+struct VispModelFiles {
+  std::string model;         ///< .cao
+  std::string color_config;  ///< ViSP XML of the colour camera (moving edges, KLT, faces, camera)
+  std::string depth_config;  ///< ViSP XML of the depth camera (dense depth sampling, faces, camera)
+
+  /// `<stem>.xml` and `<stem>_depth.xml` beside `<stem>.cao`: how ViSP's tutorials and both
+  /// data sets arrange them. Throws std::runtime_error naming a missing file.
+  static VispModelFiles beside_model(const std::string& cao_path);
+};
+
+/// ViSP's vpMbGenericTracker run exactly as a ViSP user runs it on RGB-D data: colour camera
+/// "Camera1" (edges and/or KLT on the grey image), depth camera "Camera2" (dense depth on an
+/// organised point cloud), settings from the model's two XML files, the .cao for both
+/// cameras, depth_M_color as Camera2's transformation. The calibration of the frames
+/// overrides the XML's camera blocks, so ViSP sees the same cameras as icgp.
+class VispRgbdTracker {
+ public:
+  /// Loads the settings and the model. Throws std::invalid_argument for a configuration
+  /// without any feature, and whatever ViSP throws (vpException) for unreadable files.
+  VispRgbdTracker(const VispTrackerConfiguration& configuration, const VispModelFiles& files);
+  ~VispRgbdTracker();
+  VispRgbdTracker(const VispRgbdTracker&) = delete;
+  VispRgbdTracker& operator=(const VispRgbdTracker&) = delete;
+
+  /// Takes the cameras from `frame` (colours[0] and, with depth, depths[0]) and initialises
+  /// at `reference_T_body` (cMo) with vpMbGenericTracker::initFromPose.
+  void start(const Frame& frame, const Pose& reference_T_body);
+  /// Tracks one frame and returns cMo. `track_ms` receives the duration of
+  /// vpMbGenericTracker::track alone: image conversion and the point cloud are excluded.
+  Pose track(const Frame& frame, double* track_ms = nullptr);
+
+ private:
+  void convert(const Frame& frame);
+
+  struct Buffers;
+  VispTrackerConfiguration configuration_;
+  std::unique_ptr<vpMbGenericTracker> tracker_;
+  std::unique_ptr<Buffers> buffers_;
+};
+
+/// One configuration over a run of frames, as ViSP's tutorial does it: start on the first
+/// frame at `reference_T_body`, then track every frame, the first included.
+struct VispBaselineRun {
+  std::vector<Pose> poses;  ///< cMo per frame
+  std::vector<double> ms;   ///< vpMbGenericTracker::track per frame
+};
+/// ViSP is built with OpenMP and OpenCV with threads: for timings comparable to a
+/// single-threaded tracker, call this with both limited to one thread (icgp bench does).
+VispBaselineRun run_visp_baseline(const std::vector<Frame>& frames, const VispTrackerConfiguration& configuration,
+                                  const VispModelFiles& files, const Pose& reference_T_body);
+
+}  // namespace icgp

@@ -1,0 +1,182 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// `icgp bench`: icgp's tracker and ViSP's vpMbGenericTracker on the same frames, in one
+// process and one thread, so accuracy and speed compare directly.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <optional>
+
+#include "commands.h"
+#include "icgp/eval/metrics.h"
+#include "icgp/eval/sequence.h"
+#include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/visp_baseline.h"
+#include "single_thread_scope.h"
+#include "timed_icg_tracker.h"
+
+namespace icgp::app {
+namespace {
+
+/// The ViSP row every speed is compared with: ViSP's most complete RGB-D configuration.
+const std::string kReferenceRow = "ViSP edge + KLT + dense depth";
+
+struct BenchOptions {
+  std::string sequence = std::string(ICGP_SOURCE_TEST_DATA_DIR) + "/teabox-blender";
+  std::string config;
+  std::string summary;
+  int frames = 0;
+};
+
+struct BenchRow {
+  std::string config;
+  TrackingSummary summary;
+};
+
+/// What every tracker reports per frame. vpMbGenericTracker has no tracked flag (it throws
+/// when it fails), so its frames count as tracked.
+struct TrackedPose {
+  Pose reference_T_body;
+  bool tracked = true;
+};
+/// A tracker as the bench drives it: start at a pose on a frame; track a frame, giving the
+/// time of the tracking call alone.
+using StartFunction = std::function<void(const Frame&, const Pose&)>;
+using TrackFunction = std::function<TrackedPose(const Frame&, double* ms)>;
+
+/// Starts at the first frame's ground truth and tracks every frame, the first included.
+TrackingSummary run_configuration(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                                  const StartFunction& start, const TrackFunction& track) {
+  TrackingEvaluation evaluation(mesh);
+  start(frames.front(), *frames.front().truth(body));
+  for (const Frame& frame : frames) {
+    double ms = 0.0;
+    const TrackedPose result = track(frame, &ms);
+    const Pose* truth = frame.truth(body);
+    evaluation.add(frame.index, result.reference_T_body, truth ? std::optional<Pose>(*truth) : std::nullopt,
+                   result.tracked, ms);
+  }
+  return evaluation.summary();
+}
+
+void print_table(const std::vector<BenchRow>& rows, double reference_ms) {
+  std::printf("\n%-34s %8s %8s %9s %9s %10s %8s %14s\n", "configuration", "mean mm", "max mm", "mean deg", "max deg",
+              "median ms", "Hz", "speed vs ViSP");
+  for (const BenchRow& row : rows) {
+    const TrackingSummary& s = row.summary;
+    std::printf("%-34s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", row.config.c_str(), s.mean_t_mm, s.max_t_mm,
+                s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, reference_ms / s.median_ms);
+  }
+  std::printf("\nspeed vs ViSP: median ms of '%s' / median ms of the row (> 1: faster).\n"
+              "Times are of the tracking call alone, single thread (OpenMP and OpenCV limited to one);\n"
+              "compare them as ratios within one run: absolute values vary with the machine's load.\n",
+              kReferenceRow.c_str());
+}
+
+void run_bench(const BenchOptions& o) {
+  const Sequence sequence = Sequence::open(o.sequence);
+  if (!sequence.has_ground_truth() || sequence.objects().size() != 1 || sequence.objects().front().mesh_path.empty())
+    throw std::runtime_error("bench needs a sequence with ground truth for one object with a ViSP model: " +
+                             o.sequence);
+  if (sequence.size() == 0) throw std::runtime_error("the sequence in " + o.sequence + " has no frames");
+  const SequenceObject& object = sequence.objects().front();
+  const VispModelFiles visp_files = VispModelFiles::beside_model(object.mesh_path);
+  const Mesh mesh = load_any_mesh(object.mesh_path);
+  const TrackerConfig base_config = o.config.empty() ? TrackerConfig{} : load_tracker_config(o.config);
+
+  const int n_frames = o.frames > 0 ? std::min(o.frames, sequence.size()) : sequence.size();
+  std::cerr << "loading " << n_frames << " frames of " << o.sequence << "\n";
+  std::vector<Frame> frames;
+  for (int i = 0; i < n_frames; ++i) frames.push_back(sequence.load(i));
+
+  struct Job {
+    std::string name;
+    std::function<TrackingSummary()> run;
+  };
+  std::vector<Job> jobs;
+  for (const std::vector<std::string>& modalities :
+       std::vector<std::vector<std::string>>{{"region", "depth"}, {"region"}, {"depth"}}) {
+    std::string name = "ICG";
+    for (std::size_t i = 0; i < modalities.size(); ++i) name += (i ? " + " : " ") + modalities[i];
+    jobs.push_back({name, [&, modalities] {
+                      TrackerConfig config = base_config;
+                      config.modalities = modalities;
+                      TimedIcgTracker tracker(config, mesh, object.name);
+                      return run_configuration(
+                          frames, object.name, mesh,
+                          [&](const Frame& f, const Pose& pose) { tracker.start(f, pose); },
+                          [&](const Frame& f, double* ms) {
+                            const BodyResult r = tracker.track(f, ms);
+                            return TrackedPose{r.reference_T_body, r.tracked};
+                          });
+                    }});
+  }
+  for (const VispTrackerConfiguration& configuration : visp_reference_configurations()) {
+    jobs.push_back({"ViSP " + configuration.name, [&, configuration] {
+                      VispRgbdTracker tracker(configuration, visp_files);
+                      return run_configuration(
+                          frames, object.name, mesh,
+                          [&](const Frame& f, const Pose& pose) { tracker.start(f, pose); },
+                          [&](const Frame& f, double* ms) { return TrackedPose{tracker.track(f, ms), true}; });
+                    }});
+  }
+
+  std::cerr << "ICG rows generate their viewpoint models on first use (minutes); later runs read them from the cache\n";
+  std::vector<BenchRow> rows;
+  std::vector<std::string> failures;
+  const SingleThreadScope single_thread;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    std::cerr << "[" << j + 1 << "/" << jobs.size() << "] " << jobs[j].name << " ..." << std::flush;
+    const auto begin = std::chrono::steady_clock::now();
+    // A configuration that cannot run (no EGL for model generation, say) must not cost
+    // the others' results: it is reported and the bench fails at the end.
+    try {
+      rows.push_back({jobs[j].name, jobs[j].run()});
+    } catch (const std::exception& e) {
+      std::cerr << " failed: " << e.what() << "\n";
+      failures.push_back(jobs[j].name);
+      continue;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    std::fprintf(stderr, " %d frames in %.1f s (including set-up)\n", n_frames, seconds);
+  }
+
+  double reference_ms = std::numeric_limits<double>::quiet_NaN();
+  for (const BenchRow& row : rows)
+    if (row.config == kReferenceRow) reference_ms = row.summary.median_ms;
+  print_table(rows, reference_ms);
+
+  if (!o.summary.empty()) {
+    std::vector<JsonObject> json_rows;
+    for (const BenchRow& row : rows)
+      json_rows.push_back(JsonObject()
+                              .add("config", row.config)
+                              .add_fields(row.summary.to_json())
+                              .add("speed_ratio", reference_ms / row.summary.median_ms));
+    JsonObject().add("rows", json_rows).write(o.summary);
+    std::cout << "wrote " << o.summary << "\n";
+  }
+  if (!failures.empty()) {
+    std::string names;
+    for (const std::string& name : failures) names += (names.empty() ? "" : ", ") + name;
+    throw std::runtime_error(std::to_string(failures.size()) + " configuration(s) failed: " + names);
+  }
+}
+
+}  // namespace
+
+void register_bench_command(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "Compare icgp's tracker with ViSP's vpMbGenericTracker on one sequence: accuracy and speed");
+  cmd->add_option("--sequence", o->sequence, "Sequence with ground truth and a ViSP model (.cao + .xml files)")
+      ->check(CLI::ExistingDirectory)
+      ->capture_default_str();
+  cmd->add_option("--config", o->config, "icgp tracker configuration (YAML) for the ICG rows")->check(CLI::ExistingFile);
+  cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...]}");
+  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
+  cmd->callback([o] { run_bench(*o); });
+}
+
+}  // namespace icgp::app

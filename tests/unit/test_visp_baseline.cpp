@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// ViSP's own vpMbGenericTracker through icgp's baseline runner on the teabox-blender frames:
+// it must track as ViSP's tutorial does (tests/data/README.md: 0.66 mm mean on edge + dense depth).
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "icgp/eval/metrics.h"
+#include "icgp/eval/sequence.h"
+#include "icgp/visp/visp_baseline.h"
+
+using namespace icgp;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const std::filesystem::path kBlender = std::filesystem::path(ICGP_TEST_DATA_DIR) / "teabox-blender";
+
+}  // namespace
+
+TEST_CASE("vpMbGenericTracker edge + dense depth follows the first 10 teabox-blender frames") {
+  const Sequence sequence = Sequence::open(kBlender.string());
+  std::vector<Frame> frames;
+  for (int i = 0; i < 10; ++i) frames.push_back(sequence.load(i));
+
+  const VispTrackerConfiguration edge_depth = visp_reference_configurations().front();
+  REQUIRE(edge_depth.edge);
+  REQUIRE(edge_depth.dense_depth);
+  const VispModelFiles files = VispModelFiles::beside_model((kBlender / "teabox.cao").string());
+  const VispBaselineRun run = run_visp_baseline(frames, edge_depth, files, *frames.front().truth());
+
+  REQUIRE(run.poses.size() == frames.size());
+  REQUIRE(run.ms.size() == frames.size());
+  double sum_t_mm = 0.0, sum_r_deg = 0.0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    sum_t_mm += translation_error_mm(run.poses[i], *frames[i].truth());
+    sum_r_deg += rotation_error_deg(run.poses[i], *frames[i].truth());
+    CHECK(run.ms[i] > 0.0);
+  }
+  CHECK(sum_t_mm / frames.size() < 2.0);
+  CHECK(sum_r_deg / frames.size() < 0.5);
+}
+
+TEST_CASE("ViSP model files are found beside the .cao, and a missing one is named") {
+  const VispModelFiles files = VispModelFiles::beside_model((kBlender / "teabox.cao").string());
+  CHECK(files.color_config == (kBlender / "teabox.xml").string());
+  CHECK(files.depth_config == (kBlender / "teabox_depth.xml").string());
+  CHECK_THROWS_WITH(VispModelFiles::beside_model((kBlender / "coffee.cao").string()), Contains("coffee.cao"));
+}
+
+TEST_CASE("a ViSP configuration needs a colour feature") {
+  const VispModelFiles files = VispModelFiles::beside_model((kBlender / "teabox.cao").string());
+  CHECK_THROWS_AS(VispRgbdTracker(VispTrackerConfiguration{"depth only", false, false, true}, files),
+                  std::invalid_argument);
+}
