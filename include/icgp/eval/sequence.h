@@ -20,6 +20,9 @@ struct SequenceOptions {
   /// Depth beyond this (metres) is treated as no measurement, like NaN and inf: Blender
   /// writes a huge Z on the background and real sensors report far outliers.
   double max_depth = 10.0;
+  /// For "visp-blender" sequences: the XML gives the principal point as Blender defines it
+  /// (pixel-edge coordinates), so subtract 0.5 px to get ViSP's pixel-centre convention.
+  bool blender_principal_point = true;
   /// Frames per second for layouts that do not record it (the ViSP ones).
   double frame_rate = 30.0;
 };
