@@ -2,7 +2,6 @@
 #include "icgp/modality/color_histograms.h"
 
 #include <algorithm>
-#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -22,7 +21,6 @@ ColorHistograms::ColorHistograms(int n_bins, int channels) : n_bins_(n_bins), ch
   hist_f_.assign(size, 0.f);
   hist_b_.assign(size, 0.f);
   posterior_f_.assign(size, 0.5f);
-  log_odds_f_.assign(size, 0.f);
   count_f_.assign(size, 0);
   count_b_.assign(size, 0);
 }
@@ -59,7 +57,6 @@ void ColorHistograms::update_posteriors() {
     const float sum = hist_f_[i] + hist_b_[i];
     const float posterior = sum > 0.f ? hist_f_[i] / sum : 0.5f;
     posterior_f_[i] = std::clamp(posterior, kMinPosterior, 1.f - kMinPosterior);
-    log_odds_f_[i] = std::log(posterior_f_[i] / (1.f - posterior_f_[i]));
   }
 }
 

@@ -80,7 +80,7 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
   depth_T_reference_ = depth.camera_T_reference.cast<float>();
   const Posef depth_T_body_now = depth_T_body();
   const Eigen::Vector3f camera_in_body = depth_T_body_now.inverse().translation();
-  const int view = model_->closest_view(camera_in_body.normalized());
+  const int view = view_selector_.select(*model_, camera_in_body.normalized());
   const float considered = static_cast<float>(iteration_value(params_.considered_distances, corr_iter));
   const bool test_occlusions = params_.measure_occlusions && frames_since_start_ >= params_.n_unoccluded_iterations;
 
@@ -123,10 +123,10 @@ void DepthModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) 
     Eigen::Matrix<float, 6, 1> J;
     J << P.cross(c.body_normal), c.body_normal;
     g_sum -= (w2 * residual) * J;
-    H_sum.selfadjointView<Eigen::Lower>().rankUpdate(J, -w2);
+    H_sum.noalias() -= w2 * J * J.transpose();
   }
   g += g_sum.cast<double>();
-  H += H_sum.selfadjointView<Eigen::Lower>().toDenseMatrix().cast<double>();
+  H += H_sum.cast<double>();
 }
 
 double DepthModality::log_likelihood(int corr_iter) const {

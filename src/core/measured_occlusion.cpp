@@ -13,9 +13,9 @@ bool MeasuredOcclusion::occluded(const DepthImage& depth, const Eigen::Vector3f&
   const Intrinsics& k = depth.intrinsics;
   const Eigen::Vector2f centre = k.project<float>(point);
   const float radius_px = static_cast<float>(radius * k.fu) / point.z();
-  // Three samples per side of the square are enough: occluders are larger than the
-  // radius, and the test runs for every line and point of every iteration.
-  const float step = std::max(1.f, radius_px / 3.f);
+  // Five samples across the square are enough: occluders are larger than the radius, and
+  // the test runs for every line and point of a frame.
+  const float step = std::max(1.f, radius_px / 2.f);
   const float limit = point.z() - depth_offset - static_cast<float>(threshold);
   for (float dv = -radius_px; dv <= radius_px + 1e-3f; dv += step) {
     const int row = round_to_int(centre.y() + dv);

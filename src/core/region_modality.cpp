@@ -23,8 +23,8 @@ RegionModality::RegionModality(Body& body, std::shared_ptr<const ViewpointModel>
   for (int i = 0; i < params_.function_length; ++i) {
     const double x = i - (params_.function_length - 1) / 2.0;
     const double h_f = slope > 0.0 ? 0.5 - alpha * std::tanh(x / (2.0 * slope)) : 0.5 - alpha * ((x > 0) - (x < 0));
-    step_f_.push_back(static_cast<float>(h_f));
     step_b_.push_back(static_cast<float>(1.0 - h_f));
+    step_difference_.push_back(static_cast<float>(2.0 * h_f - 1.0));  // h_f − h_b
   }
   const double atanh_2alpha = std::atanh(2.0 * alpha);
   min_variance_ = static_cast<float>(std::max(1.0 / (2.0 * atanh_2alpha * atanh_2alpha), slope));
@@ -87,7 +87,7 @@ void RegionModality::count_line_pixels(const Frame& frame) {
   const ColorImage& image = color_image(frame);
   const Intrinsics& k = image.intrinsics;
   const Posef pose = camera_T_body(image);
-  const int view = model_->closest_view(pose.inverse().translation().normalized());
+  const int view = view_selector_.select(*model_, pose.inverse().translation().normalized());
   const int n = std::min(model_->view_point_count(view), params_.n_lines_max);
   const ModelPoint* points = model_->points(view);
   const float start = static_cast<float>(params_.unconsidered_line_length);
@@ -152,18 +152,24 @@ bool RegionModality::sample_segments(const cv::Mat& image, const ProjectedPoint&
       round_to_int(std::min(other_first, other_last)) < 0 || round_to_int(std::max(other_first, other_last)) >= other_limit)
     return false;
 
-  // A segment's normalised product of pixel posteriors Π P_f / (Π P_f + Π P_b) is the
-  // logistic function of the sum of the pixels' log-odds.
+  // A segment's foreground probability is the normalised product of its pixels'
+  // posteriors, Π P_f / (Π P_f + Π P_b). Posteriors are at least 1e-3, so products of the
+  // (at most a few) pixels of a segment stay far from float underflow.
+  // Pixel addresses: the dominant axis is the column (along_u) or the row.
+  const std::ptrdiff_t pixel_size = image.channels(), row_size = static_cast<std::ptrdiff_t>(image.step);
+  const std::ptrdiff_t dom_stride = along_u ? pixel_size : row_size, other_stride = along_u ? row_size : pixel_size;
   float other = c_other + (first - c_dom) * slope;
   const float other_step = sign * slope;
-  int a = first;
+  const std::uint8_t* dom_pixel = image.data + first * dom_stride;
+  const std::ptrdiff_t dom_step = sign * dom_stride;
   for (int s = 0; s < n_segments_; ++s) {
-    float log_odds = 0.f;
-    for (int i = 0; i < scale; ++i, a += sign, other += other_step) {
-      const int b = round_to_int(other);
-      log_odds += along_u ? histograms_->foreground_log_odds(image, b, a) : histograms_->foreground_log_odds(image, a, b);
+    float pf = 1.f, pb = 1.f;
+    for (int i = 0; i < scale; ++i, dom_pixel += dom_step, other += other_step) {
+      const float posterior = histograms_->foreground_posterior(dom_pixel + round_to_int(other) * other_stride);
+      pf *= posterior;
+      pb *= 1.f - posterior;
     }
-    segment_f_[s] = 1.f / (1.f + std::exp(-log_odds));
+    segment_f_[s] = pf / (pf + pb);
   }
   return true;
 }
@@ -173,10 +179,7 @@ void RegionModality::compute_distribution(Line& line, float* distribution) const
   float sum = 0.f;
   for (int d = 0; d < n_dist; ++d) {
     float product = 1.f;
-    for (int i = 0; i < params_.function_length; ++i) {
-      const float pf = segment_f_[d + i];
-      product *= step_f_[i] * pf + step_b_[i] * (1.f - pf);
-    }
+    for (int i = 0; i < params_.function_length; ++i) product *= step_b_[i] + step_difference_[i] * segment_f_[d + i];
     distribution[d] = product;
     sum += product;
   }
@@ -200,7 +203,7 @@ void RegionModality::correspondences(const Frame& frame, int corr_iter) {
   intrinsics_ = image.intrinsics;
   camera_T_reference_ = image.camera_T_reference.cast<float>();
   const Posef pose = camera_T_body(image);
-  const int view = model_->closest_view(pose.inverse().translation().normalized());
+  const int view = view_selector_.select(*model_, pose.inverse().translation().normalized());
   const int scale = iteration_value(params_.scales, corr_iter);
   n_considered_ = std::min(model_->view_point_count(view), params_.n_lines_max);
   const ModelPoint* points = model_->points(view);
@@ -275,10 +278,10 @@ void RegionModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H)
     J << line.body_point.cross(v), v;
     const float weight = min_variance_ / (line.normal_factor * line.normal_factor * sigma_r * sigma_r);
     g_sum += (weight * dloglikelihood) * J;
-    H_sum.selfadjointView<Eigen::Lower>().rankUpdate(J, -weight / line.variance);
+    H_sum.noalias() -= (weight / line.variance) * J * J.transpose();
   }
   g += g_sum.cast<double>();
-  H += H_sum.selfadjointView<Eigen::Lower>().toDenseMatrix().cast<double>();
+  H += H_sum.cast<double>();
 }
 
 double RegionModality::log_likelihood(int corr_iter) const {

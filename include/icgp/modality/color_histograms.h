@@ -32,14 +32,13 @@ class ColorHistograms {
   float foreground_posterior(const cv::Mat& image, int row, int col) const {
     return posterior_f_[bin(image, row, col)];
   }
-  /// ln(P_f / (1 − P_f)) of the pixel: the product of several pixels' posteriors, normalised,
-  /// is the logistic function of the sum of their log-odds.
-  float foreground_log_odds(const cv::Mat& image, int row, int col) const { return log_odds_f_[bin(image, row, col)]; }
+  /// The same for a pixel given by its address in an image of channels() channels.
+  float foreground_posterior(const std::uint8_t* pixel) const { return posterior_f_[bin(pixel)]; }
 
  private:
-  int bin(const cv::Mat& image, int row, int col) const {
-    if (channels_ == 1) return image.ptr<std::uint8_t>(row)[col] >> shift_;
-    const std::uint8_t* p = image.ptr<std::uint8_t>(row) + 3 * col;
+  int bin(const cv::Mat& image, int row, int col) const { return bin(image.ptr<std::uint8_t>(row) + channels_ * col); }
+  int bin(const std::uint8_t* p) const {
+    if (channels_ == 1) return p[0] >> shift_;
     return ((p[0] >> shift_) * n_bins_ + (p[1] >> shift_)) * n_bins_ + (p[2] >> shift_);
   }
   void update_posteriors();
@@ -47,7 +46,7 @@ class ColorHistograms {
   int n_bins_;
   int channels_;
   int shift_;
-  std::vector<float> hist_f_, hist_b_, posterior_f_, log_odds_f_;
+  std::vector<float> hist_f_, hist_b_, posterior_f_;
   std::vector<std::uint32_t> count_f_, count_b_;
 };
 

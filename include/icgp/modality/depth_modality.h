@@ -7,6 +7,7 @@
 #include "icgp/modality/measured_occlusion.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
+#include "icgp/modality/view_selector.h"
 #include "icgp/model/viewpoint_model.h"
 
 namespace icgp {
@@ -45,6 +46,7 @@ class DepthModality : public Modality {
   MeasuredOcclusion occlusion_;
   int occlusion_offset_index_;
   Posef depth_T_reference_;
+  ViewSelector view_selector_;
   std::vector<Correspondence> correspondences_;
   std::vector<bool> occluded_;  ///< per point of occlusion_view_, measured at corr_iter 0
   int occlusion_view_ = -1;

@@ -9,6 +9,7 @@
 #include "icgp/modality/measured_occlusion.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
+#include "icgp/modality/view_selector.h"
 #include "icgp/model/viewpoint_model.h"
 
 namespace icgp {
@@ -71,12 +72,15 @@ class RegionModality : public Modality {
   MeasuredOcclusion occlusion_;
   int occlusion_offset_index_;
   std::optional<ColorHistograms> histograms_;
-  std::vector<float> step_f_, step_b_;  ///< smoothed step h_f, h_b at the segment centres
+  /// Smoothed step at the segment centres as h_b and h_f − h_b, so that a segment's term
+  /// h_f P_f + h_b (1 − P_f) is one multiply-add.
+  std::vector<float> step_b_, step_difference_;
   float min_variance_;                  ///< σ_min²
   int n_segments_;                      ///< function_length + distribution_length − 1
 
   Intrinsics intrinsics_;                 ///< of the colour camera at the last correspondences
   Posef camera_T_reference_;
+  ViewSelector view_selector_;
   std::vector<Line> lines_;
   std::vector<bool> occluded_;  ///< per point of occlusion_view_, measured at corr_iter 0
   int occlusion_view_ = -1;
