@@ -83,7 +83,7 @@ void run_bench(const BenchOptions& o) {
   const SequenceObject& object = sequence.objects().front();
   const VispModelFiles visp_files = VispModelFiles::beside_model(object.mesh_path);
   const Mesh mesh = load_any_mesh(object.mesh_path);
-  const TrackerConfig base_config = o.config.empty() ? TrackerConfig{} : load_tracker_config(o.config);
+  const TrackerConfig base_config = sequence_tracker_config(o.config, o.sequence);
 
   const int n_frames = o.frames > 0 ? std::min(o.frames, sequence.size()) : sequence.size();
   std::cerr << "loading " << n_frames << " frames of " << o.sequence << "\n";
@@ -173,7 +173,7 @@ void register_bench_command(CLI::App& app) {
   cmd->add_option("--sequence", o->sequence, "Sequence with ground truth and a ViSP model (.cao + .xml files)")
       ->check(CLI::ExistingDirectory)
       ->capture_default_str();
-  cmd->add_option("--config", o->config, "icgp tracker configuration (YAML) for the ICG rows")->check(CLI::ExistingFile);
+  cmd->add_option("--config", o->config, "icgp tracker configuration (YAML) for the ICG rows; default: the sequence folder's icgp.yaml, else the reference parameters")->check(CLI::ExistingFile);
   cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...]}");
   cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
   cmd->callback([o] { run_bench(*o); });

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "icgp/tracker/tracker_config.h"
+
 namespace icgp::app {
 
 void register_render_command(CLI::App& app);
@@ -14,6 +16,11 @@ void register_track_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_model_command(CLI::App& app);
 void register_config_command(CLI::App& app);
+
+/// The tracker configuration for a sequence: the explicit file when given, else the
+/// sequence folder's own icgp.yaml (as ViSP data folders carry their tracker XML), else the
+/// reference defaults. Says on stderr which one it uses.
+TrackerConfig sequence_tracker_config(const std::string& explicit_file, const std::string& sequence_dir);
 
 /// The folder of models shipped with icgp: $ICGP_MODELS_DIR, else the installed share
 /// folder next to the program, else the source tree's models/.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 
 #include "commands.h"
 
@@ -16,6 +17,14 @@ std::string models_dir() {
     if (fs::is_directory(installed)) return installed.string();
   }
   return ICGP_SOURCE_MODELS_DIR;
+}
+
+TrackerConfig sequence_tracker_config(const std::string& explicit_file, const std::string& sequence_dir) {
+  std::string file = explicit_file;
+  const std::filesystem::path own = std::filesystem::path(sequence_dir) / "icgp.yaml";
+  if (file.empty() && std::filesystem::is_regular_file(own)) file = own.string();
+  std::cerr << "tracker configuration: " << (file.empty() ? "reference defaults" : file) << "\n";
+  return file.empty() ? TrackerConfig{} : load_tracker_config(file);
 }
 
 std::string default_model_path() { return models_dir() + "/textured_box/textured_box.obj"; }

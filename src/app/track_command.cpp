@@ -91,7 +91,7 @@ void run_track(const TrackOptions& o) {
   const std::string body = body_name(sequence, model);
   const Mesh mesh = load_any_mesh(model);
 
-  TrackerConfig config = o.config.empty() ? TrackerConfig{} : load_tracker_config(o.config);
+  TrackerConfig config = sequence_tracker_config(o.config, o.sequence);
   if (!o.modalities.empty()) config.modalities = o.modalities;
 
   const Frame first = sequence.load(0);
@@ -153,7 +153,7 @@ void register_track_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--model", o->model, "Mesh or ViSP .cao (default: the sequence's own model)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--config", o->config, "Tracker configuration (YAML); default: the reference parameters")
+  cmd->add_option("--config", o->config, "Tracker configuration (YAML); default: the sequence folder's icgp.yaml, else the reference parameters")
       ->check(CLI::ExistingFile);
   cmd->add_option("--modalities", o->modalities, "Modalities to use, e.g. region,depth (overrides the configuration)")
       ->delimiter(',');
