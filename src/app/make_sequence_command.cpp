@@ -28,7 +28,7 @@ void run_make_sequence(MakeSequenceOptions o) {
   const Mesh mesh = load_any_mesh(o.model, o.scale);
   SequenceWriter writer(o.writer);
   const std::string stem = std::filesystem::path(o.model).stem().string();
-  writer.add_object(stem, mesh, Pose(), o.model);
+  writer.add_object(stem, mesh, Pose(), std::filesystem::absolute(o.model).string());
   writer.write(o.out);
   std::cout << "wrote " << o.writer.frame_count << " frames of '" << stem << "' to " << o.out << "\n";
 }
