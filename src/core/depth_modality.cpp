@@ -35,7 +35,10 @@ const DepthImage& DepthModality::depth_image(const Frame& frame) const {
 
 Posef DepthModality::depth_T_body() const { return depth_T_reference_ * body().reference_T_body.cast<float>(); }
 
-void DepthModality::start(const Frame&) { frames_since_start_ = 0; }
+void DepthModality::start(const Frame&) {
+  frames_since_start_ = 0;
+  occlusions_.reset();
+}
 
 bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point,
                                              float considered_distance, Eigen::Vector3f& closest) const {
@@ -86,22 +89,17 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
 
   n_considered_ = std::min(model_->view_point_count(view), params_.n_points_max);
   const ModelPoint* points = model_->points(view);
-  // Occlusions are measured once per frame (and again if the view changes): the pose moves
-  // by far less than the occlusion radius between correspondence iterations.
-  if (test_occlusions && (corr_iter == 0 || view != occlusion_view_)) {
-    occluded_.assign(n_considered_, false);
-    for (int p = 0; p < n_considered_; ++p) {
-      const Eigen::Vector3f X = depth_T_body_now * points[p].position;
-      occluded_[p] = occlusion_.occluded(depth, X, model_->depth_offsets(view, p)[occlusion_offset_index_]);
-    }
-    occlusion_view_ = view;
-  }
+  if (test_occlusions)
+    occlusions_.update(corr_iter, view, n_considered_, [&](int p) {
+      return occlusion_.occluded(depth, depth_T_body_now * points[p].position,
+                                 model_->depth_offsets(view, p)[occlusion_offset_index_]);
+    });
   auto collect = [&](bool with_occlusion_test) {
     correspondences_.clear();
     for (int p = 0; p < n_considered_; ++p) {
       const Eigen::Vector3f X = depth_T_body_now * points[p].position;
       if (X.z() <= 0.f) continue;
-      if (with_occlusion_test && occluded_[p]) continue;
+      if (with_occlusion_test && occlusions_.occluded(p)) continue;
       Eigen::Vector3f measured;
       if (!find_closest_measurement(depth, X, considered, measured)) continue;
       correspondences_.push_back({points[p].position, points[p].normal, measured});

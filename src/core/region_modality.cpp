@@ -97,8 +97,8 @@ void RegionModality::count_line_pixels(const Frame& frame) {
   ProjectedPoint p;
   for (int i = 0; i < n; ++i) {
     // The occlusions measured for this frame's correspondences still hold at its final pose.
-    const bool occluded = view == occlusion_view_ && i < static_cast<int>(occluded_.size())
-                              ? occluded_[i]
+    const bool occluded = occlusions_.measured(view, i)
+                              ? occlusions_.occluded(i)
                               : hidden(frame, points[i].position, model_->depth_offsets(view, i));
     if (occluded || !project(points[i], pose, k, p)) continue;
     auto walk = [&](float length, float sign, bool foreground) {
@@ -119,7 +119,7 @@ void RegionModality::count_line_pixels(const Frame& frame) {
 
 void RegionModality::start(const Frame& frame) {
   frames_since_start_ = 0;
-  occlusion_view_ = -1;
+  occlusions_.reset();
   histograms_.emplace(params_.n_histogram_bins, color_image(frame).image.channels());
   count_line_pixels(frame);
   if (!histograms_->set_from_counts())
@@ -208,21 +208,15 @@ void RegionModality::correspondences(const Frame& frame, int corr_iter) {
   n_considered_ = std::min(model_->view_point_count(view), params_.n_lines_max);
   const ModelPoint* points = model_->points(view);
 
-  // Occlusions are measured once per frame (and again if the view changes): the pose moves
-  // by far less than the occlusion radius between correspondence iterations.
-  if (corr_iter == 0 || view != occlusion_view_) {
-    occluded_.assign(n_considered_, false);
-    for (int i = 0; i < n_considered_; ++i)
-      occluded_[i] = hidden(frame, points[i].position, model_->depth_offsets(view, i));
-    occlusion_view_ = view;
-  }
+  occlusions_.update(corr_iter, view, n_considered_,
+                     [&](int i) { return hidden(frame, points[i].position, model_->depth_offsets(view, i)); });
   auto collect = [&](bool test_occlusions) {
     lines_.clear();
     ProjectedPoint p;
     for (int i = 0; i < n_considered_; ++i) {
       if (!project(points[i], pose, intrinsics_, p)) continue;
       if (std::min(p.foreground_px, p.background_px) / scale < params_.min_continuous_distance) continue;
-      if (test_occlusions && occluded_[i]) continue;
+      if (test_occlusions && occlusions_.occluded(i)) continue;
       Line line;
       line.body_point = points[i].position;
       line.centre = p.centre;

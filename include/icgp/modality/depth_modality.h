@@ -48,8 +48,7 @@ class DepthModality : public Modality {
   Posef depth_T_reference_;
   ViewSelector view_selector_;
   std::vector<Correspondence> correspondences_;
-  std::vector<bool> occluded_;  ///< per point of occlusion_view_, measured at corr_iter 0
-  int occlusion_view_ = -1;
+  ViewOcclusions occlusions_;
   int n_considered_ = 0;
   int frames_since_start_ = 0;
   ModalityQuality quality_;

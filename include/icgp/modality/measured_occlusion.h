@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "icgp/eval/frame.h"
 
@@ -17,6 +18,30 @@ struct MeasuredOcclusion {
 
   /// `point` is in the depth camera frame; `depth_offset` is the model's offset for `radius`.
   bool occluded(const DepthImage& depth, const Eigen::Vector3f& point, float depth_offset) const;
+};
+
+/// Which points of one model view are occluded, measured once per frame: the pose moves by
+/// far less than the occlusion radius between correspondence iterations, so repeating the
+/// test at every iteration would only cost time.
+class ViewOcclusions {
+ public:
+  /// Measures the first n_points points of `view` with is_occluded(i) at a frame's first
+  /// correspondence iteration, or when the view changed since the last measurement.
+  template <typename IsOccluded>
+  void update(int corr_iter, int view, int n_points, IsOccluded&& is_occluded) {
+    if (corr_iter != 0 && view == view_ && n_points == static_cast<int>(flags_.size())) return;
+    flags_.resize(n_points);
+    for (int i = 0; i < n_points; ++i) flags_[i] = is_occluded(i);
+    view_ = view;
+  }
+  /// True when point i of `view` has been measured.
+  bool measured(int view, int i) const { return view == view_ && i < static_cast<int>(flags_.size()); }
+  bool occluded(int i) const { return flags_[i]; }
+  void reset() { view_ = -1; }
+
+ private:
+  std::vector<bool> flags_;
+  int view_ = -1;
 };
 
 }  // namespace icgp

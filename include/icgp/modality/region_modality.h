@@ -82,8 +82,7 @@ class RegionModality : public Modality {
   Posef camera_T_reference_;
   ViewSelector view_selector_;
   std::vector<Line> lines_;
-  std::vector<bool> occluded_;  ///< per point of occlusion_view_, measured at corr_iter 0
-  int occlusion_view_ = -1;
+  ViewOcclusions occlusions_;
   std::vector<float> distributions_;      ///< distribution_length per line
   std::vector<float> segment_f_;          ///< scratch: segment foreground posteriors
   int n_considered_ = 0;
