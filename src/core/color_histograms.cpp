@@ -15,9 +15,12 @@ ColorHistograms::ColorHistograms(int n_bins, int channels) : n_bins_(n_bins), ch
   if (channels != 1 && channels != 3)
     throw std::invalid_argument("colour histograms need a 1- or 3-channel 8-bit image (got " +
                                 std::to_string(channels) + " channels)");
+  // A grey histogram gets as many bins as a colour one would have, up to one per grey
+  // level: 16 grey bins cannot tell an object from a background of similar brightness.
+  if (channels == 1) n_bins_ = std::min(256, n_bins * n_bins * n_bins);
   shift_ = 0;
-  while ((256 >> shift_) > n_bins) ++shift_;
-  const std::size_t size = channels == 1 ? n_bins : n_bins * n_bins * n_bins;
+  while ((256 >> shift_) > n_bins_) ++shift_;
+  const std::size_t size = channels == 1 ? n_bins_ : n_bins_ * n_bins_ * n_bins_;
   hist_f_.assign(size, 0.f);
   hist_b_.assign(size, 0.f);
   posterior_f_.assign(size, 0.5f);

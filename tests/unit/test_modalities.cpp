@@ -4,6 +4,7 @@
 // a perturbed pose, and bad input.
 #include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "icgp/io/mesh_loader.h"
 #include "icgp/model/viewpoint_model_generator.h"
@@ -180,4 +181,27 @@ TEST_CASE("region modality: starting with the object out of view is a clear erro
   Body body{"box", f.mesh, Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5))};
   RegionModality region(body, f.region_model, {});
   CHECK_THROWS_WITH(region.start(frame), Catch::Contains("in view"));
+}
+
+TEST_CASE("tracker: region + depth converge on a grey image too") {
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
+  Frame frame = scene.render(f.truth);
+  cv::cvtColor(frame.colors[0].image, frame.colors[0].image, cv::COLOR_BGR2GRAY);
+  Tracker tracker;
+  Body& body = tracker.add_body({"box", f.mesh, f.truth});
+  tracker.add_modality(std::make_unique<RegionModality>(body, f.region_model, RegionParams{}));
+  DepthParams exact_depth;
+  exact_depth.standard_deviations = {0.05, 0.03, 0.001};
+  tracker.add_modality(std::make_unique<DepthModality>(body, f.depth_model, exact_depth));
+  tracker.start(frame);
+  body.reference_T_body = perturbed(f.truth, 5.0, 5.0);
+  std::vector<BodyResult> results;
+  for (int i = 0; i < 3; ++i) results = tracker.track(frame);
+  const double t_mm = 1e3 * (body.reference_T_body.translation() - f.truth.translation()).norm();
+  const double r_deg = rotation_angle_between(body.reference_T_body.rotation(), f.truth.rotation()) * 180 / M_PI;
+  INFO("error " << t_mm << " mm, " << r_deg << " deg, quality " << results[0].quality);
+  CHECK(t_mm < 0.5);
+  CHECK(r_deg < 0.2);
+  CHECK(results[0].tracked);
 }

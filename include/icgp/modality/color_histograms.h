@@ -9,7 +9,7 @@ namespace icgp {
 
 /// Foreground and background colour statistics p(y|f), p(y|b) over n_bins per channel
 /// (ALGORITHMS.md §4), with a lookup table of the pixel-wise posterior P_f(y).
-/// Works on BGR (n_bins³ bins) and grey images (n_bins bins).
+/// Works on BGR (n_bins³ bins) and grey images (min(256, n_bins³) bins).
 class ColorHistograms {
  public:
   /// n_bins must be a power of two in [2, 64]; channels 1 or 3.
