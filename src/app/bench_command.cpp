@@ -122,7 +122,7 @@ void run_bench(const BenchOptions& o) {
                     }});
   }
 
-  std::cerr << "ICG rows generate their viewpoint models on first use (minutes); later runs read them from the cache\n";
+  std::cerr << "ICG rows generate their viewpoint models on first use (10-30 s on 2 cores); later runs read them from the cache\n";
   std::vector<BenchRow> rows;
   std::vector<std::string> failures;
   const SingleThreadScope single_thread;
