@@ -265,7 +265,7 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const ModelRequest& r = requests[i];
     r.params.validate();
-    const std::uint64_t key = viewpoint_model_key(r.kind, mesh, r.params);
+    const std::uint64_t key = viewpoint_model_key(r.kind, mesh, r.params, options.associated_bodies);
     outcome[i].path = model_cache_path(dir, name, r.kind, key);
     const std::string what = to_string(r.kind) + " model cache " + outcome[i].path;
     std::error_code ec;

@@ -2,6 +2,8 @@
 #include "view_samplers.h"
 
 #include <algorithm>
+#include <array>
+#include <stdexcept>
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
@@ -111,11 +113,10 @@ ModelPoint* view_points(ViewpointModel& model, int view) {
 
 /// Walks from a pixel centre along a unit image direction, one pixel per step along the
 /// dominant axis (so no pixel on the way is skipped), and returns the distance in pixels to
-/// the first pixel for which `arrived(inside)` holds, `inside` telling whether that pixel
-/// shows the main body; +infinity when the walk reaches the image border first.
+/// the first pixel for which `arrived(id)` holds, `id` being that pixel's id; +infinity when
+/// the walk reaches the image border first.
 template <typename Arrived>
-float walk(const cv::Mat& ids, std::uint8_t body_id, cv::Point start, const Eigen::Vector2f& direction,
-           Arrived arrived) {
+float walk(const cv::Mat& ids, cv::Point start, const Eigen::Vector2f& direction, Arrived arrived) {
   const bool along_u = std::abs(direction.x()) >= std::abs(direction.y());
   const float major = along_u ? direction.x() : direction.y();
   const float minor_step = (along_u ? direction.y() : direction.x()) / std::abs(major);
@@ -131,7 +132,7 @@ float walk(const cv::Mat& ids, std::uint8_t body_id, cv::Point start, const Eige
     const float b = minor_start + static_cast<float>(k) * minor_step;
     if (a < 0 || a >= major_size || b < 0.f || b >= static_cast<float>(minor_size)) return kInfinity;
     const std::uint8_t id = ids.data[a * major_stride + static_cast<std::size_t>(b) * minor_stride];
-    if (arrived(id == body_id)) return static_cast<float>(k) * step_length;
+    if (arrived(id)) return static_cast<float>(k) * step_length;
   }
 }
 
@@ -141,14 +142,16 @@ class RegionViewSampler : public ViewSampler {
   explicit RegionViewSampler(const ViewpointModelParams& params) : params_(params) {}
 
   void sample(const RenderedView& view, ViewpointModel& model) override {
-    // The render holds the main body only, so its ids are its silhouette mask as they are.
-    // Multi-region renders other bodies too and will need ids == body_id here.
+    // A render of the main body alone has ids that are its silhouette mask as they are; with
+    // associated bodies the mask is where the main body shows.
     const cv::Rect& footprint = view.images->footprint;
     contours_.clear();
     hierarchy_.clear();
-    if (!footprint.empty())
-      cv::findContours(view.images->ids(footprint), contours_, hierarchy_, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE,
-                       footprint.tl());
+    if (!footprint.empty()) {
+      if (view.with_associated_bodies) cv::compare(view.images->ids(footprint), view.body_id, mask_, cv::CMP_EQ);
+      cv::findContours(view.with_associated_bodies ? mask_ : view.images->ids(footprint), contours_, hierarchy_,
+                       cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE, footprint.tl());
+    }
     const float contour_length = collect_valid_pixels(view);
 
     ViewRandom random(params_.seed, view.index);
@@ -168,13 +171,30 @@ class RegionViewSampler : public ViewSampler {
       point.position = contour_body_point(view, pixel, normal, depth);
       // In the image plane, so perpendicular to the view direction.
       point.normal = body_R_camera * Eigen::Vector3f(normal.x(), normal.y(), 0.f);
-      point.foreground_distance =
-          metres_per_px * walk(ids, view.body_id, pixel, -normal, [](bool inside) { return !inside; });
-      bool left = false;  // the background walk first leaves the silhouette, then looks for it
-      point.background_distance = metres_per_px * walk(ids, view.body_id, pixel, normal, [&left](bool inside) {
-                                    left = left || !inside;
-                                    return left && inside;
-                                  });
+      if (!view.with_associated_bodies) {
+        const std::uint8_t body = view.body_id;
+        point.foreground_distance =
+            metres_per_px * walk(ids, pixel, -normal, [body](std::uint8_t id) { return id != body; });
+        bool left = false;  // the background walk first leaves the silhouette, then looks for it
+        point.background_distance = metres_per_px * walk(ids, pixel, normal, [&left, body](std::uint8_t id) {
+                                      left = left || id != body;
+                                      return left && id == body;
+                                    });
+      } else {
+        // Foreground: across the main body and fixed same-region bodies. Background: once off
+        // every surface of the main body's region, up to the first one of them.
+        point.foreground_distance = metres_per_px * walk(ids, pixel, -normal, [](std::uint8_t id) {
+                                      return id != kMainRegionId && id != kFixedSameRegionBodyId;
+                                    });
+        auto same_region = [](std::uint8_t id) {
+          return id == kMainRegionId || id == kFixedSameRegionBodyId || id == kMovableSameRegionBodyId;
+        };
+        bool left = false;
+        point.background_distance = metres_per_px * walk(ids, pixel, normal, [&left, &same_region](std::uint8_t id) {
+                                      left = left || !same_region(id);
+                                      return left && same_region(id);
+                                    });
+      }
       write_depth_offsets(view, params_, pixel, depth, view_offsets(model, view.index, p));
     }
     model.mutable_counts()[view.index] = n;
@@ -202,14 +222,57 @@ class RegionViewSampler : public ViewSampler {
       outward_sign_[c] = outward_sign(contour, hierarchy_[c][3] >= 0);
       for (int i = 0; i < size; ++i) {
         const cv::Point& p = contour[i];
-        // Multi-region adds its neighbour rules (ALGORITHMS.md §6) to this test.
         const bool on_border = p.x == 0 || p.y == 0 || p.x == last_col || p.y == last_row;
         if (on_border || chord(contour, i, k) == cv::Point(0, 0)) continue;
+        if (view.with_associated_bodies && !valid_next_to_associated_bodies(view, p)) continue;
         candidates_.push_back({c, i});
         length += cv::norm(contour[(i + 1) % size] - p) * view.images->depth(p.y, p.x) * metres_per_px_at_unit_depth;
       }
     }
     return static_cast<float>(length);
+  }
+
+  /// The multi-region rules (ALGORITHMS.md §6) for a contour pixel p of the main body's mask
+  /// that is not on the image border. Its neighbours are its 4-neighbours that do not show
+  /// the main body; when there are none (the contour touches the outside only diagonally),
+  /// its diagonal neighbours that do not show the main body. With Z the point's depth and
+  /// tolerance = 10 px · pixel_to_metre = 10 · Z / f:
+  ///   * a neighbour showing a same-region body (fixed or movable) rejects p ("next to");
+  ///   * a neighbour showing a movable body at a depth < Z + tolerance rejects p: the body
+  ///     covers the main body there (or touches it and may move over it); only where the
+  ///     main body's own edge is clearly in front of the movable body is p kept;
+  ///   * neighbours showing fixed bodies keep p only if their mean depth is >= Z − tolerance:
+  ///     a nearer fixed neighbour means p is the shadow of its elevated edge;
+  ///   * background neighbours impose nothing.
+  static bool valid_next_to_associated_bodies(const RenderedView& view, cv::Point p) {
+    static constexpr std::array<std::array<int, 2>, 8> kNeighbours = {
+        {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}};
+    const SilhouetteImages& images = *view.images;
+    const float depth = images.depth(p.y, p.x);
+    const float tolerance = 10.f * depth / static_cast<float>(view.camera.intrinsics.fu);
+    int outside = 0, n_fixed = 0;
+    float fixed_depth_sum = 0.f;
+    for (int n = 0; n < 8 && !(n == 4 && outside > 0); ++n) {  // diagonals only if no 4-neighbour is outside
+      const int row = p.y + kNeighbours[n][1], col = p.x + kNeighbours[n][0];
+      const std::uint8_t id = images.ids.at<std::uint8_t>(row, col);
+      if (id == view.body_id) continue;
+      ++outside;
+      switch (id) {
+        case kFixedSameRegionBodyId:
+        case kMovableSameRegionBodyId:
+          return false;
+        case kMovableBodyId:
+          if (images.depth(row, col) < depth + tolerance) return false;
+          break;
+        case kFixedBodyId:
+          fixed_depth_sum += images.depth(row, col);
+          ++n_fixed;
+          break;
+        default:  // background
+          break;
+      }
+    }
+    return n_fixed == 0 || fixed_depth_sum / static_cast<float>(n_fixed) >= depth - tolerance;
   }
 
   static cv::Point chord(const std::vector<cv::Point>& contour, int i, int k) {
@@ -238,6 +301,7 @@ class RegionViewSampler : public ViewSampler {
   ViewpointModelParams params_;
   std::vector<std::vector<cv::Point>> contours_;
   std::vector<cv::Vec4i> hierarchy_;
+  cv::Mat mask_;  ///< the main body's mask in the footprint, with associated bodies
   std::vector<float> outward_sign_;
   std::vector<Candidate> candidates_;
   UniformSubset subset_;
@@ -367,6 +431,18 @@ class DepthViewSampler : public ViewSampler {
 };
 
 }  // namespace
+
+std::uint8_t region_render_id(const AssociatedBody& body) {
+  switch (body.kind) {
+    case AssociatedBody::Kind::kFixed:
+      return kFixedBodyId;
+    case AssociatedBody::Kind::kSameRegion:
+      return body.same_region_fixed ? kFixedSameRegionBodyId : kMovableSameRegionBodyId;
+    case AssociatedBody::Kind::kMovable:
+      return kMovableBodyId;
+  }
+  throw std::invalid_argument("viewpoint model: unknown kind of associated body");
+}
 
 std::unique_ptr<ViewSampler> make_view_sampler(ViewpointModel::Kind kind, const ViewpointModelParams& params) {
   if (kind == ViewpointModel::Kind::kRegion) return std::make_unique<RegionViewSampler>(params);

@@ -15,6 +15,19 @@
 
 namespace icgp {
 
+/// Ids of a region render with associated bodies (ModelGenerationOptions::associated_bodies):
+/// the main body, then one id per kind of associated body.
+enum RegionRenderId : std::uint8_t {
+  kMainRegionId = 1,
+  kFixedBodyId = 2,               ///< AssociatedBody::Kind::kFixed
+  kFixedSameRegionBodyId = 3,     ///< kSameRegion, same_region_fixed
+  kMovableSameRegionBodyId = 4,   ///< kSameRegion, not same_region_fixed
+  kMovableBodyId = 5,             ///< AssociatedBody::Kind::kMovable
+};
+
+/// The id an associated body is rendered with.
+std::uint8_t region_render_id(const AssociatedBody& body);
+
 /// One rendered view of the main body, as the samplers read it.
 struct RenderedView {
   int index = 0;  ///< view number: seeds the sampling, places the results
@@ -25,6 +38,9 @@ struct RenderedView {
   InverseDepthPyramid* pyramid = nullptr;  ///< of images->inverse_depth
   const MeshFaceLocator* faces = nullptr;  ///< of the main body, for normals
   std::uint8_t body_id = 0;                ///< of the main body in images->ids
+  /// The render also holds associated bodies, with the ids of RegionRenderId (body_id is
+  /// then kMainRegionId); false: only the main body, ids are its silhouette mask.
+  bool with_associated_bodies = false;
 };
 
 /// Fills one view of a model from a rendered view. Keeps its working buffers across views,

@@ -25,11 +25,16 @@
 namespace icgp {
 namespace {
 
-constexpr std::uint8_t kMainBodyId = 1;
+constexpr std::uint8_t kMainBodyId = kMainRegionId;
 
 bool same_views(const ViewpointModelParams& a, const ViewpointModelParams& b) {
   return a.n_divides == b.n_divides && a.sphere_radius == b.sphere_radius && a.image_size == b.image_size &&
          a.image_margin == b.image_margin;
+}
+
+/// Whether a model of this kind is rendered with the associated bodies (region models only).
+bool with_associated(ViewpointModel::Kind kind, const ModelGenerationOptions& options) {
+  return kind == ViewpointModel::Kind::kRegion && !options.associated_bodies.empty();
 }
 
 /// "region+depth model textured_box: 1024/2562 views, 12 s" on stderr every few seconds.
@@ -68,10 +73,12 @@ class Progress {
 /// on which thread did what.
 class SharedViewsGeneration {
  public:
-  SharedViewsGeneration(const Mesh& mesh, std::vector<ViewpointModel*> models, const ModelGenerationOptions& options)
+  SharedViewsGeneration(const Mesh& mesh, std::vector<ViewpointModel*> models, const ModelGenerationOptions& options,
+                        bool with_associated_bodies)
       : mesh_(mesh),
         models_(std::move(models)),
         options_(options),
+        with_associated_bodies_(with_associated_bodies),
         params_(models_.front()->params()),
         body_radius_(mesh.radius_about_origin()),
         directions_(icosphere_directions(params_.n_divides)) {
@@ -104,6 +111,9 @@ class SharedViewsGeneration {
     try {
       Renderer renderer;
       renderer.add_body(mesh_, kMainBodyId);
+      if (with_associated_bodies_)
+        for (const AssociatedBody& body : options_.associated_bodies)
+          renderer.set_body_pose(renderer.add_body(body.mesh, region_render_id(body)), body.main_T_body);
       std::vector<std::unique_ptr<ViewSampler>> samplers;
       // Depth offsets of radius r are read r·f/Z pixels wide, Z at most sphere_radius + body radius.
       double smallest_offset_radius = std::numeric_limits<double>::infinity();
@@ -130,6 +140,7 @@ class SharedViewsGeneration {
         view.pyramid = &pyramid;
         view.faces = faces_ ? &*faces_ : nullptr;
         view.body_id = kMainBodyId;
+        view.with_associated_bodies = with_associated_bodies_;
         for (std::size_t i = 0; i < models_.size(); ++i) samplers[i]->sample(view, *models_[i]);
         progress.view_done();
       }
@@ -143,6 +154,7 @@ class SharedViewsGeneration {
   const Mesh& mesh_;
   const std::vector<ViewpointModel*> models_;
   const ModelGenerationOptions& options_;
+  const bool with_associated_bodies_;  ///< render options_.associated_bodies too
   const ViewpointModelParams params_;  ///< the view parameters all models share
   const double body_radius_;
   const std::vector<Eigen::Vector3f> directions_;
@@ -182,18 +194,21 @@ std::vector<ViewpointModel> generate_viewpoint_models(const Mesh& mesh, const st
   for (const ModelRequest& r : requests) {
     r.params.validate();
     view_camera(Eigen::Vector3f::UnitZ(), r.params, mesh.radius_about_origin());  // throws for a bad sphere
-    models.emplace_back(r.kind, r.params, viewpoint_model_key(r.kind, mesh, r.params));
+    models.emplace_back(r.kind, r.params, viewpoint_model_key(r.kind, mesh, r.params, options.associated_bodies));
   }
+  for (const AssociatedBody& body : options.associated_bodies)
+    region_render_id(body);  // throws for an unknown kind
   std::vector<bool> done(models.size(), false);
   for (std::size_t i = 0; i < models.size(); ++i) {
     if (done[i]) continue;
     std::vector<ViewpointModel*> group;
     for (std::size_t j = i; j < models.size(); ++j)
-      if (!done[j] && same_views(models[i].params(), models[j].params())) {
+      if (!done[j] && same_views(models[i].params(), models[j].params()) &&
+          with_associated(models[i].kind(), options) == with_associated(models[j].kind(), options)) {
         group.push_back(&models[j]);
         done[j] = true;
       }
-    SharedViewsGeneration(mesh, std::move(group), options).run();
+    SharedViewsGeneration(mesh, std::move(group), options, with_associated(models[i].kind(), options)).run();
   }
   return models;
 }

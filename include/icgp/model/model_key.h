@@ -2,9 +2,11 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "icgp/io/mesh.h"
 #include "icgp/model/viewpoint_model.h"
+#include "icgp/model/viewpoint_model_generator.h"
 
 namespace icgp {
 
@@ -16,5 +18,12 @@ constexpr std::uint32_t kViewpointModelVersion = 1;
 /// triangle of every part, in order; not its file name or materials), every field of
 /// `params`, the kind and kViewpointModelVersion. Equal keys mean interchangeable models.
 std::uint64_t viewpoint_model_key(ViewpointModel::Kind kind, const Mesh& mesh, const ViewpointModelParams& params);
+
+/// The key of a model generated with these associated bodies (ModelGenerationOptions):
+/// for a region model with associated bodies, the key above followed by each body's kind,
+/// same_region_fixed, pose and geometry, in order; otherwise (depth models, or none) exactly
+/// the key above, as associated bodies do not change those models.
+std::uint64_t viewpoint_model_key(ViewpointModel::Kind kind, const Mesh& mesh, const ViewpointModelParams& params,
+                                  const std::vector<AssociatedBody>& associated_bodies);
 
 }  // namespace icgp

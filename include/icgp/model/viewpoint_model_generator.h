@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,14 +25,32 @@ struct ViewCamera {
 /// inside the bounding sphere (sphere_radius <= body_radius).
 ViewCamera view_camera(const Eigen::Vector3f& direction, const ViewpointModelParams& params, double body_radius);
 
-/// How a generation runs; none of it changes the models.
+/// A body rendered next to the main one when generating its REGION model (multi-region,
+/// ALGORITHMS.md §6, paper §III-D): another region of the same object, external geometry,
+/// or a moving part. Only region models see associated bodies; depth models ignore them.
+struct AssociatedBody {
+  enum class Kind : std::uint32_t {
+    kFixed = 1,       ///< rigidly attached, different appearance (another region, fixed surroundings)
+    kSameRegion = 2,  ///< similar appearance to the main region (rigid or not: see same_region_fixed)
+    kMovable = 3,     ///< a part that moves relative to the main body, different appearance
+  };
+  Mesh mesh;         ///< in its own frame
+  Pose main_T_body;  ///< its pose in the main body's frame
+  Kind kind = Kind::kFixed;
+  /// kSameRegion only: rigidly attached to the main body, so foreground walks may cross it.
+  bool same_region_fixed = true;
+};
+
+/// How a generation runs. None of it changes the models except associated_bodies, which
+/// changes region models and therefore enters their keys (viewpoint_model_key).
 struct ModelGenerationOptions {
   int n_threads = 0;           ///< 0: std::thread::hardware_concurrency(); each thread renders with its own context
   bool print_progress = true;  ///< a line on stderr every few seconds and at the end
   std::string name;            ///< names the mesh in progress lines; empty: its file stem
-  // Multi-region (ALGORITHMS.md §6) adds the associated bodies here (mesh, pose relative to
-  // the main body, kind fixed / same_region / movable): they change the region renders and
-  // the contour-pixel rules, and must then enter the cache key.
+  /// Multi-region (ALGORITHMS.md §6): bodies rendered with the main body for region models
+  /// (with distinct ids by kind), changing the contour-pixel rules and the distance walks.
+  /// Empty: the single-body generation, unchanged.
+  std::vector<AssociatedBody> associated_bodies;
 };
 
 /// One model to generate.
@@ -58,6 +77,21 @@ struct ModelRequest {
 /// back-projected from the rendered depth, the normal of the face the rasteriser drew there
 /// (the renderer's normal image, without reading it back); view measure: visible surface
 /// area in m² (see visible_surface_area in view_samplers.cpp for how).
+/// Region model with associated bodies (options.associated_bodies non-empty): the main
+/// body and every associated body are rendered together into an id image (ids by kind), the
+/// contours are those of the pixels showing the main body, and a contour pixel is valid only
+/// if it also passes the neighbour rules (see RegionViewSampler in view_samplers.cpp):
+///   * "next to" a body: one of the pixel's 4-neighbours off the main mask shows it (when all
+///     4-neighbours are in the mask, the diagonal neighbours off it are looked at instead);
+///   * next to a same-region body (fixed or not): rejected;
+///   * covered by a movable body: a movable body shows next to the pixel and is not clearly
+///     behind it (its depth there < point depth + 10 px · pixel_to_metre): rejected;
+///   * next to fixed bodies: valid only if their mean depth over those neighbours is not
+///     smaller than point depth − 10 px · pixel_to_metre (rejects shadows of elevated edges);
+///   pixel_to_metre = point depth / f.
+/// The foreground walk continues across the main body and fixed same-region bodies; the
+/// background walk, once off them, stops at the first pixel of the main body or any
+/// same-region body. Depth offsets see every rendered body.
 /// Both: body-frame points, and depth offsets (the largest amount the rendered surface
 /// within radius r_k of a point comes closer to the camera than the point), conservative:
 /// see InverseDepthPyramid for the approximation.
