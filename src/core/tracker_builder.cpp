@@ -5,6 +5,7 @@
 #include "icgp/model/model_cache.h"
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
+#include "icgp/modality/texture_modality.h"
 #include "icgp/tracker/tracker_config.h"
 
 namespace icgp {
@@ -14,8 +15,8 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
     return std::find(config.modalities.begin(), config.modalities.end(), name) != config.modalities.end();
   };
   for (const std::string& name : config.modalities)
-    if (name != "region" && name != "depth")
-      throw std::invalid_argument("modality '" + name + "' is not available (available: region, depth)");
+    if (name != "region" && name != "depth" && name != "texture")
+      throw std::invalid_argument("modality '" + name + "' is not available (available: region, depth, texture)");
 
   std::vector<ModelRequest> requests;
   if (uses("region")) requests.push_back({ViewpointModel::Kind::kRegion, config.region_model});
@@ -33,6 +34,7 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
     else
       tracker->add_modality(std::make_unique<DepthModality>(body, shared, config.depth));
   }
+  if (uses("texture")) tracker->add_modality(std::make_unique<TextureModality>(body, config.texture));
   return tracker;
 }
 

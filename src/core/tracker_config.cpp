@@ -215,6 +215,34 @@ const Fields<DepthParams> kDepthFields = {
     field("min_n_unoccluded_points", &DepthParams::min_n_unoccluded_points, kNonNegativeInt),
 };
 
+const Fields<TextureParams> kTextureFields = {
+    field("color_camera", &TextureParams::color_camera, kName),
+    field("depth_camera", &TextureParams::depth_camera, kString),
+    field("descriptor", &TextureParams::descriptor,
+          Rule<std::string>{"one of orb, brisk, sift, akaze, freak, daisy", [](const std::string& v) {
+                              static const std::set<std::string> known = {"orb", "brisk", "sift", "akaze", "freak", "daisy"};
+                              return known.count(v) > 0;
+                            }}),
+    field("focused_image_size", &TextureParams::focused_image_size,
+          Rule<int>{"an integer of at least 64", [](const int& v) { return v >= 64; }}),
+    field("orb_n_features", &TextureParams::orb_n_features, kPositiveInt),
+    field("orb_n_levels", &TextureParams::orb_n_levels, kPositiveInt),
+    field("orb_scale_factor", &TextureParams::orb_scale_factor,
+          Rule<double>{"a number greater than 1", [](const double& v) { return std::isfinite(v) && v > 1.0; }}),
+    field("sift_n_octave_layers", &TextureParams::sift_n_octave_layers, kPositiveInt),
+    field("sift_contrast_threshold", &TextureParams::sift_contrast_threshold, kPositive),
+    field("sift_edge_threshold", &TextureParams::sift_edge_threshold, kPositive),
+    field("sift_sigma", &TextureParams::sift_sigma, kPositive),
+    field("ratio_test", &TextureParams::ratio_test,
+          Rule<double>{"a number in (0, 1]", [](const double& v) { return v > 0.0 && v <= 1.0; }}),
+    field("keyframe_orientation_threshold_deg", &TextureParams::keyframe_orientation_threshold_deg, kPositive),
+    field("keyframe_max_age", &TextureParams::keyframe_max_age, kNonNegativeInt),
+    field("tukey_norm_constant", &TextureParams::tukey_norm_constant, kPositive),
+    field("standard_deviations", &TextureParams::standard_deviations, kPositives),
+    field("occlusion_radius", &TextureParams::occlusion_radius, kNonNegative),
+    field("occlusion_threshold", &TextureParams::occlusion_threshold, kNonNegative),
+};
+
 bool valid_modalities(const std::vector<std::string>& names) {
   static const std::set<std::string> known = {"region", "depth", "texture"};
   const std::set<std::string> distinct(names.begin(), names.end());
@@ -231,6 +259,7 @@ const Fields<TrackerConfig> kConfigFields = {
     section("depth_model", &TrackerConfig::depth_model, kModelFields),
     section("region", &TrackerConfig::region, kRegionFields),
     section("depth", &TrackerConfig::depth, kDepthFields),
+    section("texture", &TrackerConfig::texture, kTextureFields),
     field("cache_dir", &TrackerConfig::cache_dir, kString),
 };
 

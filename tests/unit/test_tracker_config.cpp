@@ -130,6 +130,25 @@ depth:
   occlusion_threshold: 0.04
   n_unoccluded_iterations: 3
   min_n_unoccluded_points: 7
+texture:
+  color_camera: left
+  depth_camera: ""
+  descriptor: sift
+  focused_image_size: 256
+  orb_n_features: 500
+  orb_n_levels: 4
+  orb_scale_factor: 1.5
+  sift_n_octave_layers: 4
+  sift_contrast_threshold: 0.03
+  sift_edge_threshold: 12.0
+  sift_sigma: 1.6
+  ratio_test: 0.8
+  keyframe_orientation_threshold_deg: 15.0
+  keyframe_max_age: 0
+  tukey_norm_constant: 30.0
+  standard_deviations: [10.0, 10.0, 3.0]
+  occlusion_radius: 0.02
+  occlusion_threshold: 0.05
 cache_dir: /tmp/icgp cache
 )";
 
@@ -275,7 +294,7 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
   };
   const Case cases[] = {
       {"regoin: {}", "regoin: unknown key (valid keys: tracker, modalities, region_model, depth_model, region, depth, "
-                     "cache_dir)"},
+                     "texture, cache_dir)"},
       {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
       {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
       {"- tracker\n- region\n", "expected a map with the keys tracker, modalities,"},

@@ -51,4 +51,29 @@ struct DepthParams {
   int min_n_unoccluded_points = 0;
 };
 
+/// Parameters of the texture modality (paper §III-C, §IV; ALGORITHMS.md §8) with the
+/// reference defaults. Pixel values refer to the full colour image.
+struct TextureParams {
+  std::string color_camera = "Camera1";
+  std::string depth_camera = "Camera2";  ///< measured occlusions at keyframes; empty: none
+  std::string descriptor = "orb";        ///< orb, brisk, sift, akaze, freak, daisy
+  int focused_image_size = 200;          ///< side of the rescaled detection crop, pixels
+  int orb_n_features = 300;              ///< also the detector of freak and daisy
+  int orb_n_levels = 3;
+  double orb_scale_factor = 1.2;
+  int sift_n_octave_layers = 3;
+  double sift_contrast_threshold = 0.04;
+  double sift_edge_threshold = 10.0;
+  double sift_sigma = 0.7;
+  double ratio_test = 0.7;  ///< best / second-best descriptor distance must be below this
+  double keyframe_orientation_threshold_deg = 10.0;
+  /// Frames after which a keyframe is renewed even without rotation (refreshes appearance
+  /// after lighting or scale changes); 0: only the orientation criterion of the paper.
+  int keyframe_max_age = 100;
+  double tukey_norm_constant = 20.0;                 ///< c, pixels
+  std::vector<double> standard_deviations = {15.0, 5.0};  ///< σ_t, pixels
+  double occlusion_radius = 0.01;     ///< metres
+  double occlusion_threshold = 0.03;  ///< metres
+};
+
 }  // namespace icgp

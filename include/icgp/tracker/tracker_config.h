@@ -21,6 +21,7 @@ struct TrackerConfig {
   ViewpointModelParams depth_model;
   RegionParams region;
   DepthParams depth;
+  TextureParams texture;
   std::string cache_dir;  ///< empty: $ICGP_CACHE_DIR, else $XDG_CACHE_HOME/icgp, else ~/.cache/icgp
 };
 

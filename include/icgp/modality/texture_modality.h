@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <string>
+#include <vector>
+
+#include "icgp/modality/measured_occlusion.h"
+#include "icgp/modality/modality.h"
+#include "icgp/modality/modality_params.h"
+#include "icgp/render/renderer.h"
+
+namespace icgp {
+
+/// The descriptor extractor called `name` (orb, brisk, sift, akaze, freak, daisy) set up
+/// with `params` (FREAK and DAISY are icgp::Freak / icgp::Daisy, which describe given
+/// keypoints only). Throws std::invalid_argument for an unknown name.
+cv::Ptr<cv::Feature2D> make_descriptor(const std::string& name, const TextureParams& params = {});
+
+/// Detects keypoints and computes their descriptors in the focused crop of a colour image
+/// (paper §IV): the square `square` cut out, converted to grey and resampled to
+/// focused_image_size² pixels. FREAK and DAISY describe ORB keypoints; the others detect
+/// their own.
+class FeatureExtractor {
+ public:
+  explicit FeatureExtractor(const TextureParams& params);
+
+  /// Keypoints in full-image coordinates into `points`, one descriptor row each into
+  /// `descriptors`. A square outside the image gives none.
+  void extract(const cv::Mat& image, const ImageSquare& square, std::vector<cv::Point2f>& points,
+               cv::Mat& descriptors);
+  /// The distance descriptors are compared with (cv::NORM_HAMMING or cv::NORM_L2).
+  int norm() const { return descriptor_->defaultNorm(); }
+
+ private:
+  cv::Ptr<cv::Feature2D> detector_, descriptor_;
+  int size_;
+  cv::Mat crop_, grey_;
+  std::vector<cv::KeyPoint> keypoints_;
+};
+
+/// Keypoints of one frame lifted onto the body surface, with their descriptors.
+struct Keyframe {
+  std::vector<Eigen::Vector3f> body_points;
+  std::vector<cv::Point2f> image_points;  ///< where each point was detected
+  cv::Mat descriptors;                    ///< one row per point
+  Eigen::Matrix3d camera_R_body = Eigen::Matrix3d::Identity();
+  int age = 0;  ///< frames since it was made
+};
+
+/// Makes keyframes: renders the body's depth in the focused square at the keyframe pose,
+/// back-projects the keypoints that fall on the body to body-frame points, and drops the
+/// ones a depth measurement shows to be occluded (ALGORITHMS.md §7).
+class KeyframeLifter {
+ public:
+  KeyframeLifter(const Mesh& mesh, MeasuredOcclusion occlusion);
+
+  /// `depth` may be null (no occlusion test). `square` must contain the body's projection.
+  void lift(const Intrinsics& k, const Pose& camera_T_body, const ImageSquare& square, int render_size,
+            const std::vector<cv::Point2f>& points, const cv::Mat& descriptors, const DepthImage* depth,
+            const Pose& depth_T_camera, Keyframe& keyframe);
+
+ private:
+  Renderer renderer_;
+  Renderer::BodyHandle handle_;
+  MeasuredOcclusion occlusion_;
+};
+
+/// Keypoint-based texture modality (paper §III-C): keypoints detected once per frame in
+/// the focused crop around the body are matched to the current keyframe's 3D points, and
+/// the Tukey-robust reprojection error of the pairs is minimised as re-weighted least
+/// squares (ALGORITHMS.md §8).
+///
+/// Weights: with u = (e/c)², w(e) = 1 − u + u²/3 for e ≤ c and 1 / (3u) beyond, which is
+/// 2·ρ_tuk(e)/e², so that w e² = 2ρ_tuk(e) ≈ e² for small errors (σ_t is then the
+/// inliers' standard deviation, and w = 1 at e = 0). Weights are recomputed from the
+/// current pose at every update and held fixed in between: log_likelihood() is
+/// −Σ w_i e_i² / (2σ_t²) with the weights of the last update, whose derivative is the
+/// gradient, and which equals −Σ ρ_tuk(e_i) / σ_t² at the pose they were computed at.
+///
+/// Quality: score is the share of keyframe points matched with a reprojection error below
+/// c/2 after the frame converged (0 with fewer than 4 such inliers, too few to support a
+/// pose); valid_fraction the share matched at all.
+class TextureModality : public Modality {
+ public:
+  /// A matched pair: a keyframe point and where the current frame sees it.
+  struct Match {
+    Eigen::Vector3f body_point;
+    Eigen::Vector2f image_point;
+    int keyframe_index;
+    float weight;
+  };
+
+  TextureModality(Body& body, TextureParams params);
+
+  std::string name() const override { return "texture"; }
+  void start(const Frame& frame) override;
+  void correspondences(const Frame& frame, int corr_iter) override;
+  void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
+  double log_likelihood(int corr_iter) const override;
+  void finish(const Frame& frame) override;
+  ModalityQuality quality() const override { return quality_; }
+
+  const TextureParams& params() const { return params_; }
+  const Keyframe& keyframe() const { return keyframe_; }
+  const std::vector<Match>& matches() const { return matches_; }
+
+ private:
+  const ColorImage& color_image(const Frame& frame) const;
+  Pose camera_T_body() const;
+  void detect(const Frame& frame);
+  void make_keyframe(const Frame& frame);
+  void match();
+  void update_weights();
+  void update_quality();
+
+  TextureParams params_;
+  FeatureExtractor extractor_;
+  KeyframeLifter lifter_;
+  cv::BFMatcher matcher_;
+  Eigen::Vector3d sphere_centre_;  ///< body frame
+  double sphere_radius_;
+  Intrinsics intrinsics_;
+  Pose camera_T_reference_;
+  std::vector<cv::Point2f> points_;  ///< current frame's keypoints, full image
+  cv::Mat descriptors_;
+  std::vector<std::vector<cv::DMatch>> knn_;
+  Keyframe keyframe_;
+  std::vector<Match> matches_;
+  ModalityQuality quality_;
+};
+
+}  // namespace icgp

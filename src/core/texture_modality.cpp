@@ -1,0 +1,287 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/modality/texture_modality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "icgp/features/daisy.h"
+#include "icgp/features/freak.h"
+#include "icgp/geometry/rounding.h"
+#include "icgp/modality/iteration_value.h"
+
+namespace icgp {
+namespace {
+
+bool uses_orb_detector(const std::string& descriptor) { return descriptor == "freak" || descriptor == "daisy"; }
+
+cv::Ptr<cv::Feature2D> make_orb(const TextureParams& p) {
+  return cv::ORB::create(p.orb_n_features, static_cast<float>(p.orb_scale_factor), p.orb_n_levels);
+}
+
+/// Affine map from full-image to crop coordinates (pixel-centre convention, as
+/// Intrinsics::cropped): u_crop = s (u − u_min + 0.5) − 0.5.
+struct CropMap {
+  double scale, u_min, v_min;
+  cv::Point2f to_image(const cv::Point2f& c) const {
+    return {static_cast<float>((c.x + 0.5) / scale + u_min - 0.5), static_cast<float>((c.y + 0.5) / scale + v_min - 0.5)};
+  }
+};
+
+}  // namespace
+
+cv::Ptr<cv::Feature2D> make_descriptor(const std::string& name, const TextureParams& p) {
+  if (name == "orb") return make_orb(p);
+  if (name == "brisk") return cv::BRISK::create();
+  if (name == "akaze") return cv::AKAZE::create();
+  if (name == "sift")
+    return cv::SIFT::create(0, p.sift_n_octave_layers, p.sift_contrast_threshold, p.sift_edge_threshold, p.sift_sigma);
+  if (name == "freak") return Freak::create();
+  if (name == "daisy") return Daisy::create();
+  throw std::invalid_argument("unknown texture descriptor '" + name + "' (known: orb, brisk, sift, akaze, freak, daisy)");
+}
+
+FeatureExtractor::FeatureExtractor(const TextureParams& params)
+    : descriptor_(make_descriptor(params.descriptor, params)), size_(params.focused_image_size) {
+  detector_ = uses_orb_detector(params.descriptor) ? make_orb(params) : descriptor_;
+}
+
+void FeatureExtractor::extract(const cv::Mat& image, const ImageSquare& square, std::vector<cv::Point2f>& points,
+                               cv::Mat& descriptors) {
+  points.clear();
+  descriptors.release();
+  keypoints_.clear();
+  const bool overlaps = square.size > 0.0 && square.u_min < image.cols && square.v_min < image.rows &&
+                        square.u_min + square.size > 0.0 && square.v_min + square.size > 0.0;
+  if (!overlaps) return;
+  const CropMap map{size_ / square.size, square.u_min, square.v_min};
+  const cv::Matx23d to_crop(map.scale, 0.0, map.scale * (0.5 - square.u_min) - 0.5,  //
+                            0.0, map.scale, map.scale * (0.5 - square.v_min) - 0.5);
+  // Replicated borders: a constant border would add corners where the crop leaves the image.
+  cv::warpAffine(image, crop_, to_crop, cv::Size(size_, size_), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  if (crop_.channels() == 3)
+    cv::cvtColor(crop_, grey_, cv::COLOR_BGR2GRAY);
+  else
+    grey_ = crop_;
+  if (detector_ == descriptor_) {
+    descriptor_->detectAndCompute(grey_, cv::noArray(), keypoints_, descriptors);
+  } else {
+    detector_->detect(grey_, keypoints_);
+    descriptor_->compute(grey_, keypoints_, descriptors);
+  }
+  points.reserve(keypoints_.size());
+  for (const cv::KeyPoint& kp : keypoints_) points.push_back(map.to_image(kp.pt));
+}
+
+KeyframeLifter::KeyframeLifter(const Mesh& mesh, MeasuredOcclusion occlusion)
+    : handle_(renderer_.add_body(mesh, 1)), occlusion_(occlusion) {}
+
+void KeyframeLifter::lift(const Intrinsics& k, const Pose& camera_T_body, const ImageSquare& square, int render_size,
+                          const std::vector<cv::Point2f>& points, const cv::Mat& descriptors, const DepthImage* depth,
+                          const Pose& depth_T_camera, Keyframe& keyframe) {
+  keyframe.body_points.clear();
+  keyframe.image_points.clear();
+  keyframe.descriptors.release();
+  keyframe.camera_R_body = camera_T_body.rotation();
+  keyframe.age = 0;
+  if (points.empty()) return;
+  renderer_.set_body_pose(handle_, camera_T_body);
+  Intrinsics crop_k;
+  const cv::Mat rendered = renderer_
+                               .render_focused(k, Pose(), square.u_min, square.v_min, square.size, render_size,
+                                               kRenderDepth, &crop_k)
+                               .depth;
+  const double su = crop_k.fu / k.fu, sv = crop_k.fv / k.fv;
+  const Pose body_T_camera = camera_T_body.inverse();
+  const Posef depth_T_body = (depth_T_camera * camera_T_body).cast<float>();
+  // The object's own surface may rise towards the camera by about the radius around a
+  // point (slopes up to 45°); steeper rises stay within the threshold.
+  const float depth_offset = static_cast<float>(occlusion_.radius);
+  std::vector<int> kept;
+  kept.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const cv::Point2f& x = points[i];
+    const int col = round_to_int(static_cast<float>(crop_k.pu + (x.x - k.pu) * su));
+    const int row = round_to_int(static_cast<float>(crop_k.pv + (x.y - k.pv) * sv));
+    if (col < 0 || row < 0 || col >= rendered.cols || row >= rendered.rows) continue;
+    const float z = rendered.at<float>(row, col);
+    if (z <= 0.f) continue;
+    const Eigen::Vector3d camera_X = k.back_project<double>(x.x, x.y, z);
+    const Eigen::Vector3f body_X = (body_T_camera * camera_X).cast<float>();
+    if (depth && occlusion_.occluded(*depth, depth_T_body * body_X, depth_offset)) continue;
+    keyframe.body_points.push_back(body_X);
+    keyframe.image_points.push_back(x);
+    kept.push_back(static_cast<int>(i));
+  }
+  keyframe.descriptors.create(static_cast<int>(kept.size()), descriptors.cols, descriptors.type());
+  for (std::size_t j = 0; j < kept.size(); ++j) descriptors.row(kept[j]).copyTo(keyframe.descriptors.row(static_cast<int>(j)));
+}
+
+TextureModality::TextureModality(Body& body, TextureParams params)
+    : Modality(body),
+      params_(std::move(params)),
+      extractor_(params_),
+      lifter_(body.mesh, MeasuredOcclusion{params_.occlusion_radius, params_.occlusion_threshold}),
+      matcher_(extractor_.norm()) {
+  Eigen::Vector3f lo, hi;
+  body.mesh.bounds(lo, hi);
+  const Eigen::Vector3f centre = 0.5f * (lo + hi);
+  float radius = 0.f;
+  for (const MeshPart& part : body.mesh.parts)
+    for (const Eigen::Vector3f& v : part.vertices) radius = std::max(radius, (v - centre).norm());
+  sphere_centre_ = centre.cast<double>();
+  sphere_radius_ = radius;
+}
+
+const ColorImage& TextureModality::color_image(const Frame& frame) const {
+  const ColorImage* color = frame.find_color(params_.color_camera);
+  if (!color)
+    throw std::invalid_argument("texture modality of '" + body().name + "': the frame has no colour camera '" +
+                                params_.color_camera + "'");
+  if ((color->image.type() != CV_8UC3 && color->image.type() != CV_8UC1) || color->image.empty())
+    throw std::invalid_argument("texture modality of '" + body().name + "': camera '" + params_.color_camera +
+                                "' must give a CV_8UC3 or CV_8UC1 image");
+  return *color;
+}
+
+Pose TextureModality::camera_T_body() const { return camera_T_reference_ * body().reference_T_body; }
+
+void TextureModality::detect(const Frame& frame) {
+  const ColorImage& color = color_image(frame);
+  intrinsics_ = color.intrinsics;
+  camera_T_reference_ = color.camera_T_reference;
+  const Eigen::Vector3d centre = camera_T_body() * sphere_centre_;
+  if (!(centre.z() > sphere_radius_)) {
+    points_.clear();
+    descriptors_.release();
+    return;
+  }
+  extractor_.extract(color.image, square_around_sphere(intrinsics_, centre, sphere_radius_), points_, descriptors_);
+}
+
+void TextureModality::make_keyframe(const Frame& frame) {
+  const Pose camera_T_body_now = camera_T_body();
+  const Eigen::Vector3d centre = camera_T_body_now * sphere_centre_;
+  if (!(centre.z() > sphere_radius_)) {
+    keyframe_ = Keyframe{};
+    return;
+  }
+  const DepthImage* depth = nullptr;
+  if (!params_.depth_camera.empty()) {
+    depth = frame.find_depth(params_.depth_camera);
+    if (!depth)
+      throw std::invalid_argument("texture modality of '" + body().name + "': the frame has no depth camera '" +
+                                  params_.depth_camera + "'");
+    if (depth->depth.type() != CV_32FC1)
+      throw std::invalid_argument("texture modality of '" + body().name + "': camera '" + params_.depth_camera +
+                                  "' must give a CV_32FC1 depth image");
+  }
+  const Pose depth_T_camera = depth ? depth->camera_T_reference * camera_T_reference_.inverse() : Pose();
+  lifter_.lift(intrinsics_, camera_T_body_now, square_around_sphere(intrinsics_, centre, sphere_radius_),
+               params_.focused_image_size, points_, descriptors_, depth, depth_T_camera, keyframe_);
+}
+
+void TextureModality::start(const Frame& frame) {
+  detect(frame);
+  make_keyframe(frame);
+  matches_.clear();
+  quality_ = {};
+}
+
+void TextureModality::match() {
+  matches_.clear();
+  knn_.clear();  // knnMatch appends
+  if (descriptors_.empty() || keyframe_.descriptors.rows < 2) return;
+  matcher_.knnMatch(descriptors_, keyframe_.descriptors, knn_, 2);
+  const float ratio = static_cast<float>(params_.ratio_test);
+  for (const std::vector<cv::DMatch>& m : knn_) {
+    if (m.size() < 2 || m[0].distance >= ratio * m[1].distance) continue;
+    const cv::Point2f& x = points_[m[0].queryIdx];
+    matches_.push_back({keyframe_.body_points[m[0].trainIdx], Eigen::Vector2f(x.x, x.y), m[0].trainIdx, 1.f});
+  }
+}
+
+void TextureModality::correspondences(const Frame& frame, int corr_iter) {
+  // Keypoints and matches do not depend on the pose: once per frame is enough.
+  if (corr_iter == 0) {
+    detect(frame);
+    match();
+  }
+  update_weights();
+}
+
+void TextureModality::update_weights() {
+  const Posef T = camera_T_body().cast<float>();
+  const float inverse_c2 = static_cast<float>(1.0 / (params_.tukey_norm_constant * params_.tukey_norm_constant));
+  for (Match& m : matches_) {
+    const Eigen::Vector3f X = T * m.body_point;
+    if (X.z() <= 0.f) {
+      m.weight = 0.f;
+      continue;
+    }
+    const float u = (intrinsics_.project<float>(X) - m.image_point).squaredNorm() * inverse_c2;
+    m.weight = u <= 1.f ? 1.f - u + u * u / 3.f : 1.f / (3.f * u);
+  }
+}
+
+void TextureModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
+  update_weights();
+  const Posef T = camera_T_body().cast<float>();
+  const float sigma = static_cast<float>(iteration_value(params_.standard_deviations, corr_iter));
+  const float inverse_variance = 1.f / (sigma * sigma);
+  Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
+  Eigen::Matrix<float, 6, 6> H_sum = Eigen::Matrix<float, 6, 6>::Zero();
+  for (const Match& m : matches_) {
+    const Eigen::Vector3f X = T * m.body_point;
+    if (X.z() <= 0.f || m.weight <= 0.f) continue;
+    const Eigen::Vector2f residual = intrinsics_.project<float>(X) - m.image_point;
+    const Eigen::Matrix<float, 2, 6> J =
+        intrinsics_.projection_jacobian<float>(X) * point_jacobian_body_variation<float>(T.rotation(), m.body_point);
+    const float w = m.weight * inverse_variance;
+    g_sum.noalias() -= w * J.transpose() * residual;
+    H_sum.noalias() -= w * J.transpose() * J;
+  }
+  g += g_sum.cast<double>();
+  H += H_sum.cast<double>();
+}
+
+double TextureModality::log_likelihood(int corr_iter) const {
+  const Pose T = camera_T_body();
+  const double sigma = iteration_value(params_.standard_deviations, corr_iter);
+  double sum = 0.0;
+  for (const Match& m : matches_) {
+    const Eigen::Vector3d X = T * m.body_point.cast<double>();
+    if (X.z() <= 0.0) continue;
+    sum -= 0.5 * m.weight * (intrinsics_.project<double>(X) - m.image_point.cast<double>()).squaredNorm() /
+           (sigma * sigma);
+  }
+  return sum;
+}
+
+void TextureModality::finish(const Frame& frame) {
+  update_quality();
+  ++keyframe_.age;
+  const double angle = rotation_angle_between(keyframe_.camera_R_body, camera_T_body().rotation()) * 180.0 / M_PI;
+  const bool old = params_.keyframe_max_age > 0 && keyframe_.age >= params_.keyframe_max_age;
+  if (angle > params_.keyframe_orientation_threshold_deg || old) make_keyframe(frame);
+}
+
+void TextureModality::update_quality() {
+  const Posef T = camera_T_body().cast<float>();
+  const float inlier = 0.5f * static_cast<float>(params_.tukey_norm_constant);
+  int n_inliers = 0;
+  for (const Match& m : matches_) {
+    const Eigen::Vector3f X = T * m.body_point;
+    if (X.z() > 0.f && (intrinsics_.project<float>(X) - m.image_point).norm() < inlier) ++n_inliers;
+  }
+  // Fewer inliers than a pose needs to be determined (4, as for PnP) confirm nothing:
+  // that many agree by chance on a frame without the object.
+  if (n_inliers < 4) n_inliers = 0;
+  const int n_points = static_cast<int>(keyframe_.body_points.size());
+  quality_.n_valid = static_cast<int>(matches_.size());
+  quality_.valid_fraction = n_points > 0 ? std::min(1.0, static_cast<double>(matches_.size()) / n_points) : 0.0;
+  quality_.score = n_points > 0 ? std::min(1.0, static_cast<double>(n_inliers) / n_points) : 0.0;
+}
+
+}  // namespace icgp

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Texture modality on rendered frames with known poses: keyframe lifting, matching, the
+// analytic gradient against numeric derivatives, convergence, and frames without the object.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <unistd.h>
+
+#include "icgp/io/mesh_loader.h"
+#include "icgp/modality/texture_modality.h"
+#include "icgp/tracker/tracker.h"
+#include "icgp/tracker/tracker_config.h"
+#include "test_scene.h"
+
+using namespace icgp;
+
+namespace {
+
+struct Scene {
+  Mesh mesh = load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj");
+  Intrinsics color_k{650.0, 648.0, 321.3, 238.9, 640, 480};
+  Intrinsics depth_k{580.0, 580.0, 318.2, 243.1, 640, 480};
+  Pose depth_T_color{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.05, 0.002, 0.001)};
+  Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.5, -0.6, 0.3), Eigen::Vector3d(0.01, -0.015, 0.45));
+  test::SceneRenderer renderer{mesh, color_k, depth_k, depth_T_color};
+};
+
+/// `pose` turned by `deg` about the body origin and moved by `mm`.
+Pose perturbed(const Pose& pose, double mm, double deg) {
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.8, 0.5).normalized();
+  const Eigen::Vector3d direction = Eigen::Vector3d(-0.6, 0.2, 0.77).normalized();
+  return Pose(exp_so3<double>(axis * deg * M_PI / 180.0) * pose.rotation(), pose.translation() + direction * mm * 1e-3);
+}
+
+/// Central differences of the modality's log-likelihood over body-frame variations.
+Vec6 numeric_gradient(Modality& modality, int corr_iter) {
+  Body& body = modality.body();
+  const Pose start = body.reference_T_body;
+  Vec6 gradient;
+  for (int i = 0; i < 6; ++i) {
+    const double h = i < 3 ? 1e-5 : 1e-6;
+    Vec6 theta = Vec6::Zero();
+    theta[i] = h;
+    body.reference_T_body = start.updated_in_body_frame(theta);
+    const double plus = modality.log_likelihood(corr_iter);
+    body.reference_T_body = start.updated_in_body_frame(-theta);
+    const double minus = modality.log_likelihood(corr_iter);
+    gradient[i] = (plus - minus) / (2 * h);
+  }
+  body.reference_T_body = start;
+  return gradient;
+}
+
+double translation_error_mm(const Pose& a, const Pose& b) { return 1e3 * (a.translation() - b.translation()).norm(); }
+double rotation_error_deg(const Pose& a, const Pose& b) {
+  return rotation_angle_between(a.rotation(), b.rotation()) * 180.0 / M_PI;
+}
+
+}  // namespace
+
+TEST_CASE("texture modality: keyframe points lie on the box and project onto their keypoints") {
+  Scene s;
+  const Frame frame = s.renderer.render(s.truth);
+  Body body{"box", s.mesh, s.truth};
+  TextureModality texture(body, {});
+  texture.start(frame);
+  const Keyframe& keyframe = texture.keyframe();
+  INFO("keyframe points " << keyframe.body_points.size());
+  REQUIRE(keyframe.body_points.size() >= 50);
+  CHECK(keyframe.descriptors.rows == static_cast<int>(keyframe.body_points.size()));
+  const Eigen::Vector3f half(0.04f, 0.08f, 0.03f);  // the box's half extents
+  double worst_px = 0.0, worst_surface_mm = 0.0;
+  for (std::size_t i = 0; i < keyframe.body_points.size(); ++i) {
+    const Eigen::Vector3f& X = keyframe.body_points[i];
+    const Eigen::Vector2d x = s.color_k.project<double>(s.truth * X.cast<double>());
+    worst_px = std::max(worst_px, (x - Eigen::Vector2d(keyframe.image_points[i].x, keyframe.image_points[i].y)).norm());
+    // On the surface: inside the box and on one of its faces.
+    const Eigen::Vector3f outside = (X.cwiseAbs() - half).cwiseMax(0.f);
+    const float to_face = (X.cwiseAbs() - half).cwiseAbs().minCoeff();
+    worst_surface_mm = std::max(worst_surface_mm, 1e3 * std::max(outside.norm(), to_face));
+  }
+  INFO("worst reprojection " << worst_px << " px, worst distance to the surface " << worst_surface_mm << " mm");
+  CHECK(worst_px < 1.0);
+  CHECK(worst_surface_mm < 1.0);
+}
+
+TEST_CASE("texture modality: matches recover a known image-plane shift") {
+  Scene s;
+  Body body{"box", s.mesh, s.truth};
+  TextureModality texture(body, {});
+  texture.start(s.renderer.render(s.truth));
+  // 5 px to the right and 3 px down at the object's depth.
+  const double z = s.truth.translation().z();
+  const Eigen::Vector2d shift_px(5.0, 3.0);
+  const Pose shifted(s.truth.rotation(), s.truth.translation() + Eigen::Vector3d(shift_px.x() * z / s.color_k.fu,
+                                                                                  shift_px.y() * z / s.color_k.fv, 0.0));
+  texture.correspondences(s.renderer.render(shifted), 0);
+  REQUIRE(texture.matches().size() >= 30);
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const TextureModality::Match& m : texture.matches()) {
+    const cv::Point2f& before = texture.keyframe().image_points[m.keyframe_index];
+    mean += (m.image_point.cast<double>() - Eigen::Vector2d(before.x, before.y));
+  }
+  mean /= static_cast<double>(texture.matches().size());
+  INFO(texture.matches().size() << " matches of " << texture.keyframe().body_points.size()
+                                << " keyframe points, mean displacement " << mean.transpose());
+  CHECK((mean - shift_px).norm() < 0.5);
+}
+
+TEST_CASE("texture modality: gradient is the derivative of its log-likelihood") {
+  Scene s;
+  Body body{"box", s.mesh, s.truth};
+  TextureModality texture(body, {});
+  texture.start(s.renderer.render(s.truth));
+  const Frame moved = s.renderer.render(perturbed(s.truth, 3.0, 2.0));
+  for (int corr_iter : {0, 2}) {
+    texture.correspondences(moved, corr_iter);
+    Vec6 g = Vec6::Zero();
+    Mat66 H = Mat66::Zero();
+    texture.add_gradient_hessian(corr_iter, 0, g, H);
+    const Vec6 numeric = numeric_gradient(texture, corr_iter);
+    INFO("corr_iter " << corr_iter << "\nanalytic " << g.transpose() << "\nnumeric  " << numeric.transpose());
+    CHECK(g.norm() > 0.0);
+    CHECK((g - numeric).norm() < 2e-3 * numeric.norm());
+    CHECK(H.eigenvalues().real().maxCoeff() < 1e-9 * H.norm());
+  }
+}
+
+TEST_CASE("texture modality: texture alone converges from 3 mm / 3 deg") {
+  Scene s;
+  Tracker tracker;
+  Body& body = tracker.add_body({"box", s.mesh, s.truth});
+  tracker.add_modality(std::make_unique<TextureModality>(body, TextureParams{}));
+  tracker.start(s.renderer.render(s.truth));  // keyframe at the true pose
+  const Pose moved = perturbed(s.truth, 3.0, 3.0);
+  const Frame frame = s.renderer.render(moved);  // the object moved; tracking starts where it was
+  std::vector<BodyResult> results;
+  std::vector<double> ms;
+  for (int i = 0; i < 3; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    results = tracker.track(frame);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  const double t_mm = translation_error_mm(body.reference_T_body, moved);
+  const double r_deg = rotation_error_deg(body.reference_T_body, moved);
+  INFO("error " << t_mm << " mm, " << r_deg << " deg, quality " << results[0].quality << ", median "
+                << ms[ms.size() / 2] << " ms per frame");
+  CHECK(t_mm < 1.0);
+  CHECK(r_deg < 0.5);
+  CHECK(results[0].quality > 0.3);
+}
+
+TEST_CASE("texture modality: frames without the object give quality 0") {
+  Scene s;
+  const Pose away(s.truth.rotation(), Eigen::Vector3d(1.0, 0.0, 0.45));  // far outside the view
+  const Frame empty = s.renderer.render(away);
+  Tracker tracker;
+  Body& body = tracker.add_body({"box", s.mesh, s.truth});
+  tracker.add_modality(std::make_unique<TextureModality>(body, TextureParams{}));
+
+  SECTION("the object left the view after the start") {
+    tracker.start(s.renderer.render(s.truth));
+    const auto results = tracker.track(empty);
+    CHECK(results[0].modalities[0].score == 0.0);
+    CHECK_FALSE(results[0].tracked);
+    CHECK(body.reference_T_body.translation().allFinite());
+  }
+  SECTION("started where the object is out of view: an empty keyframe, the pose kept") {
+    body.reference_T_body = away;
+    tracker.start(empty);
+    const auto results = tracker.track(empty);
+    CHECK(results[0].modalities[0].score == 0.0);
+    CHECK(results[0].modalities[0].n_valid == 0);
+    CHECK((body.reference_T_body.translation() - away.translation()).norm() < 1e-12);
+  }
+  SECTION("the body behind the camera") {
+    tracker.start(s.renderer.render(s.truth));
+    body.reference_T_body = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5));
+    const auto results = tracker.track(empty);
+    CHECK(results[0].modalities[0].score == 0.0);
+  }
+}
+
+TEST_CASE("texture modality: descriptors by name, built by the tracker from a configuration") {
+  for (const char* name : {"orb", "brisk", "sift", "akaze", "freak", "daisy"}) CHECK(make_descriptor(name));
+  CHECK_THROWS_WITH(make_descriptor("surf"), Catch::Contains("surf"));
+  const std::string yaml = "/tmp/icgp-texture-config-" + std::to_string(::getpid()) + ".yaml";
+  std::ofstream(yaml) << "modalities: [texture]\ntexture: {descriptor: brisk, standard_deviations: [5.0, 1.0]}\n";
+  const TrackerConfig config = load_tracker_config(yaml);
+  std::remove(yaml.c_str());
+  CHECK(config.texture.descriptor == "brisk");
+  CHECK(config.texture.standard_deviations == std::vector<double>{5.0, 1.0});
+  CHECK(config.texture.orb_n_features == 300);
+  const auto tracker = build_tracker(config, load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj"), "box");
+  REQUIRE(tracker->bodies().size() == 1);
+}
