@@ -260,6 +260,12 @@ const Fields<TrackerConfig> kConfigFields = {
     section("region", &TrackerConfig::region, kRegionFields),
     section("depth", &TrackerConfig::depth, kDepthFields),
     section("texture", &TrackerConfig::texture, kTextureFields),
+    field("regions", &TrackerConfig::regions,
+          Rule<std::vector<std::string>>{"a list of region mesh files",
+                                         [](const std::vector<std::string>& files) {
+                                           return std::none_of(files.begin(), files.end(),
+                                                               [](const std::string& f) { return f.empty(); });
+                                         }}),
     field("cache_dir", &TrackerConfig::cache_dir, kString),
 };
 
@@ -282,6 +288,9 @@ TrackerConfig load_tracker_config(const std::string& path) {
   }
   TrackerConfig config;
   read_map(root, kConfigFields, config, document);
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (std::string& region : config.regions)
+    if (std::filesystem::path(region).is_relative()) region = (folder / region).lexically_normal().string();
   return config;
 }
 

@@ -4,6 +4,7 @@
 // a perturbed pose, and bad input.
 #include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <opencv2/imgproc.hpp>
 
 #include "icgp/io/mesh_loader.h"
@@ -11,6 +12,7 @@
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
 #include "icgp/tracker/tracker.h"
+#include "icgp/tracker/tracker_config.h"
 #include "test_scene.h"
 
 using namespace icgp;
@@ -194,4 +196,30 @@ TEST_CASE("tracker: region + depth converge on a grey image too") {
   Frame frame = scene.render(f.truth);
   cv::cvtColor(frame.colors[0].image, frame.colors[0].image, cv::COLOR_BGR2GRAY);
   check_convergence(frame);
+}
+
+TEST_CASE("build_tracker: one region modality per region of a multi-region object") {
+  TrackerConfig config;
+  config.region_model = config.depth_model = coarse_model_params();
+  config.regions = {ICGP_MODELS_DIR "/two_region/region_body.obj", ICGP_MODELS_DIR "/two_region/region_lid.obj"};
+  config.cache_dir = (std::filesystem::temp_directory_path() / "icgp-test-multi-region-cache").string();
+  const Mesh object = load_mesh(ICGP_MODELS_DIR "/two_region/object.obj");
+  auto tracker = build_tracker(config, object, "two_region");
+  Body& body = tracker->body("two_region");
+
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(object, f.color_k, f.depth_k, f.depth_T_color);
+  const Frame frame = scene.render(f.truth, "two_region");
+  body.reference_T_body = f.truth;
+  tracker->start(frame);
+  body.reference_T_body = perturbed(f.truth, 3.0, 3.0);
+  std::vector<BodyResult> results;
+  for (int i = 0; i < 3; ++i) results = tracker->track(frame);
+  REQUIRE(results[0].modalities.size() == 3);  // region_body, region_lid, depth
+  const double t_mm = 1e3 * (body.reference_T_body.translation() - f.truth.translation()).norm();
+  const double r_deg = rotation_angle_between(body.reference_T_body.rotation(), f.truth.rotation()) * 180 / M_PI;
+  INFO("error " << t_mm << " mm, " << r_deg << " deg, quality " << results[0].quality);
+  CHECK(t_mm < 1.0);
+  CHECK(r_deg < 0.5);
+  CHECK(results[0].tracked);
 }

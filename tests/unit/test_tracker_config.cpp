@@ -149,6 +149,7 @@ texture:
   standard_deviations: [10.0, 10.0, 3.0]
   occlusion_radius: 0.02
   occlusion_threshold: 0.05
+regions: [/models/a/body.obj, /models/a/lid.obj]
 cache_dir: /tmp/icgp cache
 )";
 
@@ -294,7 +295,7 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
   };
   const Case cases[] = {
       {"regoin: {}", "regoin: unknown key (valid keys: tracker, modalities, region_model, depth_model, region, depth, "
-                     "texture, cache_dir)"},
+                     "texture, regions, cache_dir)"},
       {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
       {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
       {"- tracker\n- region\n", "expected a map with the keys tracker, modalities,"},

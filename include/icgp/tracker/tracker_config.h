@@ -22,6 +22,11 @@ struct TrackerConfig {
   RegionParams region;
   DepthParams depth;
   TextureParams texture;
+  /// Multi-region tracking (paper §III-D): one mesh file per colour region of the object,
+  /// all in the object's frame; each gets its own region model and modality with its own
+  /// colour statistics. Empty: one region modality on the whole object. Relative paths in a
+  /// file are relative to that file's folder.
+  std::vector<std::string> regions;
   std::string cache_dir;  ///< empty: $ICGP_CACHE_DIR, else $XDG_CACHE_HOME/icgp, else ~/.cache/icgp
 };
 
