@@ -14,7 +14,7 @@
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/visp_baseline.h"
 #include "single_thread_scope.h"
-#include "timed_icg_tracker.h"
+#include "bench_runner.h"
 
 namespace icgp::app {
 namespace {
@@ -27,38 +27,13 @@ struct BenchOptions {
   std::string config;
   std::string summary;
   int frames = 0;
+  bool ablation = false;
 };
 
 struct BenchRow {
   std::string config;
   TrackingSummary summary;
 };
-
-/// What every tracker reports per frame. vpMbGenericTracker has no tracked flag (it throws
-/// when it fails), so its frames count as tracked.
-struct TrackedPose {
-  Pose reference_T_body;
-  bool tracked = true;
-};
-/// A tracker as the bench drives it: start at a pose on a frame; track a frame, giving the
-/// time of the tracking call alone.
-using StartFunction = std::function<void(const Frame&, const Pose&)>;
-using TrackFunction = std::function<TrackedPose(const Frame&, double* ms)>;
-
-/// Starts at the first frame's ground truth and tracks every frame, the first included.
-TrackingSummary run_configuration(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
-                                  const StartFunction& start, const TrackFunction& track) {
-  TrackingEvaluation evaluation(mesh);
-  start(frames.front(), *frames.front().truth(body));
-  for (const Frame& frame : frames) {
-    double ms = 0.0;
-    const TrackedPose result = track(frame, &ms);
-    const Pose* truth = frame.truth(body);
-    evaluation.add(frame.index, result.reference_T_body, truth ? std::optional<Pose>(*truth) : std::nullopt,
-                   result.tracked, ms);
-  }
-  return evaluation.summary();
-}
 
 void print_table(const std::vector<BenchRow>& rows, double reference_ms) {
   std::printf("\n%-34s %8s %8s %9s %9s %10s %8s %14s\n", "configuration", "mean mm", "max mm", "mean deg", "max deg",
@@ -102,14 +77,7 @@ void run_bench(const BenchOptions& o) {
     jobs.push_back({name, [&, modalities] {
                       TrackerConfig config = base_config;
                       config.modalities = modalities;
-                      TimedIcgTracker tracker(config, mesh, object.name);
-                      return run_configuration(
-                          frames, object.name, mesh,
-                          [&](const Frame& f, const Pose& pose) { tracker.start(f, pose); },
-                          [&](const Frame& f, double* ms) {
-                            const BodyResult r = tracker.track(f, ms);
-                            return TrackedPose{r.reference_T_body, r.tracked};
-                          });
+                      return run_icgp(frames, object.name, mesh, config);
                     }});
   }
   for (const VispTrackerConfiguration& configuration : visp_reference_configurations()) {
@@ -176,7 +144,10 @@ void register_bench_command(CLI::App& app) {
   cmd->add_option("--config", o->config, "icgp tracker configuration (YAML) for the ICG rows; default: the sequence folder's icgp.yaml, else the reference parameters")->check(CLI::ExistingFile);
   cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...]}");
   cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
-  cmd->callback([o] { run_bench(*o); });
+  cmd->add_flag("--ablation", o->ablation,
+                 "Instead: ICG+ with each descriptor and without each cue (the paper's Tables III/IV) on "
+                 "teabox-blender and rendered ambiguous-geometry sequences");
+  cmd->callback([o] { o->ablation ? run_ablation(o->summary, o->frames) : run_bench(*o); });
 }
 
 }  // namespace icgp::app

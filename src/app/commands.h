@@ -22,6 +22,10 @@ void register_config_command(CLI::App& app);
 /// reference defaults. Says on stderr which one it uses.
 TrackerConfig sequence_tracker_config(const std::string& explicit_file, const std::string& sequence_dir);
 
+/// `icgp bench --ablation`: ICG+ rows with each descriptor and without each cue, on
+/// teabox-blender and rendered ambiguous-geometry sequences; JSON rows to summary_path.
+void run_ablation(const std::string& summary_path, int frame_limit);
+
 /// The folder of models shipped with icgp: $ICGP_MODELS_DIR, else the installed share
 /// folder next to the program, else the source tree's models/.
 std::string models_dir();

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "bench_runner.h"
+
+#include <optional>
+
+namespace icgp::app {
+
+TrackingSummary run_configuration(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                                  const StartFunction& start, const TrackFunction& track) {
+  TrackingEvaluation evaluation(mesh);
+  start(frames.front(), *frames.front().truth(body));
+  for (const Frame& frame : frames) {
+    double ms = 0.0;
+    const TrackedPose result = track(frame, &ms);
+    const Pose* truth = frame.truth(body);
+    evaluation.add(frame.index, result.reference_T_body, truth ? std::optional<Pose>(*truth) : std::nullopt,
+                   result.tracked, ms);
+  }
+  return evaluation.summary();
+}
+
+TrackingSummary run_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                         const TrackerConfig& config) {
+  TimedIcgTracker tracker(config, mesh, body);
+  return run_configuration(
+      frames, body, mesh, [&](const Frame& f, const Pose& pose) { tracker.start(f, pose); },
+      [&](const Frame& f, double* ms) {
+        const BodyResult r = tracker.track(f, ms);
+        return TrackedPose{r.reference_T_body, r.tracked};
+      });
+}
+
+}  // namespace icgp::app
