@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
@@ -28,6 +31,42 @@ struct CropMap {
     return {static_cast<float>((c.x + 0.5) / scale + u_min - 0.5), static_cast<float>((c.y + 0.5) / scale + v_min - 0.5)};
   }
 };
+
+/// Hamming distance of two binary descriptors of `bytes` bytes, 64 bits at a time.
+inline int hamming(const std::uint8_t* a, const std::uint8_t* b, int bytes) {
+  int distance = 0, i = 0;
+  for (; i + 8 <= bytes; i += 8) {
+    std::uint64_t x, y;
+    std::memcpy(&x, a + i, 8);
+    std::memcpy(&y, b + i, 8);
+    distance += __builtin_popcountll(x ^ y);
+  }
+  for (; i < bytes; ++i) distance += __builtin_popcount(static_cast<unsigned>(a[i] ^ b[i]));
+  return distance;
+}
+
+/// The two nearest train rows of every query row by Hamming distance. Exhaustive like
+/// cv::BFMatcher, but with the distance inlined: OpenCV's per-pair call made matching
+/// 300 x 300 ORB descriptors cost 0.7 ms, a third of the texture modality's time.
+/// Compiled twice (hardware popcount, and baseline x86-64 without it), picked at load time.
+__attribute__((target_clones("popcnt", "default"))) void two_nearest_hamming(const cv::Mat& query, const cv::Mat& train, std::vector<std::vector<cv::DMatch>>& knn) {
+  knn.resize(query.rows);
+  const int bytes = query.cols;
+  for (int q = 0; q < query.rows; ++q) {
+    const std::uint8_t* a = query.ptr<std::uint8_t>(q);
+    cv::DMatch best(q, -1, std::numeric_limits<float>::max()), second = best;
+    for (int t = 0; t < train.rows; ++t) {
+      const float d = static_cast<float>(hamming(a, train.ptr<std::uint8_t>(t), bytes));
+      if (d < best.distance) {
+        second = best;
+        best = cv::DMatch(q, t, d);
+      } else if (d < second.distance) {
+        second = cv::DMatch(q, t, d);
+      }
+    }
+    knn[q].assign({best, second});
+  }
+}
 
 }  // namespace
 
@@ -193,7 +232,10 @@ void TextureModality::match() {
   matches_.clear();
   knn_.clear();  // knnMatch appends
   if (descriptors_.empty() || keyframe_.descriptors.rows < 2) return;
-  matcher_.knnMatch(descriptors_, keyframe_.descriptors, knn_, 2);
+  if (extractor_.norm() == cv::NORM_HAMMING)
+    two_nearest_hamming(descriptors_, keyframe_.descriptors, knn_);
+  else
+    matcher_.knnMatch(descriptors_, keyframe_.descriptors, knn_, 2);
   const float ratio = static_cast<float>(params_.ratio_test);
   for (const std::vector<cv::DMatch>& m : knn_) {
     if (m.size() < 2 || m[0].distance >= ratio * m[1].distance) continue;
