@@ -50,8 +50,9 @@ std::vector<AblationConfig> ablation_configs() {
           {"icg+orb-no-region", {"depth", "texture"}, "orb", true}};
 }
 
-/// Renders (once; later runs reuse the files) a fast, noisy RGB-D sequence of a model.
-std::string rendered_sequence(const std::string& name, const std::string& mesh_path) {
+/// Renders (once; later runs reuse the files) a fast, noisy RGB-D sequence of a model,
+/// optionally spinning about its own y axis (the models' up and symmetry axis).
+std::string rendered_sequence(const std::string& name, const std::string& mesh_path, double spin = 0.0) {
   // The version in the folder name changes whenever these settings do.
   const std::filesystem::path dir =
       std::filesystem::path(default_model_cache_dir()) / "ablation-sequences" / (name + "-v1");
@@ -66,7 +67,7 @@ std::string rendered_sequence(const std::string& name, const std::string& mesh_p
   o.noise.depth_sigma_at_1m = 0.005;
   o.noise.depth_dropout = 0.2;
   SequenceWriter writer(o);
-  writer.add_object(name, load_mesh(mesh_path), Pose(), mesh_path);
+  writer.add_object(name, load_mesh(mesh_path), Pose(), mesh_path, Eigen::Vector3d(0.0, spin, 0.0));
   writer.write(dir.string());
   return dir.string();
 }
@@ -79,6 +80,9 @@ std::vector<AblationSequence> ablation_sequences() {
   return {{"teabox-blender", teabox, teabox + "/teabox.cao", sequence_tracker_config("", teabox)},
           {"labelled_cylinder",
            rendered_sequence("labelled_cylinder", models + "/labelled_cylinder/labelled_cylinder.obj"),
+           models + "/labelled_cylinder/labelled_cylinder.obj", TrackerConfig{}},
+          {"labelled_cylinder_spin",
+           rendered_sequence("labelled_cylinder_spin", models + "/labelled_cylinder/labelled_cylinder.obj", 3.0),
            models + "/labelled_cylinder/labelled_cylinder.obj", TrackerConfig{}},
           {"two_region", rendered_sequence("two_region", models + "/two_region/object.obj"),
            models + "/two_region/object.obj", two_region}};

@@ -18,6 +18,7 @@ struct MakeSequenceOptions {
   int width = 640, height = 480;
   double focal = 600.0;
   double baseline = 0.0;
+  double spin = 0.0;
   SequenceWriterOptions writer;
 };
 
@@ -28,7 +29,7 @@ void run_make_sequence(MakeSequenceOptions o) {
   const Mesh mesh = load_any_mesh(o.model, o.scale);
   SequenceWriter writer(o.writer);
   const std::string stem = std::filesystem::path(o.model).stem().string();
-  writer.add_object(stem, mesh, Pose(), std::filesystem::absolute(o.model).string());
+  writer.add_object(stem, mesh, Pose(), std::filesystem::absolute(o.model).string(), Eigen::Vector3d(0.0, o.spin, 0.0));
   writer.write(o.out);
   std::cout << "wrote " << o.writer.frame_count << " frames of '" << stem << "' to " << o.out << "\n";
 }
@@ -56,6 +57,8 @@ void register_make_sequence_command(CLI::App& app) {
   cmd->add_option("--focal", o->focal, "Focal length in pixels (colour and depth)")->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--baseline", o->baseline, "Depth camera offset along the colour camera's x axis, metres")
+      ->capture_default_str();
+  cmd->add_option("--spin", o->spin, "Object rotation about its y axis (the models' up axis), rad/s")
       ->capture_default_str();
   cmd->add_option("--color-noise", o->writer.noise.color_sigma, "Gaussian colour noise, 8-bit levels")
       ->check(CLI::NonNegativeNumber)

@@ -283,8 +283,12 @@ SequenceWriter::SequenceWriter(SequenceWriterOptions options)
           "background texture must be CV_8UC3");
 }
 
+Pose SequenceWriter::Object::world_T_object_at(double seconds) const {
+  return world_T_object * Pose::from_rotation_vector(seconds * spin, Eigen::Vector3d::Zero());
+}
+
 void SequenceWriter::add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object,
-                                const std::string& mesh_path) {
+                                const std::string& mesh_path, const Eigen::Vector3d& spin) {
   require(is_file_name_safe(name), "object name '" + name + "' must be non-empty [A-Za-z0-9_.-] (it names a file)");
   require(std::none_of(objects_.begin(), objects_.end(), [&](const Object& o) { return o.name == name; }),
           "object name '" + name + "' is used twice");
@@ -292,7 +296,8 @@ void SequenceWriter::add_object(const std::string& name, const Mesh& mesh, const
   require(objects_.size() < 254, "at most 254 objects");
   std::string path = mesh_path;
   if (path.empty() && fs::is_regular_file(mesh.source)) path = fs::absolute(mesh.source).string();
-  objects_.push_back({name, mesh, world_T_object, path});
+  require(spin.allFinite(), "spin of object '" + name + "' must be finite");
+  objects_.push_back({name, mesh, world_T_object, path, spin});
 }
 
 Pose SequenceWriter::color_T_world(int index) const { return trajectory_.camera_T_world(index / options_.frame_rate); }
@@ -304,8 +309,8 @@ void SequenceWriter::write(const std::string& dir_name) const {
   prepare_folder(dir);
 
   Renderer renderer;
-  for (std::size_t i = 0; i < objects_.size(); ++i)
-    renderer.set_body_pose(renderer.add_body(objects_[i].mesh, std::uint8_t(i + 1)), objects_[i].world_T_object);
+  std::vector<Renderer::BodyHandle> bodies;
+  for (std::size_t i = 0; i < objects_.size(); ++i) bodies.push_back(renderer.add_body(objects_[i].mesh, std::uint8_t(i + 1)));
   if (o.background.enabled) {
     Random random = stream(o.seed, kBackgroundStream);
     const cv::Mat texture = o.background.texture_bgr.empty() ? procedural_texture(random) : o.background.texture_bgr;
@@ -339,6 +344,11 @@ void SequenceWriter::write(const std::string& dir_name) const {
   char name[32];
   for (int i = 0; i < o.frame_count; ++i) {
     const Pose camera_T_world = color_T_world(i);
+    std::vector<Pose> world_T_objects;
+    for (std::size_t k = 0; k < objects_.size(); ++k) {
+      world_T_objects.push_back(objects_[k].world_T_object_at(i / o.frame_rate));
+      renderer.set_body_pose(bodies[k], world_T_objects.back());
+    }
     cv::Mat color = renderer.render(o.color_intrinsics, camera_T_world, kRenderColor).color;
     cv::Mat depth = renderer.render(o.depth_intrinsics, o.depth_T_color * camera_T_world, kRenderDepth).depth;
     Random noise = stream(o.seed, kNoiseStream, std::uint64_t(i));
@@ -349,7 +359,7 @@ void SequenceWriter::write(const std::string& dir_name) const {
     write_image(dir / "color" / name, color);
     write_image(dir / "depth" / name, quantise_depth(depth, o.depth_scale));
     for (std::size_t k = 0; k < objects_.size(); ++k)
-      pose_files[k] << row_major(camera_T_world * objects_[k].world_T_object, " ") << "\n";
+      pose_files[k] << row_major(camera_T_world * world_T_objects[k], " ") << "\n";
 
     if (o.progress && ((i + 1) * 10 / o.frame_count != i * 10 / o.frame_count || i + 1 == o.frame_count))
       std::cerr << "icgp sequence writer: " << dir.string() << ": frame " << i + 1 << "/" << o.frame_count << "\n";

@@ -445,3 +445,27 @@ TEST_CASE("icgp layout errors name the file and what was expected") {
                         Contains("sequence.yaml") && Contains("depth_camera.fu"));
   }
 }
+
+TEST_CASE("sequence writer: a spinning object turns at its rate in the ground truth and the depth") {
+  TempDir dir("spin");
+  SequenceWriterOptions options;
+  options.frame_count = 4;
+  options.color_intrinsics = options.depth_intrinsics = small_camera(200.0);
+  options.progress = false;
+  SequenceWriter writer(options);
+  const Eigen::Vector3d spin(0.0, 3.0, 0.0);  // rad/s about the object's y axis
+  writer.add_object("box", test::make_box(kBoxSide, kBoxSide, kBoxSide), box_world_pose(), "", spin);
+  writer.write(dir.path().string());
+
+  const Sequence sequence = Sequence::open(dir.path().string());
+  for (int i = 0; i < sequence.size(); ++i) {
+    const Frame frame = sequence.load(i);
+    const Pose world_T_box = writer.color_T_world(i).inverse() * *frame.truth("box");
+    const Pose expected = box_world_pose() * Pose::from_rotation_vector(spin * i / options.frame_rate, Eigen::Vector3d::Zero());
+    CHECK((world_T_box.matrix() - expected.matrix()).norm() < 1e-9);
+    // The rendered depth follows the turning box.
+    const Intrinsics& k = frame.depths[0].intrinsics;
+    const double truth = ray_box_depth(k, k.width / 2, k.height / 2, *frame.truth("box"));
+    if (truth > 0.0) CHECK(frame.depths[0].depth.at<float>(k.height / 2, k.width / 2) == Approx(truth).margin(1e-4));
+  }
+}

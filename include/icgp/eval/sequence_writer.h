@@ -108,9 +108,10 @@ class SequenceWriter {
 
   /// Adds an object at world_T_object. `name` ([A-Za-z0-9_.-], unique) labels its ground
   /// truth; `mesh_path` is recorded in sequence.yaml (empty: the mesh's source when it is
-  /// a file).
+  /// a file). `spin` (rad/s, a rotation vector in the object's frame) turns the object about
+  /// its origin at a constant rate: at time t its pose is world_T_object · exp(t · spin).
   void add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object = Pose(),
-                  const std::string& mesh_path = "");
+                  const std::string& mesh_path = "", const Eigen::Vector3d& spin = Eigen::Vector3d::Zero());
 
   /// The colour camera pose of frame `index`.
   Pose color_T_world(int index) const;
@@ -127,6 +128,8 @@ class SequenceWriter {
     Mesh mesh;
     Pose world_T_object;
     std::string mesh_path;
+    Eigen::Vector3d spin;
+    Pose world_T_object_at(double seconds) const;
   };
 
   SequenceWriterOptions options_;
