@@ -494,6 +494,42 @@ def labelled_cylinder(folder):
     return mesh
 
 
+CAN_CAP_COLOUR = (0.85, 0.10, 0.12)
+
+
+def labelled_can_part(mesh, region, canvas, label_w, label_h):
+    """The printed side (region 'label') or the two plain red caps (region 'caps')."""
+    h = CYLINDER_HEIGHT / 2
+    if region == "label":
+        add_cylinder_side(mesh, mesh.group("label"), CYLINDER_RADIUS, -h, h, CYLINDER_SEGMENTS,
+                          uv_in_rect(canvas, 0, 0, label_w, label_h))
+    else:
+        triangles = mesh.group("caps")
+        add_cylinder_cap(mesh, triangles, CYLINDER_RADIUS, h, CYLINDER_SEGMENTS, True)
+        add_cylinder_cap(mesh, triangles, CYLINDER_RADIUS, -h, CYLINDER_SEGMENTS, False)
+
+
+def labelled_can(folder):
+    """The labelled cylinder's printed side with plain red caps, one mesh per colour region:
+    texture and multi-region both have something to add."""
+    label_w, label_h = 512, int(pixels(CYLINDER_HEIGHT))
+    canvas = Canvas(label_w, label_h, (128, 128, 128))
+    label(canvas, random.Random(3000), 0, 0, label_w, label_h)
+    write_png(os.path.join(folder, "labelled_can.png"), canvas)
+    write_mtl(os.path.join(folder, "labelled_can.mtl"),
+              [("label", (1.0, 1.0, 1.0), "labelled_can.png"), ("caps", CAN_CAP_COLOUR, None)])
+    union = ObjMesh()
+    for region in ("label", "caps"):
+        part = ObjMesh()
+        labelled_can_part(part, region, canvas, label_w, label_h)
+        write_obj(os.path.join(folder, "region_%s.obj" % region), part, "labelled_can.mtl",
+                  "region '%s' of the labelled can (same body frame as object.obj)" % region)
+        labelled_can_part(union, region, canvas, label_w, label_h)
+    write_obj(os.path.join(folder, "object.obj"), union, "labelled_can.mtl",
+              "cylinder r 0.04 m, h 0.10 m, axis y: printed label side, plain red caps")
+    return union
+
+
 TWO_REGION_SIZE = (0.10, 0.08, 0.06)
 LID_HEIGHT = 0.025
 TWO_REGION_MATERIALS = [("body", (0.10, 0.30, 0.75), None), ("lid", (0.95, 0.60, 0.10), None)]
@@ -528,7 +564,7 @@ def two_region(folder):
 
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "models")
-    for make in (textured_box, textureless_mug, two_region, labelled_cylinder):
+    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can):
         folder = os.path.join(root, make.__name__)
         os.makedirs(folder, exist_ok=True)
         mesh = make(folder)

@@ -75,8 +75,9 @@ std::string rendered_sequence(const std::string& name, const std::string& mesh_p
 std::vector<AblationSequence> ablation_sequences() {
   const std::string models = models_dir();
   const std::string teabox = std::string(ICGP_SOURCE_TEST_DATA_DIR) + "/teabox-blender";
-  TrackerConfig two_region;
+  TrackerConfig two_region, labelled_can;
   two_region.regions = {models + "/two_region/region_body.obj", models + "/two_region/region_lid.obj"};
+  labelled_can.regions = {models + "/labelled_can/region_label.obj", models + "/labelled_can/region_caps.obj"};
   return {{"teabox-blender", teabox, teabox + "/teabox.cao", sequence_tracker_config("", teabox)},
           {"labelled_cylinder",
            rendered_sequence("labelled_cylinder", models + "/labelled_cylinder/labelled_cylinder.obj"),
@@ -84,6 +85,8 @@ std::vector<AblationSequence> ablation_sequences() {
           {"labelled_cylinder_spin",
            rendered_sequence("labelled_cylinder_spin", models + "/labelled_cylinder/labelled_cylinder.obj", 3.0),
            models + "/labelled_cylinder/labelled_cylinder.obj", TrackerConfig{}},
+          {"labelled_can_spin", rendered_sequence("labelled_can_spin", models + "/labelled_can/object.obj", 3.0),
+           models + "/labelled_can/object.obj", labelled_can},
           {"two_region", rendered_sequence("two_region", models + "/two_region/object.obj"),
            models + "/two_region/object.obj", two_region}};
 }
@@ -126,7 +129,7 @@ void run_ablation(const std::string& summary_path, int frame_limit) {
                               .add("frames", r.frames));
     }
   }
-  std::printf("\nmulti-region applies to two_region only (the other objects have one colour region).\n");
+  std::printf("\nmulti-region applies to labelled_can_spin and two_region (the others have one colour region).\n");
   if (!summary_path.empty()) {
     JsonObject().add("rows", json_rows).write(summary_path);
     std::cout << "wrote " << summary_path << "\n";

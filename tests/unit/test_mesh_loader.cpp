@@ -485,3 +485,24 @@ TEST_CASE("models/two_region: region meshes share the frame and together make ob
   REQUIRE(lid.parts.size() == 1);
   CHECK(!body.parts[0].material.diffuse_rgb.isApprox(lid.parts[0].material.diffuse_rgb, 0.1f));
 }
+
+TEST_CASE("models/labelled_can: a printed side and plain caps as two regions of one cylinder") {
+  const Mesh object = load_mesh(model("labelled_can/object.obj"));
+  const Mesh label = load_mesh(model("labelled_can/region_label.obj"));
+  const Mesh caps = load_mesh(model("labelled_can/region_caps.obj"));
+  check_bounds(object, Eigen::Vector3f(-0.04f, -0.05f, -0.04f), Eigen::Vector3f(0.04f, 0.05f, 0.04f));
+  CHECK(closed_and_consistently_oriented(object));
+  // 64 facets: the inscribed polygon's volume, r² h (n/2) sin(2π/n).
+  CHECK(signed_volume(object) == Approx(0.04 * 0.04 * 0.10 * 32 * std::sin(2 * M_PI / 64)).epsilon(1e-4));
+  Mesh regions = label;
+  regions.append(caps);
+  CHECK(regions.triangle_count() == object.triangle_count());
+  CHECK(surface_area(regions) == Approx(surface_area(object)));
+  CHECK(closed_and_consistently_oriented(regions));
+  REQUIRE(label.parts.size() == 1);
+  REQUIRE(caps.parts.size() == 1);
+  CHECK(!label.parts[0].material.texture_bgr.empty());
+  CHECK(label.parts[0].texcoords.size() == label.parts[0].vertices.size());
+  CHECK(caps.parts[0].material.texture_bgr.empty());
+  CHECK(caps.parts[0].material.diffuse_rgb.isApprox(Eigen::Vector3f(0.85f, 0.10f, 0.12f), 1e-3f));
+}
