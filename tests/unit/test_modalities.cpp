@@ -13,6 +13,7 @@
 #include "icgp/modality/region_modality.h"
 #include "icgp/tracker/tracker.h"
 #include "icgp/tracker/tracker_config.h"
+#include "test_gradients.h"
 #include "test_scene.h"
 
 using namespace icgp;
@@ -57,31 +58,12 @@ Pose perturbed(const Pose& pose, double mm, double deg) {
   return Pose::from_rotation_vector(axis * deg * M_PI / 180.0, direction * mm * 1e-3) * pose;
 }
 
-/// Central differences of the modality's log-likelihood over body-frame variations.
-Vec6 numeric_gradient(Modality& modality, int corr_iter) {
-  Body& body = modality.body();
-  const Pose start = body.reference_T_body;
-  Vec6 gradient;
-  for (int i = 0; i < 6; ++i) {
-    const double h = i < 3 ? 1e-5 : 1e-6;
-    Vec6 theta = Vec6::Zero();
-    theta[i] = h;
-    body.reference_T_body = start.updated_in_body_frame(theta);
-    const double plus = modality.log_likelihood(corr_iter);
-    body.reference_T_body = start.updated_in_body_frame(-theta);
-    const double minus = modality.log_likelihood(corr_iter);
-    gradient[i] = (plus - minus) / (2 * h);
-  }
-  body.reference_T_body = start;
-  return gradient;
-}
-
 void check_gradient(Modality& modality, const Frame& frame, int corr_iter) {
   modality.correspondences(frame, corr_iter);
   Vec6 g = Vec6::Zero();
   Mat66 H = Mat66::Zero();
   modality.add_gradient_hessian(corr_iter, 0, g, H);
-  const Vec6 numeric = numeric_gradient(modality, corr_iter);
+  const Vec6 numeric = test::numeric_gradient(modality, corr_iter);
   INFO(modality.name() << " corr_iter " << corr_iter << "\nanalytic " << g.transpose() << "\nnumeric  "
                        << numeric.transpose());
   CHECK(g.norm() > 0.0);

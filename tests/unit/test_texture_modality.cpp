@@ -13,6 +13,7 @@
 #include "icgp/modality/texture_modality.h"
 #include "icgp/tracker/tracker.h"
 #include "icgp/tracker/tracker_config.h"
+#include "test_gradients.h"
 #include "test_scene.h"
 
 using namespace icgp;
@@ -33,25 +34,6 @@ Pose perturbed(const Pose& pose, double mm, double deg) {
   const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.8, 0.5).normalized();
   const Eigen::Vector3d direction = Eigen::Vector3d(-0.6, 0.2, 0.77).normalized();
   return Pose(exp_so3<double>(axis * deg * M_PI / 180.0) * pose.rotation(), pose.translation() + direction * mm * 1e-3);
-}
-
-/// Central differences of the modality's log-likelihood over body-frame variations.
-Vec6 numeric_gradient(Modality& modality, int corr_iter) {
-  Body& body = modality.body();
-  const Pose start = body.reference_T_body;
-  Vec6 gradient;
-  for (int i = 0; i < 6; ++i) {
-    const double h = i < 3 ? 1e-5 : 1e-6;
-    Vec6 theta = Vec6::Zero();
-    theta[i] = h;
-    body.reference_T_body = start.updated_in_body_frame(theta);
-    const double plus = modality.log_likelihood(corr_iter);
-    body.reference_T_body = start.updated_in_body_frame(-theta);
-    const double minus = modality.log_likelihood(corr_iter);
-    gradient[i] = (plus - minus) / (2 * h);
-  }
-  body.reference_T_body = start;
-  return gradient;
 }
 
 double translation_error_mm(const Pose& a, const Pose& b) { return 1e3 * (a.translation() - b.translation()).norm(); }
@@ -121,7 +103,7 @@ TEST_CASE("texture modality: gradient is the derivative of its log-likelihood") 
     Vec6 g = Vec6::Zero();
     Mat66 H = Mat66::Zero();
     texture.add_gradient_hessian(corr_iter, 0, g, H);
-    const Vec6 numeric = numeric_gradient(texture, corr_iter);
+    const Vec6 numeric = test::numeric_gradient(texture, corr_iter);
     INFO("corr_iter " << corr_iter << "\nanalytic " << g.transpose() << "\nnumeric  " << numeric.transpose());
     CHECK(g.norm() > 0.0);
     CHECK((g - numeric).norm() < 2e-3 * numeric.norm());
