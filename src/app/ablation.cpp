@@ -85,6 +85,8 @@ std::vector<AblationSequence> ablation_sequences() {
           {"labelled_cylinder_spin",
            rendered_sequence("labelled_cylinder_spin", models + "/labelled_cylinder/labelled_cylinder.obj", 3.0),
            models + "/labelled_cylinder/labelled_cylinder.obj", TrackerConfig{}},
+          {"labelled_can", rendered_sequence("labelled_can", models + "/labelled_can/object.obj"),
+           models + "/labelled_can/object.obj", labelled_can},
           {"labelled_can_spin", rendered_sequence("labelled_can_spin", models + "/labelled_can/object.obj", 3.0),
            models + "/labelled_can/object.obj", labelled_can},
           {"two_region", rendered_sequence("two_region", models + "/two_region/object.obj"),
@@ -129,7 +131,7 @@ void run_ablation(const std::string& summary_path, int frame_limit) {
                               .add("frames", r.frames));
     }
   }
-  std::printf("\nmulti-region applies to labelled_can_spin and two_region (the others have one colour region).\n");
+  std::printf("\nmulti-region applies to labelled_can, labelled_can_spin and two_region (the others have one colour region).\n");
   if (!summary_path.empty()) {
     JsonObject().add("rows", json_rows).write(summary_path);
     std::cout << "wrote " << summary_path << "\n";
