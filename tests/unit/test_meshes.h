@@ -2,6 +2,10 @@
 // Meshes with exactly known geometry, built in code so tests do not depend on loaders.
 #pragma once
 
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "icgp/geometry/intrinsics.h"
 #include "icgp/io/mesh.h"
 
 namespace icgp::test {
@@ -21,6 +25,21 @@ inline Mesh make_box(float sx, float sy, float sz) {
   mesh.source = "box";
   mesh.parts.push_back(part);
   return mesh;
+}
+
+/// The image outline of an origin-centred box with half-sizes `half` at camera_T_box: the
+/// convex hull of its projected corners (a box is convex, so this is its silhouette).
+inline std::vector<cv::Point2f> projected_box_outline(const Intrinsics& k, const Pose& camera_T_box,
+                                                      const Eigen::Vector3d& half) {
+  std::vector<cv::Point2f> corners, hull;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner((c & 1) ? half.x() : -half.x(), (c & 2) ? half.y() : -half.y(),
+                                 (c & 4) ? half.z() : -half.z());
+    const Eigen::Vector2d x = k.project<double>(camera_T_box * corner);
+    corners.emplace_back(static_cast<float>(x.x()), static_cast<float>(x.y()));
+  }
+  cv::convexHull(corners, hull);
+  return hull;
 }
 
 /// One triangle with the given vertices.

@@ -122,19 +122,6 @@ struct Scene {
   }
 };
 
-/// The outline of the whole two-region box: the convex hull of its projected corners.
-std::vector<cv::Point2f> outline(const ViewCamera& camera) {
-  std::vector<cv::Point2f> corners, hull;
-  for (int c = 0; c < 8; ++c) {
-    const Eigen::Vector3d corner((c & 1) ? kHalf.x() : -kHalf.x(), (c & 2) ? kHalf.y() : -kHalf.y(),
-                                 (c & 4) ? kHalf.z() : -kHalf.z());
-    const Eigen::Vector2d x = camera.intrinsics.project<double>(camera.camera_T_body * corner);
-    corners.emplace_back(static_cast<float>(x.x()), static_cast<float>(x.y()));
-  }
-  cv::convexHull(corners, hull);
-  return hull;
-}
-
 /// Image distance from x to the lid/body boundary: the rectangle y = kBoundaryY around the box.
 double boundary_distance(const ViewCamera& camera, const Eigen::Vector2d& x) {
   const double cx[4] = {-kHalf.x(), kHalf.x(), kHalf.x(), -kHalf.x()};
@@ -194,7 +181,7 @@ Counts check_two_region_model(const ViewpointModel& m, Label main, bool other_is
     const ViewCamera camera = view_camera(m.view(v).direction, m.params(), main == kLid ? lid().radius_about_origin()
                                                                                          : body().radius_about_origin());
     const Scene scene(camera);
-    const std::vector<cv::Point2f> hull = outline(camera);
+    const std::vector<cv::Point2f> hull = test::projected_box_outline(camera.intrinsics, camera.camera_T_body, kHalf);
     for (int p = 0; p < m.view_point_count(v); ++p) {
       const ModelPoint& point = m.points(v)[p];
       const ImagePoint ip = image_point(camera, point);

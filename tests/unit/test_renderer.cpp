@@ -88,13 +88,7 @@ TEST_CASE("renderer: silhouette area matches the projected convex hull within 1 
                                                                   Eigen::Vector3d(-0.05, 0.03, 0.7))}) {
     renderer.set_body_pose(body, pose);
     const RenderOutput out = renderer.render(k, Pose(), kRenderIds);
-    std::vector<cv::Point2f> projected, hull;
-    for (int c = 0; c < 8; ++c) {
-      const Eigen::Vector3d corner((c & 1) ? 0.04 : -0.04, (c & 2) ? 0.03 : -0.03, (c & 4) ? 0.08 : -0.08);
-      const Eigen::Vector2d x = k.project<double>(pose * corner);
-      projected.emplace_back(static_cast<float>(x.x()), static_cast<float>(x.y()));
-    }
-    cv::convexHull(projected, hull);
+    const std::vector<cv::Point2f> hull = test::projected_box_outline(k, pose, Eigen::Vector3d(0.04, 0.03, 0.08));
     const double rendered_area = cv::countNonZero(out.ids == 7);
     CHECK(rendered_area == Approx(polygon_area(hull)).epsilon(0.01));
   }

@@ -50,19 +50,6 @@ ModelGenerationOptions quiet(int n_threads = 0) {
 /// Distance of a point to the surface of the test box (exact near the surface).
 double box_surface_distance(const Eigen::Vector3d& p) { return std::abs((p.cwiseAbs() - kHalf).maxCoeff()); }
 
-/// The box's outline from a view: the convex hull of its projected corners.
-std::vector<cv::Point2f> box_outline(const ViewCamera& camera) {
-  std::vector<cv::Point2f> corners, hull;
-  for (int c = 0; c < 8; ++c) {
-    const Eigen::Vector3d corner((c & 1) ? kHalf.x() : -kHalf.x(), (c & 2) ? kHalf.y() : -kHalf.y(),
-                                 (c & 4) ? kHalf.z() : -kHalf.z());
-    const Eigen::Vector2d x = camera.intrinsics.project<double>(camera.camera_T_body * corner);
-    corners.emplace_back(static_cast<float>(x.x()), static_cast<float>(x.y()));
-  }
-  cv::convexHull(corners, hull);
-  return hull;
-}
-
 Eigen::Vector2d project(const ViewCamera& camera, const Eigen::Vector3f& body_point) {
   return camera.intrinsics.project<double>(camera.camera_T_body * body_point.cast<double>());
 }
@@ -212,7 +199,7 @@ TEST_CASE("region model of a box: contour points on the box, on its outline, wit
   int checked = 0;
   for (int v = 0; v < model.n_views(); ++v) {
     const ViewCamera camera = view_camera(model.view(v).direction, model.params(), radius);
-    const std::vector<cv::Point2f> outline = box_outline(camera);
+    const std::vector<cv::Point2f> outline = test::projected_box_outline(camera.intrinsics, camera.camera_T_body, kHalf);
     const double px_per_metre = camera.intrinsics.fu / model.params().sphere_radius;
     const double metres_per_px = (model.params().sphere_radius + radius) / camera.intrinsics.fu;
     REQUIRE(model.view_point_count(v) == model.n_points());
