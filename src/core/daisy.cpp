@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/features/daisy.h"
 
+#include "grey_image.h"
+
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -162,11 +164,7 @@ void Daisy::detectAndCompute(cv::InputArray image, cv::InputArray /*mask*/, std:
     return;
   }
 
-  const cv::Mat input = image.getMat();
-  CV_Assert(input.channels() == 1 || input.channels() == 3 || input.channels() == 4);
-  cv::Mat grey = input;
-  if (input.channels() != 1)
-    cv::cvtColor(input, grey, input.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
+  const cv::Mat grey = grey_image(image.getMat());
   cv::Mat intensity;
   grey.convertTo(intensity, CV_32F);
   cv::Mat dx, dy;  // central differences
