@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/features/daisy.h"
 
-#include "grey_image.h"
 
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <utility>
+
+#include "grey_image.h"
 
 namespace icgp {
 
