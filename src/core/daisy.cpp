@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/features/daisy.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
