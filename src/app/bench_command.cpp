@@ -71,8 +71,9 @@ void run_bench(const BenchOptions& o) {
   };
   std::vector<Job> jobs;
   for (const std::vector<std::string>& modalities :
-       std::vector<std::vector<std::string>>{{"region", "depth"}, {"region"}, {"depth"}}) {
-    std::string name = "ICG";
+       std::vector<std::vector<std::string>>{{"region", "depth", "texture"}, {"region", "depth"}, {"region"}, {"depth"}}) {
+    // With texture it is ICG+ (with the configured descriptor, ORB by default).
+    std::string name = modalities.size() == 3 ? "ICG+" : "ICG";
     for (std::size_t i = 0; i < modalities.size(); ++i) name += (i ? " + " : " ") + modalities[i];
     jobs.push_back({name, [&, modalities] {
                       TrackerConfig config = base_config;

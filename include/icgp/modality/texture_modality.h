@@ -41,6 +41,13 @@ class FeatureExtractor {
   std::vector<cv::KeyPoint> keypoints_;
 };
 
+/// The nearest keyframe descriptor of one frame descriptor, and the distances of the
+/// nearest and the second nearest (the ratio test needs both); train_index −1: none.
+struct TwoNearest {
+  int train_index;
+  float best, second;
+};
+
 /// Keypoints of one frame lifted onto the body surface, with their descriptors.
 struct Keyframe {
   std::vector<Eigen::Vector3f> body_points;
@@ -126,7 +133,8 @@ class TextureModality : public Modality {
   Pose camera_T_reference_;
   std::vector<cv::Point2f> points_;  ///< current frame's keypoints, full image
   cv::Mat descriptors_;
-  std::vector<std::vector<cv::DMatch>> knn_;
+  std::vector<std::vector<cv::DMatch>> knn_;  ///< cv::BFMatcher's answer (L2 descriptors)
+  std::vector<TwoNearest> nearest_;
   Keyframe keyframe_;
   std::vector<Match> matches_;
   ModalityQuality quality_;
