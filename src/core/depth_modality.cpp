@@ -142,6 +142,14 @@ double DepthModality::log_likelihood(int corr_iter) const {
   return sum;
 }
 
+void DepthModality::append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const {
+  const Pose body_T_depth = (depth_T_reference_.cast<double>() * body().reference_T_body).inverse();
+  for (const Correspondence& c : correspondences_) {
+    residuals.push_back(c.body_normal.cast<double>().dot(c.body_point.cast<double>() - body_T_depth * c.measured.cast<double>()));
+    weights.push_back(1.0);  // every correspondence passed the distance gate and counts fully
+  }
+}
+
 void DepthModality::finish(const Frame&) {
   update_quality();
   ++frames_since_start_;

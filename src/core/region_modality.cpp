@@ -305,6 +305,18 @@ double RegionModality::log_likelihood(int corr_iter) const {
   return sum;
 }
 
+void RegionModality::append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const {
+  // Distance of the projected contour from the most likely contour location along the
+  // line, in pixels; the weight is the line's confidence σ_min² / σ_d².
+  const Pose pose = camera_T_reference_.cast<double>() * body().reference_T_body;
+  for (const Line& line : lines_) {
+    const Eigen::Vector2d x = intrinsics_.project<double>(pose * line.body_point.cast<double>());
+    const double delta = line.normal_factor * (line.normal.cast<double>().dot(x - line.centre.cast<double>()) - line.delta_r);
+    residuals.push_back((delta - line.mean) / line.normal_factor);
+    weights.push_back(min_variance_ / line.variance);
+  }
+}
+
 void RegionModality::finish(const Frame& frame) {
   update_quality(frame);
   ++frames_since_start_;

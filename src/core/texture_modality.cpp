@@ -330,6 +330,17 @@ double TextureModality::log_likelihood(int corr_iter) const {
   return sum;
 }
 
+void TextureModality::append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const {
+  const Pose T = camera_T_body();
+  for (const Match& m : matches_) {
+    const Eigen::Vector3d X = T * m.body_point.cast<double>();
+    if (X.z() <= 0.0) continue;
+    const Eigen::Vector2d e = intrinsics_.project<double>(X) - m.image_point.cast<double>();
+    residuals.insert(residuals.end(), {e.x(), e.y()});
+    weights.insert(weights.end(), {m.weight, m.weight});  // Tukey
+  }
+}
+
 void TextureModality::finish(const Frame& frame) {
   update_quality();
   ++keyframe_.age;

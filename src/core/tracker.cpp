@@ -59,6 +59,15 @@ const Mat66& Tracker::last_hessian(const std::string& name) const {
   throw std::invalid_argument("tracker has no body named '" + name + "'");
 }
 
+void Tracker::residuals(const std::string& name, std::vector<double>& residuals, std::vector<double>& weights) const {
+  for (const auto& s : states_)
+    if (s->body->name == name) {
+      for (const auto& m : s->modalities) m->append_residuals(residuals, weights);
+      return;
+    }
+  throw std::invalid_argument("tracker has no body named '" + name + "'");
+}
+
 void Tracker::start(const Frame& frame) {
   for (auto& s : states_)
     for (auto& m : s->modalities) m->start(frame);

@@ -3,46 +3,22 @@
 
 #include <chrono>
 #include <filesystem>
-#include <iostream>
 #include <map>
-#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
 #include "icgp/visp/conversions.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
 
 namespace icgp {
 
 namespace {
 
-const std::string kColorCamera = "Camera1";
-const std::string kDepthCamera = "Camera2";
-
 int color_tracker_types(const VispTrackerConfiguration& c) {
   return (c.edge ? vpMbGenericTracker::EDGE_TRACKER : 0) | (c.klt ? vpMbGenericTracker::KLT_TRACKER : 0);
 }
-
-void require_cameras(const Frame& frame, bool depth) {
-  if (frame.colors.empty()) throw std::invalid_argument("frame " + std::to_string(frame.index) + " has no colour image");
-  if (depth && frame.depths.empty())
-    throw std::invalid_argument("frame " + std::to_string(frame.index) + " has no depth image");
-}
-
-/// Drops what is written to std::cout while alive: ViSP's .cao parser lists the counts of
-/// what it read there even when not asked to be verbose, which would interleave with the
-/// caller's output once per tracker. Its errors still arrive as exceptions and on std::cerr.
-class StdoutSilencer {
- public:
-  StdoutSilencer() : previous_(std::cout.rdbuf(nullptr)) {}
-  ~StdoutSilencer() { std::cout.rdbuf(previous_); }
-  StdoutSilencer(const StdoutSilencer&) = delete;
-  StdoutSilencer& operator=(const StdoutSilencer&) = delete;
-
- private:
-  std::streambuf* previous_;
-};
 
 }  // namespace
 
@@ -51,6 +27,12 @@ std::vector<VispTrackerConfiguration> visp_reference_configurations() {
           {"KLT + dense depth", false, true, true},
           {"edge + KLT + dense depth", true, true, true},
           {"edge + KLT (no depth)", true, true, false}};
+}
+
+VispTrackerConfiguration visp_reference_configuration(const std::string& name) {
+  for (const VispTrackerConfiguration& configuration : visp_reference_configurations())
+    if (configuration.name == name) return configuration;
+  throw std::invalid_argument("no ViSP reference configuration is called '" + name + "'");
 }
 
 VispModelFiles VispModelFiles::beside_model(const std::string& cao_path) {
@@ -63,102 +45,76 @@ VispModelFiles VispModelFiles::beside_model(const std::string& cao_path) {
   return files;
 }
 
-/// The frame in the shapes vpMbGenericTracker takes, reused from frame to frame.
-struct VispRgbdTracker::Buffers {
-  cv::Mat gray;
-  vpImage<unsigned char> color_image;
-  /// Depth-camera-sized image: vpMbGenericTracker wants an image per camera at
-  /// initialisation, and the dense depth tracker only takes its size.
-  vpImage<unsigned char> depth_image;
-  std::vector<vpColVector> point_cloud;  ///< w*h, row-major, X Y Z in the depth frame, 0 = none
-  unsigned int depth_width = 0, depth_height = 0;
-};
-
-VispRgbdTracker::VispRgbdTracker(const VispTrackerConfiguration& configuration, const VispModelFiles& files)
-    : configuration_(configuration), buffers_(std::make_unique<Buffers>()) {
+std::unique_ptr<vpMbGenericTracker> make_visp_tracker(const VispTrackerConfiguration& configuration,
+                                                      const VispModelFiles& files) {
   if (!configuration.edge && !configuration.klt && !configuration.dense_depth)
     throw std::invalid_argument("ViSP configuration '" + configuration.name + "' uses no feature");
   if (!configuration.edge && !configuration.klt)
     throw std::invalid_argument("ViSP configuration '" + configuration.name +
                                 "' has no colour feature: the colour camera is the reference camera");
 
-  std::vector<std::string> cameras = {kColorCamera};
+  std::vector<std::string> cameras = {kVispColorCamera};
   std::vector<int> types = {color_tracker_types(configuration)};
-  std::map<std::string, std::string> settings = {{kColorCamera, files.color_config}};
-  std::map<std::string, std::string> models = {{kColorCamera, files.model}};
+  std::map<std::string, std::string> settings = {{kVispColorCamera, files.color_config}};
   if (configuration.dense_depth) {
-    cameras.push_back(kDepthCamera);
+    cameras.push_back(kVispDepthCamera);
     types.push_back(vpMbGenericTracker::DEPTH_DENSE_TRACKER);
-    settings[kDepthCamera] = files.depth_config;
-    models[kDepthCamera] = files.model;
+    settings[kVispDepthCamera] = files.depth_config;
   }
-  tracker_ = std::make_unique<vpMbGenericTracker>(cameras, types);
-  tracker_->loadConfigFile(settings, false);
-  const StdoutSilencer quiet_parser;
+  auto tracker = std::make_unique<vpMbGenericTracker>(cameras, types);
+  tracker->loadConfigFile(settings, false);
+  return tracker;
+}
+
+/// The frame in the shapes vpMbGenericTracker takes, reused from frame to frame.
+struct VispRgbdTracker::Buffers {
+  VispRgbdFrame frame;
+  /// Depth-camera-sized image: vpMbGenericTracker wants an image per camera at
+  /// initialisation, and the dense depth tracker only takes its size.
+  vpImage<unsigned char> depth_image;
+};
+
+VispRgbdTracker::VispRgbdTracker(const VispTrackerConfiguration& configuration, const VispModelFiles& files)
+    : configuration_(configuration),
+      tracker_(make_visp_tracker(configuration, files)),
+      buffers_(std::make_unique<Buffers>()) {
+  std::map<std::string, std::string> models = {{kVispColorCamera, files.model}};
+  if (configuration.dense_depth) models[kVispDepthCamera] = files.model;
+  const detail::StdoutSilencer quiet_parser;
   tracker_->loadModel(models);
 }
 
 VispRgbdTracker::~VispRgbdTracker() = default;
 
-void VispRgbdTracker::convert(const Frame& frame) {
-  require_cameras(frame, configuration_.dense_depth);
-  const cv::Mat& color = frame.colors[0].image;
-  if (color.channels() == 1) {
-    to_vp_image(color, buffers_->color_image);
-  } else {
-    cv::cvtColor(color, buffers_->gray, cv::COLOR_BGR2GRAY);
-    to_vp_image(buffers_->gray, buffers_->color_image);
-  }
-  if (!configuration_.dense_depth) return;
-
-  const DepthImage& depth = frame.depths[0];
-  Buffers& b = *buffers_;
-  b.depth_width = static_cast<unsigned int>(depth.depth.cols);
-  b.depth_height = static_cast<unsigned int>(depth.depth.rows);
-  b.depth_image.resize(b.depth_height, b.depth_width, 0);
-  b.point_cloud.resize(static_cast<std::size_t>(b.depth_width) * b.depth_height, vpColVector(3, 0.0));
-  for (int i = 0; i < depth.depth.rows; ++i) {
-    const float* row = depth.depth.ptr<float>(i);
-    for (int j = 0; j < depth.depth.cols; ++j) {
-      vpColVector& point = b.point_cloud[static_cast<std::size_t>(i) * b.depth_width + j];
-      const double Z = row[j];
-      if (Z > 0.0) {
-        const Eigen::Vector3d X = depth.intrinsics.back_project<double>(j, i, Z);
-        point[0] = X.x();
-        point[1] = X.y();
-        point[2] = X.z();
-      } else {
-        point = 0.0;
-      }
-    }
-  }
-}
+void VispRgbdTracker::convert(const Frame& frame) { buffers_->frame.convert(frame, configuration_.dense_depth); }
 
 void VispRgbdTracker::start(const Frame& frame, const Pose& reference_T_body) {
   convert(frame);
-  std::map<std::string, vpCameraParameters> cameras = {{kColorCamera, to_camera_parameters(frame.colors[0].intrinsics)}};
-  std::map<std::string, const vpImage<unsigned char>*> images = {{kColorCamera, &buffers_->color_image}};
+  std::map<std::string, vpCameraParameters> cameras = {
+      {kVispColorCamera, to_camera_parameters(frame.colors[0].intrinsics)}};
+  std::map<std::string, const vpImage<unsigned char>*> images = {{kVispColorCamera, &buffers_->frame.grey}};
   if (configuration_.dense_depth) {
     const DepthImage& depth = frame.depths[0];
-    cameras[kDepthCamera] = to_camera_parameters(depth.intrinsics);
-    images[kDepthCamera] = &buffers_->depth_image;
+    cameras[kVispDepthCamera] = to_camera_parameters(depth.intrinsics);
+    buffers_->depth_image.resize(buffers_->frame.depth_height, buffers_->frame.depth_width, 0);
+    images[kVispDepthCamera] = &buffers_->depth_image;
     // Camera2's pose is derived by ViSP from the reference pose and this, as for a user.
-    tracker_->setCameraTransformationMatrix(kDepthCamera, to_homogeneous_matrix(depth.camera_T_reference));
+    tracker_->setCameraTransformationMatrix(kVispDepthCamera, to_homogeneous_matrix(depth.camera_T_reference));
   }
   tracker_->setCameraParameters(cameras);
   tracker_->initFromPose(images, std::map<std::string, vpHomogeneousMatrix>{
-                                     {kColorCamera, to_homogeneous_matrix(reference_T_body)}});
+                                     {kVispColorCamera, to_homogeneous_matrix(reference_T_body)}});
 }
 
 Pose VispRgbdTracker::track(const Frame& frame, double* track_ms) {
   convert(frame);
-  std::map<std::string, const vpImage<unsigned char>*> images = {{kColorCamera, &buffers_->color_image}};
+  std::map<std::string, const vpImage<unsigned char>*> images = {{kVispColorCamera, &buffers_->frame.grey}};
   std::map<std::string, const std::vector<vpColVector>*> clouds;
   std::map<std::string, unsigned int> widths, heights;
   if (configuration_.dense_depth) {
-    clouds[kDepthCamera] = &buffers_->point_cloud;
-    widths[kDepthCamera] = buffers_->depth_width;
-    heights[kDepthCamera] = buffers_->depth_height;
+    clouds[kVispDepthCamera] = &buffers_->frame.point_cloud;
+    widths[kVispDepthCamera] = buffers_->frame.depth_width;
+    heights[kVispDepthCamera] = buffers_->frame.depth_height;
   }
   const auto begin = std::chrono::steady_clock::now();
   tracker_->track(images, clouds, widths, heights);

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "icgp/eval/frame.h"
 #include "icgp/tracker/body.h"
@@ -44,6 +45,11 @@ class Modality {
   /// After the frame has converged: update statistics (histograms, keyframes).
   virtual void finish(const Frame& frame) = 0;
   virtual ModalityQuality quality() const = 0;
+  /// Appends the residuals of the last correspondences at the current pose, each with a
+  /// weight in [0, 1] (1: full; lower: a robust or confidence down-weighting). Units are
+  /// the modality's own: pixels along the contour normal (region), metres point-to-plane
+  /// (depth), pixels in u and v (texture). ViSP's getError()/getRobustWeights() show them.
+  virtual void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const = 0;
 
   Body& body() const { return *body_; }
 

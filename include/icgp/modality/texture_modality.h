@@ -107,6 +107,7 @@ class TextureModality : public Modality {
   void correspondences(const Frame& frame, int corr_iter) override;
   void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
   double log_likelihood(int corr_iter) const override;
+  void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const override;
   void finish(const Frame& frame) override;
   ModalityQuality quality() const override { return quality_; }
 

@@ -53,8 +53,12 @@ class Tracker {
   /// Refines every body's pose on this frame and reports each body's quality.
   std::vector<BodyResult> track(const Frame& frame);
 
-  /// g and H of the last update, per body (for covariance and diagnostics).
+  /// H of the last update's data terms (without the Tikhonov regularisation), per body:
+  /// the inverse of −H is the pose covariance in the body-frame variation θ = [θ_r; θ_t].
   const Mat66& last_hessian(const std::string& body) const;
+  /// The residuals and weights of every modality of `body` at its current pose, in the
+  /// order the modalities were added (Modality::append_residuals).
+  void residuals(const std::string& body, std::vector<double>& residuals, std::vector<double>& weights) const;
 
  private:
   struct BodyState;

@@ -24,6 +24,9 @@ struct VispTrackerConfiguration {
 /// The configurations of ViSP's own results in tests/data/README.md, in its table order:
 /// edge + dense depth, KLT + dense depth, edge + KLT + dense depth, edge + KLT (no depth).
 std::vector<VispTrackerConfiguration> visp_reference_configurations();
+/// The one of visp_reference_configurations() called `name` (e.g. "edge + dense depth");
+/// throws std::invalid_argument naming it when there is none.
+VispTrackerConfiguration visp_reference_configuration(const std::string& name);
 
 /// A ViSP model and the tracker settings that go with it.
 struct VispModelFiles {
@@ -35,6 +38,14 @@ struct VispModelFiles {
   /// data sets arrange them. Throws std::runtime_error naming a missing file.
   static VispModelFiles beside_model(const std::string& cao_path);
 };
+
+/// vpMbGenericTracker set up for `configuration` as a ViSP user does before giving it a
+/// model: colour camera "Camera1" with edges and/or KLT and, with dense depth, depth camera
+/// "Camera2", each with its settings from `files`' XML. Throws std::invalid_argument for a
+/// configuration without any feature or without a colour feature (the colour camera is the
+/// reference camera), and whatever ViSP throws (vpException) for unreadable files.
+std::unique_ptr<vpMbGenericTracker> make_visp_tracker(const VispTrackerConfiguration& configuration,
+                                                      const VispModelFiles& files);
 
 /// ViSP's vpMbGenericTracker run exactly as a ViSP user runs it on RGB-D data: colour camera
 /// "Camera1" (edges and/or KLT on the grey image), depth camera "Camera2" (dense depth on an

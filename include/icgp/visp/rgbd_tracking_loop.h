@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// One RGB-D tracking loop written against ViSP's API alone, for any tracker that has
+// vpMbGenericTracker's two-camera calls. vpMbGenericTracker and vpMbIcgTracker run through
+// literally the same code, so whatever differs in their results comes from the trackers:
+// this is what "drop-in replacement" means in numbers.
+#pragma once
+
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <opencv2/core/mat.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImage.h>
+
+#include "icgp/eval/frame.h"
+#include "icgp/geometry/pose.h"
+#include "icgp/visp/conversions.h"
+#include "icgp/visp/visp_baseline.h"
+
+namespace icgp {
+
+/// vpMbGenericTracker's camera names: the colour camera is the reference, cMo is relative to it.
+inline const std::string kVispColorCamera = "Camera1";
+inline const std::string kVispDepthCamera = "Camera2";
+
+/// A frame in the shapes ViSP's RGB-D track() takes. Kept from frame to frame so that
+/// converting a sequence reuses the same buffers instead of allocating a cloud per frame.
+struct VispRgbdFrame {
+  /// The colour camera's image in grey levels.
+  vpImage<unsigned char> grey;
+  /// The depth camera's organised cloud: depth_width * depth_height points, row-major,
+  /// X Y Z in metres in the depth camera's frame, 0 0 0 where there is no measurement.
+  std::vector<vpColVector> point_cloud;
+  unsigned int depth_width = 0, depth_height = 0;
+
+  /// Fills `grey` from frame.colors[0] and, when `with_depth`, the point cloud from
+  /// frame.depths[0]. Throws std::invalid_argument when the frame lacks one of them.
+  void convert(const Frame& frame, bool with_depth = true) {
+    if (frame.colors.empty())
+      throw std::invalid_argument("frame " + std::to_string(frame.index) + " has no colour image");
+    const cv::Mat& color = frame.colors.front().image;
+    if (color.channels() == 1) {
+      to_vp_image(color, grey);
+    } else {
+      cv::cvtColor(color, grey_mat_, cv::COLOR_BGR2GRAY);
+      to_vp_image(grey_mat_, grey);
+    }
+    if (!with_depth) return;
+    if (frame.depths.empty())
+      throw std::invalid_argument("frame " + std::to_string(frame.index) + " has no depth image");
+    convert_depth(frame.depths.front());
+  }
+
+ private:
+  /// Back-projects every pixel with the depth camera's intrinsics, as ViSP's RGB-D
+  /// tutorials build the cloud from a depth sensor.
+  void convert_depth(const DepthImage& depth) {
+    depth_width = static_cast<unsigned int>(depth.depth.cols);
+    depth_height = static_cast<unsigned int>(depth.depth.rows);
+    point_cloud.resize(static_cast<std::size_t>(depth_width) * depth_height, vpColVector(3, 0.0));
+    for (int i = 0; i < depth.depth.rows; ++i) {
+      const float* row = depth.depth.ptr<float>(i);
+      for (int j = 0; j < depth.depth.cols; ++j) {
+        vpColVector& point = point_cloud[static_cast<std::size_t>(i) * depth_width + j];
+        const double Z = row[j];
+        if (Z > 0.0) {
+          const Eigen::Vector3d X = depth.intrinsics.back_project<double>(j, i, Z);
+          point[0] = X.x();
+          point[1] = X.y();
+          point[2] = X.z();
+        } else {
+          point = 0.0;
+        }
+      }
+    }
+  }
+
+  cv::Mat grey_mat_;
+};
+
+namespace detail {
+
+/// Drops what is written to std::cout while alive: ViSP's .cao parser lists the counts of
+/// what it read there even when not asked to be verbose, which would interleave with the
+/// caller's output once per tracker. Its errors still arrive as exceptions and on std::cerr.
+class StdoutSilencer {
+ public:
+  StdoutSilencer() : previous_(std::cout.rdbuf(nullptr)) {}
+  ~StdoutSilencer() { std::cout.rdbuf(previous_); }
+  StdoutSilencer(const StdoutSilencer&) = delete;
+  StdoutSilencer& operator=(const StdoutSilencer&) = delete;
+
+ private:
+  std::streambuf* previous_;
+};
+
+}  // namespace detail
+
+/// A run of track_rgbd_sequence, one entry per frame.
+struct RgbdRun {
+  std::vector<Pose> poses;         ///< cMo (getPose) after the frame
+  std::vector<double> track_ms;    ///< the track() call alone
+  std::vector<double> convert_ms;  ///< building the grey image and the point cloud
+};
+
+/// Tracks `frames` as a ViSP RGB-D program does, using only calls that vpMbGenericTracker
+/// and vpMbIcgTracker share with identical signatures: the model for both cameras, the
+/// cameras of the first frame (colour "Camera1" as reference, depth "Camera2" at
+/// depth_M_color), initFromPose at `cMo0` on the first frame's grey image, then per frame
+/// track() with the grey image and the organised point cloud, and getPose().
+///
+/// The tracker's own parameters are the caller's business and must be set before (a ViSP
+/// XML with loadConfigFile, icgp's YAML or setTrackerConfig): the cameras set here override
+/// the camera blocks of those files, so both trackers see the calibration of the frames.
+/// Both trackers run OpenMP / OpenCV loops: limit threads around this call for timings
+/// comparable with a single-threaded tracker.
+template <class TrackerT>
+RgbdRun track_rgbd_sequence(TrackerT& tracker, const std::vector<Frame>& frames, const VispModelFiles& files,
+                            const vpHomogeneousMatrix& cMo0) {
+  using Clock = std::chrono::steady_clock;
+  const auto ms_between = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+
+  RgbdRun run;
+  if (frames.empty()) return run;
+  VispRgbdFrame input;
+  input.convert(frames.front());
+  const DepthImage& depth = frames.front().depths.front();
+  {
+    const detail::StdoutSilencer quiet_parser;
+    tracker.loadModel(files.model, files.model);
+  }
+  tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics),
+                              to_camera_parameters(depth.intrinsics));
+  tracker.setCameraTransformationMatrix(std::map<std::string, vpHomogeneousMatrix>{
+      {kVispColorCamera, vpHomogeneousMatrix()}, {kVispDepthCamera, to_homogeneous_matrix(depth.camera_T_reference)}});
+  tracker.initFromPose(input.grey, cMo0);
+
+  std::map<std::string, const vpImage<unsigned char>*> images = {{kVispColorCamera, &input.grey}};
+  std::map<std::string, const std::vector<vpColVector>*> clouds = {{kVispDepthCamera, &input.point_cloud}};
+  std::map<std::string, unsigned int> widths, heights;
+  vpHomogeneousMatrix cMo;
+  // The first frame is tracked too, as ViSP's tutorials do after initFromPose.
+  for (const Frame& frame : frames) {
+    const auto begin = Clock::now();
+    input.convert(frame);
+    widths[kVispDepthCamera] = input.depth_width;
+    heights[kVispDepthCamera] = input.depth_height;
+    const auto converted = Clock::now();
+    tracker.track(images, clouds, widths, heights);
+    const auto tracked = Clock::now();
+    tracker.getPose(cMo);
+    run.poses.push_back(to_pose(cMo));
+    run.convert_ms.push_back(ms_between(begin, converted));
+    run.track_ms.push_back(ms_between(converted, tracked));
+  }
+  return run;
+}
+
+}  // namespace icgp

@@ -1,0 +1,223 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// `icgp compare`: ViSP's vpMbGenericTracker and icgp's vpMbIcgTracker run through the same
+// ViSP-API code (icgp::track_rgbd_sequence) on the same frames, single-threaded, side by
+// side; plus what the ViSP layer costs vpMbIcgTracker over icgp's core tracker.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <visp3/mbt/vpMbGenericTracker.h>
+
+#include "bench_runner.h"
+#include "commands.h"
+#include "icgp/eval/json_object.h"
+#include "icgp/eval/metrics.h"
+#include "icgp/eval/sequence.h"
+#include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
+#include "icgp/visp/visp_baseline.h"
+#include "icgp/visp/vpMbIcgTracker.h"
+#include "single_thread_scope.h"
+
+namespace icgp::app {
+namespace {
+
+const std::string kVispTracker = "vpMbGenericTracker";
+const std::string kIcgTracker = "vpMbIcgTracker";
+/// icgp's own tracker without the ViSP layer, the baseline of that layer's overhead.
+const std::string kCoreTracker = "icgp::Tracker (core)";
+/// The row every speed is compared with: ViSP's most complete RGB-D configuration.
+const std::string kReferenceConfig = "edge + KLT + dense depth";
+/// ViSP's configurations compared: the two most accurate RGB-D ones of visp_reference_configurations().
+const std::vector<std::string> kVispConfigs = {kReferenceConfig, "edge + dense depth"};
+
+struct CompareOptions {
+  std::string sequence = std::string(ICGP_SOURCE_TEST_DATA_DIR) + "/teabox-blender";
+  std::string config;
+  std::vector<std::string> modalities;
+  std::string summary;
+  int frames = 0;
+};
+
+struct CompareRow {
+  std::string tracker;
+  std::string config;
+  TrackingSummary summary;
+};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : " + ") + name;
+  return text;
+}
+
+/// Errors against the ground truth and timing of the track() calls of a run.
+TrackingSummary summarise(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                          const RgbdRun& run) {
+  TrackingEvaluation evaluation(mesh);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const Pose* truth = frames[i].truth(body);
+    evaluation.add(frames[i].index, run.poses[i], truth ? std::optional<Pose>(*truth) : std::nullopt, true,
+                   run.track_ms[i]);
+  }
+  return evaluation.summary();
+}
+
+void print_table(const std::vector<CompareRow>& rows, double reference_ms) {
+  std::printf("\n%-20s %-26s %8s %8s %9s %9s %10s %8s %14s\n", "tracker", "configuration", "mean mm", "max mm",
+              "mean deg", "max deg", "median ms", "Hz", "speed vs ViSP");
+  for (const CompareRow& row : rows) {
+    const TrackingSummary& s = row.summary;
+    std::printf("%-20s %-26s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", row.tracker.c_str(), row.config.c_str(),
+                s.mean_t_mm, s.max_t_mm, s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, reference_ms / s.median_ms);
+  }
+  std::printf(
+      "\n%s and %s run through the same ViSP-API code (grey image + organised point cloud);\n"
+      "%s is icgp's tracker on the colour and depth images, without the ViSP layer.\n"
+      "speed vs ViSP: median ms of %s '%s' / median ms of the row (> 1: faster).\n"
+      "Times are of the track() call alone, single thread (OpenMP and OpenCV limited to one);\n"
+      "compare them as ratios within one run: absolute values vary with the machine's load.\n",
+      kVispTracker.c_str(), kIcgTracker.c_str(), kCoreTracker.c_str(), kVispTracker.c_str(), kReferenceConfig.c_str());
+}
+
+void run_compare(const CompareOptions& o) {
+  const Sequence sequence = Sequence::open(o.sequence);
+  if (!sequence.has_ground_truth() || sequence.objects().size() != 1 || sequence.objects().front().mesh_path.empty())
+    throw std::runtime_error("compare needs a sequence with ground truth for one object with a ViSP model: " +
+                             o.sequence);
+  if (sequence.size() == 0) throw std::runtime_error("the sequence in " + o.sequence + " has no frames");
+  const SequenceObject& object = sequence.objects().front();
+  const VispModelFiles visp_files = VispModelFiles::beside_model(object.mesh_path);
+  const Mesh mesh = load_any_mesh(object.mesh_path);
+  TrackerConfig icgp_config = sequence_tracker_config(o.config, o.sequence);
+  if (!o.modalities.empty()) icgp_config.modalities = o.modalities;
+  const std::string icgp_name = joined(icgp_config.modalities);
+
+  const int n_frames = o.frames > 0 ? std::min(o.frames, sequence.size()) : sequence.size();
+  std::cerr << "loading " << n_frames << " frames of " << o.sequence << "\n";
+  std::vector<Frame> frames;
+  for (int i = 0; i < n_frames; ++i) frames.push_back(sequence.load(i));
+  const vpHomogeneousMatrix cMo0 = to_homogeneous_matrix(*frames.front().truth(object.name));
+
+  // Each job gives its row; the vpMbIcgTracker job also keeps its run for the overhead line.
+  RgbdRun icg_run;
+  struct Job {
+    std::string tracker, config;
+    std::function<TrackingSummary()> run;
+  };
+  std::vector<Job> jobs;
+  for (const std::string& name : kVispConfigs) {
+    jobs.push_back({kVispTracker, name, [&, name] {
+                      const std::unique_ptr<vpMbGenericTracker> tracker =
+                          make_visp_tracker(visp_reference_configuration(name), visp_files);
+                      return summarise(frames, object.name, mesh,
+                                       track_rgbd_sequence(*tracker, frames, visp_files, cMo0));
+                    }});
+  }
+  jobs.push_back({kIcgTracker, icgp_name, [&] {
+                    vpMbIcgTracker tracker;
+                    tracker.setTrackerConfig(icgp_config);
+                    icg_run = track_rgbd_sequence(tracker, frames, visp_files, cMo0);
+                    return summarise(frames, object.name, mesh, icg_run);
+                  }});
+  // icgp's own Tracker on the frames as icgp reads them (colour and depth images), timed
+  // as `icgp bench` does.
+  jobs.push_back({kCoreTracker, icgp_name, [&] { return run_icgp(frames, object.name, mesh, icgp_config); }});
+
+  std::cerr << "vpMbIcgTracker generates its viewpoint models on first use (10-30 s on 2 cores); later runs read them "
+               "from the cache\n";
+  std::vector<CompareRow> rows;
+  std::vector<std::string> failures;
+  const SingleThreadScope single_thread;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    const std::string name = jobs[j].tracker + " " + jobs[j].config;
+    std::cerr << "[" << j + 1 << "/" << jobs.size() << "] " << name << " ..." << std::flush;
+    const auto begin = std::chrono::steady_clock::now();
+    // A tracker that cannot run (no EGL for model generation, say) must not cost the
+    // others' results: it is reported and the command fails at the end.
+    try {
+      rows.push_back({jobs[j].tracker, jobs[j].config, jobs[j].run()});
+    } catch (const std::exception& e) {
+      std::cerr << " failed: " << e.what() << "\n";
+      failures.push_back(name);
+      continue;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    std::fprintf(stderr, " %d frames in %.1f s (including set-up)\n", n_frames, seconds);
+  }
+
+  double reference_ms = std::numeric_limits<double>::quiet_NaN();
+  double core_ms = std::numeric_limits<double>::quiet_NaN();
+  for (const CompareRow& row : rows) {
+    if (row.tracker == kVispTracker && row.config == kReferenceConfig) reference_ms = row.summary.median_ms;
+    if (row.tracker == kCoreTracker) core_ms = row.summary.median_ms;
+  }
+  print_table(rows, reference_ms);
+
+  // The ViSP layer's cost: everything a ViSP program spends per frame with vpMbIcgTracker
+  // (building the grey image and point cloud, then track(), which converts them back)
+  // beyond what icgp's Tracker::track takes on the same frames. NaN (null in the summary)
+  // when either run failed.
+  std::vector<double> layer_ms;
+  for (std::size_t i = 0; i < icg_run.track_ms.size(); ++i)
+    layer_ms.push_back(icg_run.convert_ms[i] + icg_run.track_ms[i]);
+  const double total_ms = median(layer_ms);
+  const double overhead_percent = (total_ms - core_ms) / total_ms * 100.0;
+  if (std::isfinite(overhead_percent))
+    std::printf(
+        "\nViSP-layer overhead of vpMbIcgTracker: median per frame through the ViSP API %.2f ms\n"
+        "(grey image + point cloud %.2f ms, track() %.2f ms) vs icgp::Tracker::track %.2f ms:\n"
+        "%.0f%% of the frame time.\n",
+        total_ms, median(icg_run.convert_ms), median(icg_run.track_ms), core_ms, overhead_percent);
+
+  if (!o.summary.empty()) {
+    std::vector<JsonObject> json_rows;
+    for (const CompareRow& row : rows) {
+      const TrackingSummary& s = row.summary;
+      json_rows.push_back(JsonObject()
+                              .add("tracker", row.tracker)
+                              .add("config", row.config)
+                              .add("mean_t_mm", s.mean_t_mm)
+                              .add("max_t_mm", s.max_t_mm)
+                              .add("mean_r_deg", s.mean_r_deg)
+                              .add("max_r_deg", s.max_r_deg)
+                              .add("median_ms", s.median_ms)
+                              .add("hz", s.hz));
+    }
+    JsonObject().add("rows", json_rows).add("visp_layer_overhead_percent", overhead_percent).write(o.summary);
+    std::cout << "wrote " << o.summary << "\n";
+  }
+  if (!failures.empty()) {
+    std::string names;
+    for (const std::string& name : failures) names += (names.empty() ? "" : ", ") + name;
+    throw std::runtime_error(std::to_string(failures.size()) + " tracker(s) failed: " + names);
+  }
+}
+
+}  // namespace
+
+void register_compare_command(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare",
+      "Run ViSP's vpMbGenericTracker and icgp's vpMbIcgTracker through the same ViSP-API code on one sequence");
+  cmd->add_option("--sequence", o->sequence, "Sequence with ground truth and a ViSP model (.cao + .xml files)")
+      ->check(CLI::ExistingDirectory)
+      ->capture_default_str();
+  cmd->add_option("--config", o->config,
+                  "icgp tracker configuration (YAML) for vpMbIcgTracker; default: the sequence folder's icgp.yaml, "
+                  "else the reference parameters")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--modalities", o->modalities,
+                  "vpMbIcgTracker's modalities, e.g. region,depth (overrides the configuration)")
+      ->delimiter(',');
+  cmd->add_option("--summary", o->summary,
+                  "Write the table as JSON: {\"rows\": [...], \"visp_layer_overhead_percent\": x}");
+  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
+  cmd->callback([o] { run_compare(*o); });
+}
+
+}  // namespace icgp::app

@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// vpMbIcgTracker reports misuse as a ViSP program expects from vpMbGenericTracker: a
+// vpException (or vpTrackingException) with ViSP's error code and a message naming the
+// file, camera or size at fault.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <visp3/core/vpException.h>
+#include <visp3/core/vpTrackingException.h>
+
+#include "icgp/visp/conversions.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
+#include "vpmbicgtracker_test_setup.h"
+
+using namespace icgp;
+using Catch::Matchers::Contains;
+
+namespace {
+
+/// The exception of type E (vpException or a subclass) that `call` throws; fails the test
+/// when it throws nothing (any other exception reaches Catch and fails it too).
+template <class E = vpException, class Call>
+E vp_exception_of(Call&& call) {
+  try {
+    call();
+  } catch (const E& e) {
+    return e;
+  }
+  FAIL("no exception was thrown");
+  return E(vpException::fatalError, "");
+}
+
+const std::string kTeaboxCao = (test::kTeaboxBlender / "teabox.cao").string();
+
+/// A tracker with the teabox model and the cameras of `frame`, as track_rgbd_sequence
+/// sets them up; initialised at the ground truth when `initialise`.
+struct RgbdFixture {
+  std::vector<Frame> frames = test::teabox_frames(1);
+  const Frame& frame = frames.front();
+  VispRgbdFrame input;
+  vpMbIcgTracker tracker;
+  std::map<std::string, const vpImage<unsigned char>*> images;
+  std::map<std::string, const std::vector<vpColVector>*> clouds;
+  std::map<std::string, unsigned int> widths, heights;
+
+  explicit RgbdFixture(bool initialise) {
+    test::configure_for_tests(tracker);
+    input.convert(frame);
+    tracker.loadModel(kTeaboxCao, kTeaboxCao);
+    tracker.setCameraParameters(to_camera_parameters(frame.colors.front().intrinsics),
+                                to_camera_parameters(frame.depths.front().intrinsics));
+    tracker.setCameraTransformationMatrix(kVispDepthCamera,
+                                          to_homogeneous_matrix(frame.depths.front().camera_T_reference));
+    if (initialise) tracker.initFromPose(input.grey, to_homogeneous_matrix(*frame.truth()));
+    images = {{kVispColorCamera, &input.grey}};
+    clouds = {{kVispDepthCamera, &input.point_cloud}};
+    widths = {{kVispDepthCamera, input.depth_width}};
+    heights = {{kVispDepthCamera, input.depth_height}};
+  }
+
+  void track() { tracker.track(images, clouds, widths, heights); }
+};
+
+}  // namespace
+
+TEST_CASE("vpMbIcgTracker: missing and unsupported files are ViSP exceptions naming the file") {
+  vpMbIcgTracker tracker;
+  const std::filesystem::path missing = std::filesystem::temp_directory_path() / "icgp-no-such-dir";
+
+  SECTION("missing mesh") {
+    const vpException e = vp_exception_of([&] { tracker.loadModel((missing / "box.obj").string()); });
+    CHECK(e.getCode() == vpException::ioError);
+    CHECK_THAT(e.getStringMessage(), Contains("box.obj"));
+  }
+  SECTION("missing .cao") {
+    const vpException e = vp_exception_of([&] { tracker.loadModel((missing / "box.cao").string()); });
+    CHECK(e.getCode() == vpException::ioError);
+    CHECK_THAT(e.getStringMessage(), Contains("box.cao"));
+  }
+  SECTION("unsupported model extension") {
+    // The file exists and holds points, so only the extension can be refused.
+    const std::filesystem::path xyz = std::filesystem::temp_directory_path() / "icgp-test-points.xyz";
+    std::ofstream(xyz) << "0 0 0\n0.1 0 0\n0 0.1 0\n";
+    const vpException e = vp_exception_of([&] { tracker.loadModel(xyz.string()); });
+    std::filesystem::remove(xyz);
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains(".xyz"));
+  }
+  SECTION("missing parameter file") {
+    const vpException e = vp_exception_of([&] { tracker.loadConfigFile((missing / "icgp.yaml").string(), false); });
+    CHECK(e.getCode() == vpException::ioError);
+    CHECK_THAT(e.getStringMessage(), Contains("icgp.yaml"));
+  }
+  SECTION("missing ViSP XML of the depth camera") {
+    const vpException e = vp_exception_of([&] {
+      tracker.loadConfigFile((test::kTeaboxBlender / "teabox.xml").string(), (missing / "depth.xml").string(), false);
+    });
+    CHECK(e.getCode() == vpException::ioError);
+    CHECK_THAT(e.getStringMessage(), Contains("depth.xml"));
+  }
+}
+
+TEST_CASE("vpMbIcgTracker: tracking before initFromPose is a vpTrackingException") {
+  RgbdFixture f(false);
+  const vpTrackingException e = vp_exception_of<vpTrackingException>([&] { f.track(); });
+  CHECK(e.getCode() == vpTrackingException::initializationError);
+  CHECK_THAT(e.getStringMessage(), Contains("initFromPose"));
+}
+
+TEST_CASE("vpMbIcgTracker: RGB-D maps with an unknown camera or a cloud of the wrong size are refused") {
+  RgbdFixture f(true);
+
+  SECTION("unknown camera in the point cloud maps") {
+    for (auto* map : {&f.widths, &f.heights}) (*map)["Camera3"] = (*map)[kVispDepthCamera];
+    f.clouds["Camera3"] = f.clouds[kVispDepthCamera];
+    const vpException e = vp_exception_of([&] { f.track(); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains("Camera3"));
+  }
+  SECTION("unknown camera in the image map") {
+    f.images["Camera3"] = &f.input.grey;
+    const vpException e = vp_exception_of([&] { f.track(); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains("Camera3"));
+  }
+  SECTION("cloud smaller than width x height") {
+    f.heights[kVispDepthCamera] += 1;
+    const vpException e = vp_exception_of([&] { f.track(); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains(std::to_string(f.input.point_cloud.size())));
+  }
+}
