@@ -37,9 +37,10 @@ void require_file(const std::string& path, const std::string& what) {
 }
 
 /// The <camera> block of a ViSP tracker XML file, read by ViSP's own parser.
-vpCameraParameters camera_of_visp_xml(const std::string& path) {
+vpCameraParameters camera_of_visp_xml(const std::string& path, bool verbose) {
   require_file(path, "configuration file");
   vpMbtXmlGenericParser parser(vpMbtXmlGenericParser::PROJECTION_ERROR_PARSER);
+  parser.setVerbose(verbose);
   parser.parse(path);
   vpCameraParameters camera;
   parser.getCameraParameters(camera);
@@ -126,7 +127,7 @@ void vpMbIcgTracker::loadConfigFile(const std::string& configFile, bool verbose)
     }
     if (verbose) std::cout << "vpMbIcgTracker: parameters from " << configFile << "\n";
   } else if (extension == ".xml") {
-    setCameraParameters(camera_of_visp_xml(configFile));
+    setCameraParameters(camera_of_visp_xml(configFile, verbose));
     if (verbose) std::cout << "vpMbIcgTracker: colour camera from " << configFile << "\n";
   } else {
     throw vpException(vpException::badValue, "vpMbIcgTracker: configuration file '" + configFile +
@@ -138,7 +139,7 @@ void vpMbIcgTracker::loadConfigFile(const std::string& colorConfigFile, const st
                                     bool verbose) {
   loadConfigFile(colorConfigFile, verbose);
   if (lower_extension(depthConfigFile) == ".xml") {
-    impl_->depth_camera = camera_of_visp_xml(depthConfigFile);
+    impl_->depth_camera = camera_of_visp_xml(depthConfigFile, verbose);
     if (verbose) std::cout << "vpMbIcgTracker: depth camera from " << depthConfigFile << "\n";
   } else {
     loadConfigFile(depthConfigFile, verbose);
