@@ -11,7 +11,6 @@
 #include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbtXmlGenericParser.h>
 
-#include "icgp/modality/iteration_value.h"
 #include "icgp/render/model_edges.h"
 #include "icgp/render/renderer.h"
 #include "icgp/visp/cao_mesh_loader.h"
