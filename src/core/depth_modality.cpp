@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "icgp/geometry/rounding.h"
 #include "icgp/modality/iteration_value.h"
 
 namespace icgp {
@@ -45,36 +46,41 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   const Intrinsics& k = depth.intrinsics;
   const Eigen::Vector2f centre = k.project<float>(point);
   const float half = considered_distance * static_cast<float>(k.fu) / point.z();
-  // At most considered_distance / stride_length samples along each side of the window: a
-  // sparse grid finds a surface point close enough for a point-to-plane error, and the
-  // first, widest search stays as cheap as the later ones.
-  const float samples_per_side = std::max(1.f, considered_distance / static_cast<float>(params_.stride_length));
-  const float step = std::max(1.f, 2.f * half / samples_per_side);
-  const int row_min = std::max(0, static_cast<int>(std::ceil(centre.y() - half)));
-  const int row_max = std::min(depth.depth.rows - 1, static_cast<int>(std::floor(centre.y() + half)));
-  const int col_min = std::max(0, static_cast<int>(std::ceil(centre.x() - half)));
-  const int col_max = std::min(depth.depth.cols - 1, static_cast<int>(std::floor(centre.x() + half)));
+  // The pixel the point projects to, then at most considered_distance / stride_length
+  // samples along each side of the window: a sparse grid finds a surface point close enough
+  // for a point-to-plane error, and the first, widest search stays as cheap as the later
+  // ones. The grid is the image lattice of multiples of `step`, not one of the window's
+  // own: the windows of neighbouring points then read the same pixels, so a frame reads
+  // (and converts, see DepthImage::source) few distinct pixels. The projected pixel itself
+  // keeps points near an edge from taking a sample across it as their closest at the
+  // right pose.
   float best = considered_distance * considered_distance;
   bool found = false;
   const float ifu = static_cast<float>(1.0 / k.fu), ifv = static_cast<float>(1.0 / k.fv);
   const float pu = static_cast<float>(k.pu), pv = static_cast<float>(k.pv);
-  for (float r = static_cast<float>(row_min); r <= row_max; r += step) {
-    const int row = static_cast<int>(r);
-    const float* depth_row = depth.depth.ptr<float>(row);
-    const float y_factor = (row - pv) * ifv;
-    for (float c = static_cast<float>(col_min); c <= col_max; c += step) {
-      const int col = static_cast<int>(c);
-      const float z = depth_row[col];
-      if (z <= 0.f) continue;
-      const Eigen::Vector3f P((col - pu) * ifu * z, y_factor * z, z);
-      const float d2 = (P - point).squaredNorm();
-      if (d2 < best) {
-        best = d2;
-        closest = P;
-        found = true;
-      }
+  const auto consider = [&](int row, int col) {
+    const float z = depth.at(row, col);
+    if (z <= 0.f) return;
+    const Eigen::Vector3f P((col - pu) * ifu * z, (row - pv) * ifv * z, z);
+    const float d2 = (P - point).squaredNorm();
+    if (d2 < best) {
+      best = d2;
+      closest = P;
+      found = true;
     }
-  }
+  };
+  const int centre_row = round_to_int(centre.y()), centre_col = round_to_int(centre.x());
+  if (centre_row >= 0 && centre_row < depth.depth.rows && centre_col >= 0 && centre_col < depth.depth.cols)
+    consider(centre_row, centre_col);
+
+  const float samples_per_side = std::max(1.f, considered_distance / static_cast<float>(params_.stride_length));
+  const int step = std::max(1, static_cast<int>(std::ceil(2.f * half / samples_per_side)));
+  const int row_min = std::max(0, lattice_ceil(centre.y() - half, step));
+  const int row_max = std::min(depth.depth.rows - 1, static_cast<int>(std::floor(centre.y() + half)));
+  const int col_min = std::max(0, lattice_ceil(centre.x() - half, step));
+  const int col_max = std::min(depth.depth.cols - 1, static_cast<int>(std::floor(centre.x() + half)));
+  for (int row = row_min; row <= row_max; row += step)
+    for (int col = col_min; col <= col_max; col += step) consider(row, col);
   return found;
 }
 

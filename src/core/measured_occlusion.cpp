@@ -13,21 +13,21 @@ bool MeasuredOcclusion::occluded(const DepthImage& depth, const Eigen::Vector3f&
   const Intrinsics& k = depth.intrinsics;
   const Eigen::Vector2f centre = k.project<float>(point);
   const float radius_px = static_cast<float>(radius * k.fu) / point.z();
-  // Five samples across the square are enough: occluders are larger than the radius, and
-  // the test runs for every line and point of a frame.
-  const float step = std::max(1.f, radius_px / 2.f);
+  // Samples one radius apart: an occluder wider than the radius that reaches into the
+  // square covers one of them, and the test runs for every line and point of a frame. They
+  // lie on the image lattice of multiples of `step`, so that the tests of neighbouring
+  // points read the same pixels (few distinct pixels per frame, see DepthImage::source).
+  const int step = std::max(1, static_cast<int>(std::ceil(radius_px)));
+  const int row_min = std::max(0, lattice_ceil(centre.y() - radius_px, step));
+  const int row_max = std::min(depth.depth.rows - 1, static_cast<int>(std::floor(centre.y() + radius_px)));
+  const int col_min = std::max(0, lattice_ceil(centre.x() - radius_px, step));
+  const int col_max = std::min(depth.depth.cols - 1, static_cast<int>(std::floor(centre.x() + radius_px)));
   const float limit = point.z() - depth_offset - static_cast<float>(threshold);
-  for (float dv = -radius_px; dv <= radius_px + 1e-3f; dv += step) {
-    const int row = round_to_int(centre.y() + dv);
-    if (row < 0 || row >= depth.depth.rows) continue;
-    const float* depth_row = depth.depth.ptr<float>(row);
-    for (float du = -radius_px; du <= radius_px + 1e-3f; du += step) {
-      const int col = round_to_int(centre.x() + du);
-      if (col < 0 || col >= depth.depth.cols) continue;
-      const float z = depth_row[col];
+  for (int row = row_min; row <= row_max; row += step)
+    for (int col = col_min; col <= col_max; col += step) {
+      const float z = depth.at(row, col);
       if (z > 0.f && z < limit) return true;
     }
-  }
   return false;
 }
 

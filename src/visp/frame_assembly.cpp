@@ -68,9 +68,9 @@ const vpImage<unsigned char>& FrameAssembler::grey_image() {
   return grey_;
 }
 
-cv::Mat& FrameAssembler::depth_to_fill(const std::string& camera, unsigned int width, unsigned int height,
-                                       const std::optional<vpCameraParameters>& parameters,
-                                       const vpHomogeneousMatrix& camera_M_color, const cv::Rect& region) {
+void FrameAssembler::set_depth(const std::string& camera, unsigned int width, unsigned int height,
+                               const std::optional<vpCameraParameters>& parameters,
+                               const vpHomogeneousMatrix& camera_M_color, DepthReader read) {
   require_camera(parameters.has_value(), camera);
   frame_.depths.resize(1);
   DepthImage& d = frame_.depths.front();
@@ -80,12 +80,17 @@ cv::Mat& FrameAssembler::depth_to_fill(const std::string& camera, unsigned int w
   const cv::Size size(static_cast<int>(width), static_cast<int>(height));
   if (d.depth.size() != size || d.depth.type() != CV_32FC1) {
     d.depth.create(size, CV_32FC1);
-    d.depth.setTo(0.f);
+    d.depth.setTo(DepthImage::kNotConverted);
   } else {
-    d.depth(filled_).setTo(0.f);
+    d.source.unconvert(d.depth);
   }
-  filled_ = region & cv::Rect(cv::Point(), size);
-  return d.depth;
+  d.source.set_reader(std::move(read));
+}
+
+void FrameAssembler::clear_depth() { frame_.depths.clear(); }
+
+void FrameAssembler::end_depth_reads() {
+  for (DepthImage& d : frame_.depths) d.source.drop_reader();
 }
 
 }  // namespace icgp

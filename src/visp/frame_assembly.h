@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,12 +28,20 @@ class FrameAssembler {
                  bool camera_set);
   void set_color(const std::string& camera, const vpImage<vpRGBa>& I, const vpCameraParameters& parameters,
                  bool camera_set);
-  /// A depth image in metres for the caller to fill inside `region`; everything else is 0
-  /// ("no measurement"). Only the previous frame's region is cleared, not the whole image.
-  cv::Mat& depth_to_fill(const std::string& camera, unsigned int width, unsigned int height,
-                         const std::optional<vpCameraParameters>& parameters, const vpHomogeneousMatrix& camera_M_color,
-                         const cv::Rect& region);
-  void clear_depth() { frame_.depths.clear(); }
+  /// Where a depth pixel comes from: metres at (row, col); 0, negative or not finite
+  /// means no measurement.
+  using DepthReader = std::function<float(int row, int col)>;
+  /// The frame's depth image, converted from `read` on first read of each pixel (see
+  /// DepthImage::source): the cues read a few thousand pixels, and reading a whole cloud
+  /// of ViSP's vpColVectors would cost as much as tracking. `read` is used until
+  /// end_depth_reads().
+  void set_depth(const std::string& camera, unsigned int width, unsigned int height,
+                 const std::optional<vpCameraParameters>& parameters, const vpHomogeneousMatrix& camera_M_color,
+                 DepthReader read);
+  void clear_depth();
+  /// Drops the reader of set_depth (which usually refers to the caller's cloud): pixels
+  /// not read so far read as "no measurement" from now on.
+  void end_depth_reads();
 
   const Frame& frame() const { return frame_; }
   /// The last colour image as ViSP grey, for ViSP's projection error.
@@ -40,7 +49,6 @@ class FrameAssembler {
 
  private:
   Frame frame_;
-  cv::Rect filled_;  ///< where the depth image may hold non-zero values
   cv::Mat rgba_view_;
   vpImage<unsigned char> grey_;
 };

@@ -48,27 +48,6 @@ vpCameraParameters camera_of_visp_xml(const std::string& path, bool verbose) {
 
 }  // namespace
 
-namespace {
-
-/// The part of the depth image the cues can read at pose cMo: the square around the
-/// object's bounding sphere, grown by the depth modality's widest search and by the motion
-/// a frame may bring (a quarter of the object's size). The whole image when the sphere
-/// reaches behind the camera.
-cv::Rect depth_region(const Eigen::Vector3d& centre_in_depth, double radius, const icgp::Intrinsics& k,
-                      const icgp::TrackerConfig& config) {
-  const cv::Rect whole(0, 0, k.width, k.height);
-  const auto& distances = config.depth.considered_distances;
-  const double search = distances.empty() ? 0.0 : *std::max_element(distances.begin(), distances.end());
-  const double grown = 1.25 * radius + search + config.depth.occlusion_radius;
-  if (!(centre_in_depth.z() > grown)) return whole;
-  const icgp::ImageSquare s = icgp::square_around_sphere(k, centre_in_depth, grown, 0.0);
-  const cv::Rect square(static_cast<int>(std::floor(s.u_min)), static_cast<int>(std::floor(s.v_min)),
-                        static_cast<int>(std::ceil(s.size)) + 2, static_cast<int>(std::ceil(s.size)) + 2);
-  return square & whole;
-}
-
-}  // namespace
-
 struct vpMbIcgTracker::Impl {
   icgp::TrackerConfig config;
   icgp::Mesh mesh;
@@ -81,8 +60,6 @@ struct vpMbIcgTracker::Impl {
   vpHomogeneousMatrix depth_M_color;
 
   icgp::FrameAssembler assembler;
-  Eigen::Vector3d sphere_centre = Eigen::Vector3d::Zero();  ///< bounding sphere, object frame
-  double sphere_radius = 0.0;
   double quality = 0.0;
   std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
 
@@ -97,13 +74,6 @@ struct vpMbIcgTracker::Impl {
   }
 
   void model_changed() {
-    Eigen::Vector3f lo, hi;
-    mesh.bounds(lo, hi);
-    sphere_centre = (0.5f * (lo + hi)).cast<double>();
-    sphere_radius = 0.0;
-    for (const icgp::MeshPart& part : mesh.parts)
-      for (const Eigen::Vector3f& v : part.vertices)
-        sphere_radius = std::max(sphere_radius, (v.cast<double>() - sphere_centre).norm());
     tracker.reset();
     edges.reset();
     renderer.reset();
@@ -326,18 +296,10 @@ void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color) {
 
 namespace {
 
-/// Only the part of a cloud inside `region` is converted, the rest stays "no measurement":
-/// the cues read depth only around the object, and converting all of a 640x480 cloud of
-/// separately allocated vpColVectors would cost as much as tracking.
-void fill_from_cloud(const std::vector<vpColVector>& cloud, unsigned int width, cv::Mat& depth, const cv::Rect& region) {
-  for (int v = region.y; v < region.y + region.height; ++v) {
-    float* row = depth.ptr<float>(v);
-    const vpColVector* points = cloud.data() + static_cast<std::size_t>(v) * width;
-    for (int u = region.x; u < region.x + region.width; ++u) {
-      const double z = points[u].size() >= 3 ? points[u][2] : 0.0;
-      row[u] = z > 0.0 && std::isfinite(z) ? static_cast<float>(z) : 0.f;
-    }
-  }
+/// Z of an organised cloud's point, ViSP's zero-length vectors included.
+float cloud_depth(const std::vector<vpColVector>& cloud, unsigned int width, int row, int col) {
+  const vpColVector& point = cloud[static_cast<std::size_t>(row) * width + col];
+  return point.size() >= 3 ? static_cast<float>(point[2]) : 0.f;
 }
 
 /// The one organised cloud of "Camera2" in ViSP's map form, with its size checked.
@@ -369,7 +331,7 @@ const std::vector<vpColVector>& cloud_of_depth_camera(std::map<std::string, cons
 
 template <typename Image>
 void vpMbIcgTracker::track_with_depth(std::map<std::string, const Image*>& images, unsigned int depthWidth,
-                                      unsigned int depthHeight, const DepthFiller& fill) {
+                                      unsigned int depthHeight, DepthReader read) {
   const Image* color = nullptr;
   for (const auto& [name, image] : images) {
     if (name == kColorCamera)
@@ -379,42 +341,34 @@ void vpMbIcgTracker::track_with_depth(std::map<std::string, const Image*>& image
                                                    "' in the images (the cameras are \"Camera1\" and \"Camera2\")");
   }
   if (!color) throw vpException(vpException::badValue, "vpMbIcgTracker::track: no image of \"Camera1\"");
-  track_with_depth(*color, depthWidth, depthHeight, fill);
+  track_with_depth(*color, depthWidth, depthHeight, std::move(read));
 }
 
 template void vpMbIcgTracker::track_with_depth(std::map<std::string, const vpImage<unsigned char>*>&, unsigned int,
-                                               unsigned int, const DepthFiller&);
+                                               unsigned int, DepthReader);
 template void vpMbIcgTracker::track_with_depth(std::map<std::string, const vpImage<vpRGBa>*>&, unsigned int,
-                                               unsigned int, const DepthFiller&);
+                                               unsigned int, DepthReader);
 
-void vpMbIcgTracker::prepare_depth(unsigned int width, unsigned int height, const DepthFiller& fill,
-                                   bool depthFromColorCamera) {
+void vpMbIcgTracker::set_depth(unsigned int width, unsigned int height, DepthReader read, bool depthFromColorCamera) {
   Impl& d = *impl_;
   const std::optional<vpCameraParameters> camera = depthFromColorCamera ? std::optional(m_cam) : d.depth_camera;
   const vpHomogeneousMatrix M = depthFromColorCamera ? vpHomogeneousMatrix() : d.depth_M_color;
-  cv::Rect region(0, 0, static_cast<int>(width), static_cast<int>(height));
-  if (camera && camera->get_projModel() == vpCameraParameters::perspectiveProjWithoutDistortion) {
-    const icgp::Intrinsics k = icgp::to_intrinsics(*camera, static_cast<int>(width), static_cast<int>(height));
-    const Eigen::Vector3d centre = icgp::to_pose(M) * (icgp::to_pose(m_cMo) * d.sphere_centre);
-    region = depth_region(centre, d.sphere_radius, k, d.config);
-  }
-  cv::Mat& depth = d.assembler.depth_to_fill(kDepthCamera, width, height, camera, M, region);
-  fill(depth, region);
+  d.assembler.set_depth(kDepthCamera, width, height, camera, M, std::move(read));
 }
 
 void vpMbIcgTracker::track_with_depth(const vpImage<unsigned char>& I, unsigned int depthWidth,
-                                      unsigned int depthHeight, const DepthFiller& fill, bool depthFromColorCamera) {
+                                      unsigned int depthHeight, DepthReader read, bool depthFromColorCamera) {
   impl_->require_initialised();
   impl_->assembler.set_color(kColorCamera, I, m_cam, impl_->color_camera_set);
-  prepare_depth(depthWidth, depthHeight, fill, depthFromColorCamera);
+  set_depth(depthWidth, depthHeight, std::move(read), depthFromColorCamera);
   track_current_frame(&I);
 }
 
 void vpMbIcgTracker::track_with_depth(const vpImage<vpRGBa>& I, unsigned int depthWidth, unsigned int depthHeight,
-                                      const DepthFiller& fill, bool depthFromColorCamera) {
+                                      DepthReader read, bool depthFromColorCamera) {
   impl_->require_initialised();
   impl_->assembler.set_color(kColorCamera, I, m_cam, impl_->color_camera_set);
-  prepare_depth(depthWidth, depthHeight, fill, depthFromColorCamera);
+  set_depth(depthWidth, depthHeight, std::move(read), depthFromColorCamera);
   track_current_frame(nullptr);
 }
 
@@ -426,7 +380,7 @@ void vpMbIcgTracker::track(std::map<std::string, const vpImage<unsigned char>*>&
   const auto& cloud =
       cloud_of_depth_camera(mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights, width, height);
   track_with_depth(mapOfImages, width, height,
-                   [&](cv::Mat& depth, const cv::Rect& region) { fill_from_cloud(cloud, width, depth, region); });
+                   [&cloud, width](int row, int col) { return cloud_depth(cloud, width, row, col); });
 }
 
 void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
@@ -437,38 +391,42 @@ void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfC
   const auto& cloud =
       cloud_of_depth_camera(mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights, width, height);
   track_with_depth(mapOfColorImages, width, height,
-                   [&](cv::Mat& depth, const cv::Rect& region) { fill_from_cloud(cloud, width, depth, region); });
+                   [&cloud, width](int row, int col) { return cloud_depth(cloud, width, row, col); });
 }
 
 namespace {
 
-/// Raw depth times the scale, converted only inside `region` (see fill_from_cloud).
-std::function<void(cv::Mat&, const cv::Rect&)> raw_depth_filler(const vpImage<uint16_t>& raw, double scale) {
+/// Raw depth times the scale.
+std::function<float(int, int)> raw_depth_reader(const vpImage<uint16_t>& raw, double scale) {
   if (!(scale > 0.0) || !std::isfinite(scale))
     throw vpException(vpException::badValue,
                       "vpMbIcgTracker::track: the depth scale must be positive (metres per raw unit), got " +
                           std::to_string(scale));
-  return [&raw, scale](cv::Mat& depth, const cv::Rect& region) {
-    const cv::Mat raw_view(depth.rows, depth.cols, CV_16UC1, const_cast<uint16_t*>(raw.bitmap));
-    raw_view(region).convertTo(depth(region), CV_32F, scale);
+  return [&raw, scale = static_cast<float>(scale)](int row, int col) {
+    return scale * raw[static_cast<unsigned int>(row)][col];
   };
 }
 
 }  // namespace
 
 void vpMbIcgTracker::track(const vpImage<unsigned char>& I, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
-  track_with_depth(I, I_depth_raw.getWidth(), I_depth_raw.getHeight(), raw_depth_filler(I_depth_raw, depthScale));
+  track_with_depth(I, I_depth_raw.getWidth(), I_depth_raw.getHeight(), raw_depth_reader(I_depth_raw, depthScale));
 }
 
 void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
   track_with_depth(I_color, I_depth_raw.getWidth(), I_depth_raw.getHeight(),
-                   raw_depth_filler(I_depth_raw, depthScale));
+                   raw_depth_reader(I_depth_raw, depthScale));
 }
 
 void vpMbIcgTracker::track_current_frame(const vpImage<unsigned char>* grey) {
   Impl& d = *impl_;
   const icgp::Frame& frame = d.assembler.frame();
   icgp::Body& body = d.tracker->body(kBody);
+  // The depth reader refers to the caller's cloud, which is only known valid during this call.
+  struct EndDepthReads {
+    icgp::FrameAssembler& assembler;
+    ~EndDepthReads() { assembler.end_depth_reads(); }
+  } end_depth_reads{d.assembler};
   try {
     if (d.start_pending) {
       body.reference_T_body = icgp::to_pose(m_cMo);

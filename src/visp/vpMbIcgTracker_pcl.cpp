@@ -4,7 +4,6 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
-#include <cmath>
 #include <visp3/core/vpException.h>
 
 #include "icgp/visp/vpMbIcgTracker.h"
@@ -35,15 +34,10 @@ const pcl::PointCloud<pcl::PointXYZ>& depth_camera_cloud(
   return *cloud;
 }
 
-/// Z of the points inside `region` (the part of the image the cues read).
+/// Z of an organised cloud's point.
 template <typename Point>
-void fill_z(const pcl::PointCloud<Point>& cloud, cv::Mat& depth, const cv::Rect& region) {
-  for (int v = region.y; v < region.y + region.height; ++v) {
-    float* row = depth.ptr<float>(v);
-    const Point* points = cloud.points.data() + static_cast<std::size_t>(v) * cloud.width;
-    for (int u = region.x; u < region.x + region.width; ++u)
-      row[u] = points[u].z > 0.f && std::isfinite(points[u].z) ? points[u].z : 0.f;
-  }
+float cloud_depth(const pcl::PointCloud<Point>& cloud, int row, int col) {
+  return cloud.points[static_cast<std::size_t>(row) * cloud.width + col].z;
 }
 
 }  // namespace
@@ -52,14 +46,14 @@ void vpMbIcgTracker::track(std::map<std::string, const vpImage<unsigned char>*>&
                            std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& mapOfPointClouds) {
   const pcl::PointCloud<pcl::PointXYZ>& cloud = depth_camera_cloud(mapOfPointClouds);
   track_with_depth(mapOfImages, cloud.width, cloud.height,
-                   [&](cv::Mat& depth, const cv::Rect& region) { fill_z(cloud, depth, region); });
+                   [&cloud](int row, int col) { return cloud_depth(cloud, row, col); });
 }
 
 void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
                            std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& mapOfPointClouds) {
   const pcl::PointCloud<pcl::PointXYZ>& cloud = depth_camera_cloud(mapOfPointClouds);
   track_with_depth(mapOfColorImages, cloud.width, cloud.height,
-                   [&](cv::Mat& depth, const cv::Rect& region) { fill_z(cloud, depth, region); });
+                   [&cloud](int row, int col) { return cloud_depth(cloud, row, col); });
 }
 
 void vpMbIcgTracker::track(const std::shared_ptr<const pcl::PointCloud<pcl::PointXYZRGBA>>& cloud) {
@@ -71,6 +65,6 @@ void vpMbIcgTracker::track(const std::shared_ptr<const pcl::PointCloud<pcl::Poin
     color.bitmap[i] = vpRGBa(p.r, p.g, p.b, p.a);
   }
   track_with_depth(color, cloud->width, cloud->height,
-                   [&](cv::Mat& depth, const cv::Rect& region) { fill_z(*cloud, depth, region); },
+                   [&cloud](int row, int col) { return cloud_depth(*cloud, row, col); },
                    /*depthFromColorCamera=*/true);
 }

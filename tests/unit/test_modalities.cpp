@@ -5,6 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <limits>
+#include <utility>
 #include <opencv2/imgproc.hpp>
 
 #include "icgp/io/mesh_loader.h"
@@ -75,8 +77,8 @@ void check_gradient(Modality& modality, const Frame& frame, int corr_iter) {
 
 /// Tracks `frame` three times with region + depth after learning the colour statistics at
 /// the true pose (where tracking would have left the object) and throwing the pose off by
-/// 5 mm and 5 degrees; checks the result against the truth.
-void check_convergence(const Frame& frame) {
+/// 5 mm and 5 degrees; checks the result against the truth and returns it.
+Pose check_convergence(const Frame& frame) {
   Fixture& f = Fixture::instance();
   Tracker tracker;
   Body& body = tracker.add_body({"box", f.mesh, f.truth});
@@ -95,6 +97,7 @@ void check_convergence(const Frame& frame) {
   CHECK(t_mm < 0.5);
   CHECK(r_deg < 0.2);
   CHECK(results[0].tracked);
+  return body.reference_T_body;
 }
 
 }  // namespace
@@ -178,6 +181,68 @@ TEST_CASE("tracker: region + depth converge on a grey image too") {
   Frame frame = scene.render(f.truth);
   cv::cvtColor(frame.colors[0].image, frame.colors[0].image, cv::COLOR_BGR2GRAY);
   check_convergence(frame);
+}
+
+TEST_CASE("depth image: pixels not converted are read once from their source, then kept") {
+  DepthImage image{"Camera2", Intrinsics{500.0, 500.0, 2.0, 1.5, 4, 3}, Pose(),
+                   cv::Mat(3, 4, CV_32FC1, cv::Scalar(DepthImage::kNotConverted))};
+  image.depth.at<float>(0, 0) = 0.7f;  // converted already: the source is not asked
+  const cv::Mat source = (cv::Mat_<float>(3, 4) << 0.f, 0.5f, -2.f, 1.f,  //
+                          std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 0.8f, 2.f,
+                          3.f, 3.f, 3.f, 3.f);
+  int reads = 0;
+  image.source.set_reader([&](int row, int col) {
+    ++reads;
+    return source.at<float>(row, col);
+  });
+
+  CHECK(image.at(0, 0) == 0.7f);
+  CHECK(image.at(0, 1) == 0.5f);
+  CHECK(image.at(0, 1) == 0.5f);
+  CHECK(reads == 1);
+  // Anything but a positive finite depth is "no measurement".
+  CHECK(image.at(0, 2) == 0.f);
+  CHECK(image.at(1, 0) == 0.f);
+  CHECK(image.at(1, 1) == 0.f);
+  CHECK(image.at(1, 2) == 0.8f);
+  CHECK(reads == 5);
+
+  SECTION("unconvert: exactly the converted pixels are read again") {
+    image.source.unconvert(image.depth);
+    CHECK(image.depth.at<float>(0, 0) == 0.7f);
+    for (const auto& [row, col] : {std::pair{0, 1}, {0, 2}, {1, 0}, {1, 1}, {1, 2}})
+      CHECK(image.depth.at<float>(row, col) == DepthImage::kNotConverted);
+    CHECK(image.at(0, 1) == 0.5f);
+    CHECK(reads == 6);
+  }
+  SECTION("without a reader, pixels not converted read as no measurement and stay unconverted") {
+    image.source.drop_reader();
+    CHECK(image.at(2, 3) == 0.f);
+    CHECK(image.depth.at<float>(2, 3) == DepthImage::kNotConverted);
+    CHECK(image.at(0, 1) == 0.5f);
+  }
+}
+
+TEST_CASE("tracker: depth converted on read tracks exactly as the dense image, reading few pixels") {
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
+  const Frame dense = scene.render(f.truth);
+  Frame lazy = dense;
+  const cv::Mat measured = dense.depths[0].depth;
+  lazy.depths[0].depth = cv::Mat(measured.size(), CV_32FC1, cv::Scalar(DepthImage::kNotConverted));
+  int reads = 0;
+  lazy.depths[0].source.set_reader([&](int row, int col) {
+    ++reads;
+    return measured.at<float>(row, col);
+  });
+
+  const Pose from_dense = check_convergence(dense);
+  const Pose from_lazy = check_convergence(lazy);
+  CHECK((from_dense.matrix() - from_lazy.matrix()).norm() == 0.0);
+  // Each pixel is read once, and the cues read a small part of the image.
+  CHECK(reads == cv::countNonZero(lazy.depths[0].depth != DepthImage::kNotConverted));
+  INFO(reads << " of " << measured.total() << " pixels read");
+  CHECK(reads < static_cast<int>(measured.total()) / 20);
 }
 
 TEST_CASE("build_tracker: one region modality per region of a multi-region object") {

@@ -198,19 +198,19 @@ class vpMbIcgTracker : public vpMbTracker {
 
  private:
   struct Impl;
-  /// Writes measured depth (metres, 0: none) into the cleared depth image, at least inside
-  /// `region` (the part the cues read).
-  using DepthFiller = std::function<void(cv::Mat& depth, const cv::Rect& region)>;
-  /// Tracks the colour camera's image with a depth image of depthWidth x depthHeight that
-  /// `fill` writes; `depthFromColorCamera`: seen by "Camera1" itself (one registered cloud).
+  /// The measured depth at a depth pixel (metres; 0, negative or not finite: none), read
+  /// only where the cues look.
+  using DepthReader = std::function<float(int row, int col)>;
+  /// Tracks the colour camera's image with a depth image of depthWidth x depthHeight read
+  /// through `read`; `depthFromColorCamera`: seen by "Camera1" itself (one registered cloud).
   template <typename Image>
   void track_with_depth(std::map<std::string, const Image*>& images, unsigned int depthWidth,
-                        unsigned int depthHeight, const DepthFiller& fill);
+                        unsigned int depthHeight, DepthReader read);
   void track_with_depth(const vpImage<unsigned char>& I, unsigned int depthWidth, unsigned int depthHeight,
-                        const DepthFiller& fill, bool depthFromColorCamera = false);
+                        DepthReader read, bool depthFromColorCamera = false);
   void track_with_depth(const vpImage<vpRGBa>& I, unsigned int depthWidth, unsigned int depthHeight,
-                        const DepthFiller& fill, bool depthFromColorCamera = false);
-  void prepare_depth(unsigned int width, unsigned int height, const DepthFiller& fill, bool depthFromColorCamera);
+                        DepthReader read, bool depthFromColorCamera = false);
+  void set_depth(unsigned int width, unsigned int height, DepthReader read, bool depthFromColorCamera);
   void track_current_frame(const vpImage<unsigned char>* grey);
   std::unique_ptr<Impl> impl_;
   vpColVector m_error, m_w;
