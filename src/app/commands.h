@@ -17,6 +17,7 @@ void register_bench_command(CLI::App& app);
 void register_compare_command(CLI::App& app);
 void register_model_command(CLI::App& app);
 void register_config_command(CLI::App& app);
+void register_servo_command(CLI::App& app);
 
 /// The tracker configuration for a sequence: the explicit file when given, else the
 /// sequence folder's own icgp.yaml (as ViSP data folders carry their tracker XML), else the
@@ -32,5 +33,8 @@ void run_ablation(const std::string& summary_path, int frame_limit);
 std::string models_dir();
 /// The default model, rendered and tracked when no model is given.
 std::string default_model_path();
+/// The scenario `icgp servo` runs when none is given: scenarios/default.yaml, installed
+/// beside the models or in the source tree.
+std::string default_scenario_path();
 
 }  // namespace icgp::app

@@ -68,6 +68,11 @@ JsonObject& JsonObject::add(const std::string& key, std::vector<JsonObject> arra
   return *this;
 }
 
+JsonObject& JsonObject::add(const std::string& key, JsonObject object) {
+  fields_.emplace_back(key, std::make_shared<const JsonObject>(std::move(object)));
+  return *this;
+}
+
 JsonObject& JsonObject::add_fields(const JsonObject& other) {
   fields_.insert(fields_.end(), other.fields_.begin(), other.fields_.end());
   return *this;
@@ -95,28 +100,50 @@ void JsonObject::dump(std::string& out, int level) const {
       out += *flag ? "true" : "false";
     } else if (const auto* text = std::get_if<std::string>(&value)) {
       append_string(out, *text);
+    } else if (const auto* array = std::get_if<std::vector<JsonObject>>(&value)) {
+      dump_array(out, *array, level + 1);
     } else {
-      const auto& array = std::get<std::vector<JsonObject>>(value);
-      out += "[";
-      for (std::size_t k = 0; k < array.size(); ++k) {
-        out += k == 0 ? "\n" : ",\n";
-        out += indentation(level + 2);
-        array[k].dump(out, level + 2);
-      }
-      if (!array.empty()) out += "\n" + indentation(level + 1);
-      out += "]";
+      std::get<std::shared_ptr<const JsonObject>>(value)->dump(out, level + 1);
     }
   }
   if (!fields_.empty()) out += "\n" + indentation(level);
   out += "}";
 }
 
-void JsonObject::write(const std::string& path) const {
+void JsonObject::dump_array(std::string& out, const std::vector<JsonObject>& array, int level) {
+  out += "[";
+  for (std::size_t k = 0; k < array.size(); ++k) {
+    out += k == 0 ? "\n" : ",\n";
+    out += indentation(level + 1);
+    array[k].dump(out, level + 1);
+  }
+  if (!array.empty()) out += "\n" + indentation(level);
+  out += "]";
+}
+
+std::string JsonObject::dump_array(const std::vector<JsonObject>& array) {
+  std::string out;
+  dump_array(out, array, 0);
+  return out;
+}
+
+namespace {
+
+void write_json_text(const std::string& path, const std::string& text) {
   const std::filesystem::path file(path);
-  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  std::error_code error;
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), error);
   std::ofstream out(file);
-  out << dump() << "\n";
+  out << text << "\n";
   if (!out) throw std::runtime_error("cannot write JSON file '" + path + "'");
+}
+
+}  // namespace
+
+void JsonObject::write(const std::string& path) const { write_json_text(path, dump()); }
+
+void JsonObject::write_array(const std::vector<JsonObject>& array, const std::string& path) {
+  write_json_text(path, dump_array(array));
 }
 
 }  // namespace icgp

@@ -219,6 +219,15 @@ bool is_file_name_safe(const std::string& name) {
 
 }  // namespace
 
+cv::Mat procedural_clutter_texture(std::uint64_t seed) {
+  Random random = stream(seed, kBackgroundStream);
+  return procedural_texture(random);
+}
+
+Mesh tiled_plane(const cv::Mat& texture, double half_extent, double tile) {
+  return background_plane(texture, Eigen::Vector2d::Zero(), 0.0, half_extent, tile);
+}
+
 double OrbitTrajectory::Signal::at(double seconds) const {
   double sum = 0.0, total_weight = 0.0;
   for (int k = 0; k < 3; ++k) {
@@ -312,8 +321,8 @@ void SequenceWriter::write(const std::string& dir_name) const {
   std::vector<Renderer::BodyHandle> bodies;
   for (std::size_t i = 0; i < objects_.size(); ++i) bodies.push_back(renderer.add_body(objects_[i].mesh, std::uint8_t(i + 1)));
   if (o.background.enabled) {
-    Random random = stream(o.seed, kBackgroundStream);
-    const cv::Mat texture = o.background.texture_bgr.empty() ? procedural_texture(random) : o.background.texture_bgr;
+    const cv::Mat texture =
+        o.background.texture_bgr.empty() ? procedural_clutter_texture(o.seed) : o.background.texture_bgr;
     const Eigen::Vector3d& target = o.motion.target;
     renderer.add_body(background_plane(texture, target.head<2>(), target.z() - o.background.distance,
                                        background_half_extent(o), o.background.tile_size),

@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// A servo scenario: the scene, the sensor, the robot, the tracker and the control law of one
+// closed-loop run, as read from a YAML file in scenarios/.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "icgp/geometry/intrinsics.h"
+#include "icgp/geometry/pose.h"
+
+namespace icgp::servo {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+/// A scenario file that cannot be used. The message names the file and the field
+/// ("scenarios/x.yaml: control.gain: expected a positive number, got 'fast'").
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What moves the camera (or the object) in answer to the control law.
+enum class RobotKind {
+  kFreeFlyingCamera,    ///< ViSP's vpSimulatorCamera: the camera follows the commanded twist
+  kViper850EyeInHand,   ///< camera on the flange of a Viper 850 arm, joint velocities
+  kViper850EyeToHand,   ///< fixed camera watching the object held by a Viper 850 arm
+};
+
+enum class ControlLawKind {
+  kPbvs,  ///< position-based: s = (t(cdMc), θu(cdRc)), s* = 0
+  kIbvs,  ///< image-based: projected bounding-box corners (x, y) against their desired positions
+};
+
+enum class TrackerKind {
+  kIcgp,    ///< vpMbIcgTracker
+  kVisp,    ///< vpMbGenericTracker
+  kOracle,  ///< the ground-truth pose
+};
+
+/// The tracked object. Its world placement follows from the robot's start and the initial
+/// camera-object pose (Scenario::initial_cMo), so scenarios state what the camera sees.
+struct ObjectSpec {
+  /// The mesh file. In YAML: a folder of models/ ("textured_box":
+  /// models/textured_box/textured_box.obj or object.obj) or a path relative to the scenario
+  /// file; load_scenario stores the resolved path.
+  std::string model;
+  /// Meshes of the object's colour regions (multi-region tracking), resolved the same way.
+  std::vector<std::string> regions;
+  /// Moving target: constant linear velocity (m/s, world frame) during [start, start +
+  /// duration] seconds of simulated time. Zero: static.
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
+  double motion_start = 0.0;
+  double motion_duration = 0.0;
+};
+
+/// A box that crosses the scene at constant velocity (a passing occluder).
+struct OccluderSpec {
+  Eigen::Vector3d size{0.03, 0.3, 0.03};  ///< metres, box edges along its x, y, z
+  /// Where it is at time `start`, in the initial camera frame (x right, y down, z forward).
+  Eigen::Vector3d start_position_in_camera{-0.2, 0.0, 0.3};
+  Eigen::Vector3d velocity_in_camera{0.1, 0.0, 0.0};  ///< m/s, in the initial camera frame
+  double start = 0.0;                                   ///< seconds
+};
+
+/// What stands behind the object.
+struct BackgroundSpec {
+  bool enabled = true;
+  std::string texture;    ///< image file (resolved; YAML: relative to the scenario); empty = procedural clutter
+  double distance = 0.3;  ///< metres behind the object's origin, along the initial optical axis
+};
+
+/// Sensor imperfections. Zero (and 90 deg) = exact renders.
+struct NoiseSpec {
+  double color_sigma = 0.0;        ///< Gaussian noise per colour channel, 8-bit levels
+  double depth_sigma_at_1m = 0.0;  ///< depth noise sigma = this * Z^2 metres
+  double depth_dropout = 0.0;      ///< fraction of depth pixels randomly missing
+  /// Depth is missing where the surface is seen more obliquely than this (angle between
+  /// its normal and the viewing ray), as on real sensors at grazing angles.
+  double grazing_angle_deg = 90.0;
+  /// Depth is missing within this many pixels of a depth discontinuity (flying pixels removed).
+  int edge_dropout_px = 0;
+  /// Exposure as a fraction of the frame period: the colour image averages renders over the
+  /// last `motion_blur` of the camera's motion between frames. 0 = sharp.
+  double motion_blur = 0.0;
+  double frame_drop = 0.0;  ///< probability that a frame is lost (the tracker gets nothing new)
+};
+
+/// The RGB-D sensor.
+struct CameraSpec {
+  Intrinsics color = Intrinsics::centred(640, 480, 600.0);
+  Intrinsics depth = Intrinsics::centred(640, 480, 600.0);
+  Pose depth_T_color;  ///< colour camera -> depth camera (ViSP's depth_M_color)
+  double rate_hz = 30.0;
+  NoiseSpec noise;
+};
+
+struct TrackerSpec {
+  TrackerKind kind = TrackerKind::kIcgp;
+  /// icgp: modalities ("region", "depth", "texture"); empty = the configuration's.
+  std::vector<std::string> modalities;
+  /// icgp: tracker configuration YAML (resolved; YAML: relative to the scenario); empty =
+  /// reference defaults.
+  std::string config;
+  /// visp: one of icgp::visp_reference_configurations() ("edge + KLT + dense depth", ...).
+  std::string visp_configuration = "edge + KLT + dense depth";
+};
+
+/// vpAdaptiveGain(at_zero, at_infinity, slope_at_zero); a constant gain when at_zero ==
+/// at_infinity.
+struct GainSpec {
+  double at_zero = 0.5;
+  double at_infinity = 0.5;
+  double slope_at_zero = 30.0;
+  bool adaptive() const { return at_zero != at_infinity; }
+};
+
+struct ControlSpec {
+  ControlLawKind law = ControlLawKind::kPbvs;
+  GainSpec gain;
+  double max_linear_velocity = 0.1;   ///< m/s, free-flying camera saturation
+  double max_angular_velocity = 0.5;  ///< rad/s (YAML: deg/s), free-flying camera saturation
+  double max_joint_velocity = 1.0;    ///< rad/s, arms only (YAML: deg/s)
+};
+
+/// When a run ends, and what counts as success.
+struct StopSpec {
+  /// Success: the true final pose is this close to the desired pose.
+  double converged_translation = 0.001;  ///< metres (YAML: mm)
+  double converged_rotation = 0.1 * kDegree;  ///< radians (YAML: deg)
+  /// The run stops when the servo error as the tracker estimates it has stayed below half
+  /// the thresholds this long: the other half is left to the tracker's own error.
+  double settle_time = 0.2;  ///< seconds
+  double max_time = 20.0;    ///< seconds of simulated time
+};
+
+/// Batch trials: the initial pose is the scenario's, moved by a random translation and
+/// rotation of at most these sizes (uniform direction and size).
+struct TrialSpec {
+  double translation = 0.02;                               ///< metres (YAML: mm)
+  double rotation = 10.0 * kDegree;  ///< radians (YAML: deg)
+};
+
+/// Viper 850 settings (arm scenarios).
+struct ArmSpec {
+  /// Joint angles at the start, radians (YAML: deg). Eye-in-hand: the object is placed so
+  /// that the camera sees it at initial_cMo. Eye-to-hand: the fixed camera is placed so
+  /// that it sees the held object at initial_cMo.
+  /// The default, (0, -60, 170, 0, 70, 0) deg, keeps the elbow well away from the Viper's
+  /// singularity at q3 ~ 102 deg, the camera looking down 0.7 m in front of the base.
+  Eigen::Matrix<double, 6, 1> initial_joints =
+      (Eigen::Matrix<double, 6, 1>() << 0, -60 * kDegree, 170 * kDegree, 0, 70 * kDegree, 0).finished();
+  /// Eye-to-hand: the object in the end-effector frame (how it is held).
+  Pose eMo = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.0, 0.1));
+};
+
+struct Scenario {
+  std::string name;         ///< from the file name unless given
+  std::string description;  ///< one line for the summary
+  std::string file;         ///< where it was read from
+  RobotKind robot = RobotKind::kFreeFlyingCamera;
+  ArmSpec arm;
+  ObjectSpec object;
+  std::optional<OccluderSpec> occluder;
+  BackgroundSpec background;
+  CameraSpec camera;
+  /// Camera-object poses (ViSP cMo): where the run starts, and where the servo must bring it.
+  Pose initial_cMo;
+  Pose desired_cMo;
+  TrackerSpec tracker;
+  ControlSpec control;
+  StopSpec stop;
+  TrialSpec trials;
+  unsigned seed = 1;  ///< noise and randomised starts
+};
+
+/// Reads and validates a scenario. Relative paths in it are resolved against the file's
+/// folder, model names against `models_dir`. Throws ScenarioError naming the file and the
+/// field for anything missing, unknown, of the wrong type or out of range.
+Scenario load_scenario(const std::string& path, const std::string& models_dir);
+
+/// The mesh file of a model reference of the scenario (ObjectSpec::model, regions): a
+/// folder name of models_dir or a path relative to the scenario's folder. Throws
+/// ScenarioError when it does not exist.
+std::string resolve_model_path(const std::string& reference, const std::string& scenario_dir,
+                               const std::string& models_dir);
+
+}  // namespace icgp::servo

@@ -1,0 +1,220 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/servo/pose_estimator.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <visp3/core/vpTrackingException.h>
+#include <visp3/mbt/vpMbGenericTracker.h>
+
+#include "icgp/tracker/tracker_config.h"
+#include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/cao_writer.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
+#include "icgp/visp/visp_baseline.h"
+#include "icgp/visp/vpMbIcgTracker.h"
+
+namespace icgp::servo {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point begin) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - begin).count();
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : " + ") + name;
+  return text;
+}
+
+/// vpMbIcgTracker on the colour image and the raw depth image (no point cloud needed).
+class IcgpEstimator : public PoseEstimator {
+ public:
+  IcgpEstimator(const TrackerSpec& spec, const Scenario& scenario, const RgbdSimulator& simulator) {
+    TrackerConfig config = spec.config.empty() ? TrackerConfig() : load_tracker_config(spec.config);
+    if (!spec.modalities.empty()) config.modalities = spec.modalities;
+    if (!scenario.object.regions.empty()) config.regions = scenario.object.regions;
+    name_ = "icgp (" + joined(config.modalities) + (config.regions.empty() ? "" : ", multi-region") + ")";
+    tracker_.setTrackerConfig(config);
+    tracker_.loadModel(scenario.object.model);
+    tracker_.setCameraParameters(simulator.color_camera(), simulator.depth_camera());
+    tracker_.setCameraTransformationMatrix("Camera2", simulator.depth_M_color());
+  }
+
+  void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo) override {
+    tracker_.initFromPose(first.color, cMo);
+  }
+
+  PoseEstimate track(const RgbdCapture& capture) override {
+    PoseEstimate estimate;
+    const auto begin = Clock::now();
+    tracker_.track(capture.color, capture.depth_raw, capture.depth_scale);
+    estimate.track_ms = ms_since(begin);
+    tracker_.getPose(estimate.cMo);
+    try {
+      tracker_.testTracking();
+    } catch (const vpTrackingException&) {
+      estimate.lost = true;
+    }
+    return estimate;
+  }
+
+  std::string name() const override { return name_; }
+
+ private:
+  vpMbIcgTracker tracker_;
+  std::string name_;
+};
+
+/// ViSP's settings for the edge, KLT and dense-depth features: those of its teabox
+/// tutorial, which suit objects of this size at half a metre. The cameras come from the
+/// simulator, not from these files.
+const char* const kColorSettings = R"(<?xml version="1.0"?>
+<conf>
+  <ecm>
+    <mask><size>5</size><nb_mask>180</nb_mask></mask>
+    <range><tracking>8</tracking></range>
+    <contrast><edge_threshold>10000</edge_threshold><mu1>0.5</mu1><mu2>0.5</mu2></contrast>
+    <sample><step>4</step></sample>
+  </ecm>
+  <klt>
+    <mask_border>5</mask_border><max_features>300</max_features><window_size>5</window_size>
+    <quality>0.015</quality><min_distance>8</min_distance><harris>0.01</harris>
+    <size_block>3</size_block><pyramid_lvl>3</pyramid_lvl>
+  </klt>
+  <face>
+    <angle_appear>70</angle_appear><angle_disappear>80</angle_disappear>
+    <near_clipping>0.1</near_clipping><far_clipping>100</far_clipping><fov_clipping>1</fov_clipping>
+  </face>
+</conf>
+)";
+const char* const kDepthSettings = R"(<?xml version="1.0"?>
+<conf>
+  <depth_dense><sampling_step><step_X>4</step_X><step_Y>4</step_Y></sampling_step></depth_dense>
+  <face>
+    <angle_appear>70</angle_appear><angle_disappear>80</angle_disappear>
+    <near_clipping>0.1</near_clipping><far_clipping>100</far_clipping><fov_clipping>1</fov_clipping>
+  </face>
+</conf>
+)";
+
+void write_text(const fs::path& path, const char* text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path.string() + ": cannot write ViSP's tracker settings");
+}
+
+/// The .cao model and XML settings vpMbGenericTracker reads, written for the scenario's mesh.
+VispModelFiles visp_model_files(const std::string& mesh_path) {
+  const fs::path dir = fs::temp_directory_path() / "icgp-servo-visp" / fs::path(mesh_path).stem();
+  fs::create_directories(dir);
+  VispModelFiles files{(dir / "model.cao").string(), (dir / "model.xml").string(), (dir / "model_depth.xml").string()};
+  write_cao(load_any_mesh(mesh_path), files.model);
+  write_text(files.color_config, kColorSettings);
+  write_text(files.depth_config, kDepthSettings);
+  return files;
+}
+
+/// vpMbGenericTracker through its RGB-D API: grey image and organised point cloud.
+class VispEstimator : public PoseEstimator {
+ public:
+  VispEstimator(const TrackerSpec& spec, const Scenario& scenario, const RgbdSimulator& simulator)
+      : configuration_(visp_reference_configuration(spec.visp_configuration)),
+        depth_intrinsics_(scenario.camera.depth) {
+    const VispModelFiles files = visp_model_files(scenario.object.model);
+    tracker_ = make_visp_tracker(configuration_, files);
+    {
+      const detail::StdoutSilencer quiet_parser;
+      if (configuration_.dense_depth)
+        tracker_->loadModel(files.model, files.model);
+      else
+        tracker_->loadModel(files.model);
+    }
+    if (configuration_.dense_depth) {
+      tracker_->setCameraParameters(simulator.color_camera(), simulator.depth_camera());
+      tracker_->setCameraTransformationMatrix(std::map<std::string, vpHomogeneousMatrix>{
+          {kVispColorCamera, vpHomogeneousMatrix()}, {kVispDepthCamera, simulator.depth_M_color()}});
+    } else {
+      tracker_->setCameraParameters(simulator.color_camera());
+    }
+  }
+
+  void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo) override {
+    tracker_->initFromPose(first.grey, cMo);
+  }
+
+  PoseEstimate track(const RgbdCapture& capture) override {
+    PoseEstimate estimate;
+    const auto begin = Clock::now();
+    try {
+      if (configuration_.dense_depth) {
+        convert_cloud(capture);
+        std::map<std::string, const vpImage<unsigned char>*> images{{kVispColorCamera, &capture.grey}};
+        std::map<std::string, const std::vector<vpColVector>*> clouds{{kVispDepthCamera, &cloud_}};
+        std::map<std::string, unsigned int> widths{{kVispDepthCamera, capture.depth_raw.getWidth()}};
+        std::map<std::string, unsigned int> heights{{kVispDepthCamera, capture.depth_raw.getHeight()}};
+        tracker_->track(images, clouds, widths, heights);
+      } else {
+        tracker_->track(capture.grey);
+      }
+      tracker_->testTracking();
+    } catch (const vpException&) {
+      // ViSP throws when too few features remain or the tracking test fails: lost.
+      estimate.lost = true;
+    }
+    estimate.track_ms = ms_since(begin);
+    tracker_->getPose(estimate.cMo);
+    return estimate;
+  }
+
+  std::string name() const override { return "visp (" + configuration_.name + ")"; }
+
+ private:
+  /// The organised cloud a ViSP RGB-D program builds from the depth image.
+  void convert_cloud(const RgbdCapture& capture) {
+    const vpImage<uint16_t>& raw = capture.depth_raw;
+    cloud_.resize(static_cast<std::size_t>(raw.getSize()), vpColVector(3, 0.0));
+    for (unsigned int i = 0; i < raw.getHeight(); ++i)
+      for (unsigned int j = 0; j < raw.getWidth(); ++j) {
+        vpColVector& point = cloud_[static_cast<std::size_t>(i) * raw.getWidth() + j];
+        const double Z = raw[i][j] * capture.depth_scale;
+        point[0] = (j - depth_intrinsics_.pu) * Z / depth_intrinsics_.fu;
+        point[1] = (i - depth_intrinsics_.pv) * Z / depth_intrinsics_.fv;
+        point[2] = Z;
+      }
+  }
+
+  VispTrackerConfiguration configuration_;
+  Intrinsics depth_intrinsics_;
+  std::unique_ptr<vpMbGenericTracker> tracker_;
+  std::vector<vpColVector> cloud_;
+};
+
+/// The ground truth: what a perfect tracker would say, the reference for the control law.
+class OracleEstimator : public PoseEstimator {
+ public:
+  void start(const RgbdCapture&, const vpHomogeneousMatrix&) override {}
+  PoseEstimate track(const RgbdCapture& capture) override { return {capture.cMo_true, false, 0.0}; }
+  std::string name() const override { return "oracle (ground truth)"; }
+};
+
+}  // namespace
+
+std::unique_ptr<PoseEstimator> make_pose_estimator(const TrackerSpec& spec, const Scenario& scenario,
+                                                   const RgbdSimulator& simulator) {
+  switch (spec.kind) {
+    case TrackerKind::kIcgp:
+      return std::make_unique<IcgpEstimator>(spec, scenario, simulator);
+    case TrackerKind::kVisp:
+      return std::make_unique<VispEstimator>(spec, scenario, simulator);
+    case TrackerKind::kOracle:
+      return std::make_unique<OracleEstimator>();
+  }
+  throw std::logic_error("unknown tracker kind");
+}
+
+}  // namespace icgp::servo

@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/servo/rgbd_simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <visp3/core/vpImageConvert.h>
+
+#include "icgp/eval/sequence_writer.h"
+#include "icgp/render/renderer.h"
+#include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/conversions.h"
+
+namespace icgp::servo {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+/// Renders averaged for motion blur.
+constexpr int kBlurSamples = 4;
+/// A depth step this large (relative to Z) between neighbours is a discontinuity.
+constexpr float kDiscontinuity = 0.03f;
+
+/// A closed box centred on its origin, flat grey: the passing occluder.
+Mesh box_mesh(const Eigen::Vector3d& size) {
+  const Eigen::Vector3f h = (0.5 * size).cast<float>();
+  MeshPart part;
+  for (int i = 0; i < 8; ++i)
+    part.vertices.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
+  // Two counter-clockwise triangles per face, seen from outside.
+  part.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                    {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  part.material.diffuse_rgb = {0.55f, 0.5f, 0.45f};
+  Mesh mesh;
+  mesh.source = "occluder box";
+  mesh.parts.push_back(std::move(part));
+  return mesh;
+}
+
+/// Pose of a camera moved back along the straight line to where it was `fraction` of a
+/// step earlier (translation interpolated, rotation along the geodesic).
+vpHomogeneousMatrix interpolate(const vpHomogeneousMatrix& from, const vpHomogeneousMatrix& to, double fraction) {
+  const vpHomogeneousMatrix delta = from.inverse() * to;
+  const vpTranslationVector t = delta.getTranslationVector();
+  const vpThetaUVector tu(delta.getRotationMatrix());
+  const vpHomogeneousMatrix partial(t * fraction, vpThetaUVector(tu[0] * fraction, tu[1] * fraction, tu[2] * fraction));
+  return from * partial;
+}
+
+}  // namespace
+
+struct RgbdSimulator::Impl {
+  Scenario scenario;
+  Renderer renderer;
+  Renderer::BodyHandle object{}, occluder{};
+  bool has_occluder = false;
+  vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
+  cv::RNG rng;
+  RgbdCapture capture;
+  bool has_capture = false;
+  cv::Mat color_sum, noise, depth_normals;
+
+  Impl(const Scenario& s, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& wMo, std::uint64_t seed)
+      : scenario(s), world_T_camera_start(wMc), world_T_object_start(wMo), rng(seed) {}
+
+  void add_background(std::uint64_t seed) {
+    const BackgroundSpec& b = scenario.background;
+    if (!b.enabled) return;
+    cv::Mat texture;
+    if (b.texture.empty()) {
+      texture = procedural_clutter_texture(seed);
+    } else {
+      texture = cv::imread(b.texture, cv::IMREAD_COLOR);
+      if (texture.empty()) throw std::runtime_error(b.texture + ": cannot read the background image");
+    }
+    // Perpendicular to the initial optical axis, `distance` behind the object, facing the
+    // camera, and wide enough to fill the view from twice as far.
+    const vpHomogeneousMatrix cMo = world_T_camera_start.inverse() * world_T_object_start;
+    const double depth = cMo[2][3] + b.distance;
+    const Intrinsics& k = scenario.camera.color;
+    const double half_extent = 2.0 * depth * std::max(k.width / k.fu, k.height / k.fv) + 0.2;
+    const vpHomogeneousMatrix c_M_plane(vpTranslationVector(cMo[0][3], cMo[1][3], depth),
+                                        vpRotationMatrix(vpThetaUVector(kPi, 0, 0)));
+    const Renderer::BodyHandle plane = renderer.add_body(tiled_plane(texture, half_extent, 0.3), 2);
+    renderer.set_body_pose(plane, to_pose(world_T_camera_start * c_M_plane));
+  }
+
+  void place_occluder(double time) {
+    if (!has_occluder) return;
+    const OccluderSpec& o = *scenario.occluder;
+    const bool present = time >= o.start;
+    renderer.set_body_visible(occluder, present);
+    if (!present) return;
+    const Eigen::Vector3d p = o.start_position_in_camera + (time - o.start) * o.velocity_in_camera;
+    renderer.set_body_pose(occluder, to_pose(world_T_camera_start * vpHomogeneousMatrix(p.x(), p.y(), p.z(), 0, 0, 0)));
+  }
+
+  /// The colour image at wMc, averaged over the last part of the camera's motion when the
+  /// sensor blurs.
+  cv::Mat render_color(const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& previous_wMc) {
+    const Intrinsics& k = scenario.camera.color;
+    const double blur = scenario.camera.noise.motion_blur;
+    if (blur <= 0.0) return renderer.render(k, to_pose(wMc.inverse()), kRenderColor).color;
+    color_sum = cv::Mat::zeros(k.height, k.width, CV_32FC3);
+    for (int i = 0; i < kBlurSamples; ++i) {
+      const double back = blur * i / kBlurSamples;  // fraction of the step before the capture
+      const vpHomogeneousMatrix pose = interpolate(wMc, previous_wMc, back);
+      cv::accumulate(renderer.render(k, to_pose(pose.inverse()), kRenderColor).color, color_sum);
+    }
+    cv::Mat color;
+    color_sum.convertTo(color, CV_8UC3, 1.0 / kBlurSamples);
+    return color;
+  }
+
+  void add_color_noise(cv::Mat& color) {
+    const double sigma = scenario.camera.noise.color_sigma;
+    if (sigma <= 0.0) return;
+    noise.create(color.size(), CV_16SC3);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
+    cv::Mat noisy;
+    cv::add(color, noise, noisy, cv::noArray(), CV_16SC3);
+    noisy.convertTo(color, CV_8UC3);  // saturates
+  }
+
+  /// Depth as a real sensor gives it: missing at grazing angles, at discontinuities and at
+  /// random, and noisy with sigma growing as Z^2.
+  cv::Mat render_depth(const vpHomogeneousMatrix& wMc) {
+    const NoiseSpec& n = scenario.camera.noise;
+    const Intrinsics& k = scenario.camera.depth;
+    const Pose depth_T_world = scenario.camera.depth_T_color * to_pose(wMc.inverse());
+    const bool grazing = n.grazing_angle_deg < 90.0;
+    RenderOutput out = renderer.render(k, depth_T_world, kRenderDepth | (grazing ? kRenderNormals : 0u));
+    cv::Mat& depth = out.depth;
+    if (grazing) remove_grazing(depth, out.normals, std::cos(n.grazing_angle_deg * kPi / 180.0));
+    if (n.edge_dropout_px > 0) remove_edges(depth, n.edge_dropout_px);
+    if (n.depth_dropout > 0.0) {
+      cv::Mat u(depth.size(), CV_32FC1);
+      rng.fill(u, cv::RNG::UNIFORM, 0.0, 1.0);
+      depth.setTo(0.f, u < n.depth_dropout);
+    }
+    if (n.depth_sigma_at_1m > 0.0) {
+      cv::Mat g(depth.size(), CV_32FC1);
+      rng.fill(g, cv::RNG::NORMAL, 0.0, n.depth_sigma_at_1m);
+      cv::Mat z2 = depth.mul(depth);
+      depth += g.mul(z2);  // where depth is 0, z2 is 0: missing stays missing
+    }
+    return depth;
+  }
+
+  void remove_grazing(cv::Mat& depth, const cv::Mat& normals, double min_cos) const {
+    const Intrinsics& k = scenario.camera.depth;
+    for (int r = 0; r < depth.rows; ++r) {
+      float* z = depth.ptr<float>(r);
+      const cv::Vec3f* normal = normals.ptr<cv::Vec3f>(r);
+      for (int c = 0; c < depth.cols; ++c) {
+        if (z[c] <= 0.f) continue;
+        const cv::Vec3f ray((c - k.pu) / k.fu, (r - k.pv) / k.fv, 1.f);
+        if (std::abs(normal[c].dot(ray)) < min_cos * cv::norm(ray)) z[c] = 0.f;
+      }
+    }
+  }
+
+  static void remove_edges(cv::Mat& depth, int radius) {
+    cv::Mat edges = cv::Mat::zeros(depth.size(), CV_8UC1);
+    for (int r = 0; r + 1 < depth.rows; ++r) {
+      const float* z = depth.ptr<float>(r);
+      const float* below = depth.ptr<float>(r + 1);
+      for (int c = 0; c + 1 < depth.cols; ++c) {
+        const float nearest = std::min({z[c], z[c + 1], below[c]});
+        const float farthest = std::max({z[c], z[c + 1], below[c]});
+        if (farthest > 0.f && farthest - nearest > kDiscontinuity * farthest) edges.at<uchar>(r, c) = 255;
+      }
+    }
+    cv::dilate(edges, edges, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius + 1, 2 * radius + 1)));
+    depth.setTo(0.f, edges);
+  }
+
+  void store_depth(const cv::Mat& depth) {
+    RgbdCapture& c = capture;
+    c.depth_raw.resize(static_cast<unsigned int>(depth.rows), static_cast<unsigned int>(depth.cols));
+    cv::Mat raw(depth.rows, depth.cols, CV_16UC1, c.depth_raw.bitmap);
+    // Out of the 16-bit range (beyond 6.5 m at 0.1 mm) is "no measurement", as on a sensor.
+    cv::Mat units = depth / c.depth_scale;
+    units.setTo(0.f, units > 65535.f);
+    units.convertTo(raw, CV_16UC1);
+  }
+};
+
+RgbdSimulator::RgbdSimulator(const Scenario& scenario, const vpHomogeneousMatrix& world_T_camera,
+                             const vpHomogeneousMatrix& world_T_object, std::uint64_t seed)
+    : impl_(std::make_unique<Impl>(scenario, world_T_camera, world_T_object, seed)) {
+  Impl& d = *impl_;
+  d.object = d.renderer.add_body(load_any_mesh(scenario.object.model), 1);
+  d.add_background(seed);
+  if (scenario.occluder) {
+    d.occluder = d.renderer.add_body(box_mesh(scenario.occluder->size), 3);
+    d.has_occluder = true;
+  }
+}
+
+RgbdSimulator::~RgbdSimulator() = default;
+
+vpHomogeneousMatrix RgbdSimulator::world_T_object(double time) const {
+  const ObjectSpec& o = impl_->scenario.object;
+  const double moving = std::clamp(time - o.motion_start, 0.0, o.motion_duration);
+  const Eigen::Vector3d shift = moving * o.linear_velocity;
+  return vpHomogeneousMatrix(shift.x(), shift.y(), shift.z(), 0, 0, 0) * impl_->world_T_object_start;
+}
+
+RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& previous_wMc,
+                                    const std::optional<vpHomogeneousMatrix>& held_object) {
+  Impl& d = *impl_;
+  RgbdCapture& c = d.capture;
+  const vpHomogeneousMatrix wMo = held_object ? *held_object : world_T_object(time);
+  c.time = time;
+  c.cMo_true = wMc.inverse() * wMo;
+  c.dropped = d.has_capture && d.rng.uniform(0.0, 1.0) < d.scenario.camera.noise.frame_drop;
+  if (c.dropped) return c;  // the tracker gets nothing new: the images stay the last ones
+
+  d.renderer.set_body_pose(d.object, to_pose(wMo));
+  d.place_occluder(time);
+  cv::Mat color = d.render_color(wMc, previous_wMc);
+  d.add_color_noise(color);
+  to_vp_image(color, c.color);
+  vpImageConvert::convert(c.color, c.grey);
+  d.store_depth(d.render_depth(wMc));
+  d.has_capture = true;
+  return c;
+}
+
+vpCameraParameters RgbdSimulator::color_camera() const { return to_camera_parameters(impl_->scenario.camera.color); }
+vpCameraParameters RgbdSimulator::depth_camera() const { return to_camera_parameters(impl_->scenario.camera.depth); }
+vpHomogeneousMatrix RgbdSimulator::depth_M_color() const {
+  return to_homogeneous_matrix(impl_->scenario.camera.depth_T_color);
+}
+
+}  // namespace icgp::servo

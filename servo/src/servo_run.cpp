@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/servo/servo_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "icgp/eval/metrics.h"
+#include "icgp/servo/servo_controller.h"
+#include "icgp/servo/simulated_robot.h"
+#include "icgp/visp/conversions.h"
+
+namespace icgp::servo {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+/// Converged: the estimated error has been within half the thresholds for the settle time
+/// (StopSpec).
+class ConvergenceMonitor {
+ public:
+  explicit ConvergenceMonitor(const StopSpec& stop) : stop_(stop) {}
+
+  /// True once settled; `time` of the step, `error` of the estimated pose to the desired one.
+  bool update(double time, const PoseError& error, bool may_converge) {
+    const bool within = may_converge && error.translation <= 0.5 * stop_.converged_translation &&
+                        error.rotation <= 0.5 * stop_.converged_rotation;
+    if (!within) {
+      since_ = -1.0;
+      return false;
+    }
+    if (since_ < 0.0) since_ = time;
+    return time - since_ >= stop_.settle_time - 1e-9;
+  }
+  double since() const { return since_; }
+
+ private:
+  StopSpec stop_;
+  double since_ = -1.0;
+};
+
+/// "[servo] t 1.20 s | error 12.4 mm 3.10 deg | track 0.6 ms" at most every half second of
+/// wall time, so long runs show they are alive without flooding a log.
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool enabled) : enabled_(enabled) {}
+  void show(const ServoStep& step, bool force = false) {
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    if (!force && ms_between(last_, now) < 500.0) return;
+    last_ = now;
+    std::fprintf(stderr, "\r[servo] t %6.2f s | error %8.2f mm %6.2f deg | tracker %6.2f mm | track %5.2f ms%s", step.time,
+                 1e3 * step.servo_t, step.servo_r / kDegree, 1e3 * step.track_t, step.track_ms,
+                 step.safety_stop ? " | SAFETY STOP" : "            ");
+    if (force) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  Clock::time_point last_{};
+};
+
+void summarise_tracking(ServoResult& result) {
+  std::vector<double> ms;
+  double sum_t = 0.0, sum_r = 0.0;
+  for (const ServoStep& s : result.steps) {
+    sum_t += s.track_t;
+    sum_r += s.track_r;
+    result.max_track_t = std::max(result.max_track_t, s.track_t);
+    result.max_track_r = std::max(result.max_track_r, s.track_r);
+    if (!s.dropped) ms.push_back(s.track_ms);
+  }
+  const double n = static_cast<double>(std::max<std::size_t>(1, result.steps.size()));
+  result.mean_track_t = sum_t / n;
+  result.mean_track_r = sum_r / n;
+  result.median_track_ms = ms.empty() ? 0.0 : median(ms);
+}
+
+}  // namespace
+
+ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) {
+  Scenario scenario = original;
+  scenario.initial_cMo = options.start_offset * original.initial_cMo;
+  const vpHomogeneousMatrix desired_cMo = to_homogeneous_matrix(scenario.desired_cMo);
+
+  std::unique_ptr<SimulatedRobot> robot = make_robot(scenario);
+  RgbdSimulator simulator(scenario, robot->world_T_camera(), initial_world_T_object(scenario, *robot), options.seed);
+  std::unique_ptr<PoseEstimator> estimator =
+      options.make_estimator ? options.make_estimator(simulator) : make_pose_estimator(scenario.tracker, scenario, simulator);
+  ServoController controller(scenario.control, desired_cMo, bounding_box_corners(scenario.object.model), *robot);
+
+  ServoResult result;
+  result.scenario = scenario.name;
+  result.tracker = estimator->name();
+  result.seed = options.seed;
+
+  const double dt = 1.0 / scenario.camera.rate_hz;
+  const double motion_end = scenario.object.motion_start + scenario.object.motion_duration;
+  vpHomogeneousMatrix previous_wMc = robot->world_T_camera();
+  {
+    // The tracker starts at the true pose, as after a detection.
+    const RgbdCapture& first = simulator.capture(0.0, previous_wMc, previous_wMc, robot->world_T_held_object());
+    estimator->start(first, first.cMo_true);
+  }
+
+  ConvergenceMonitor convergence(scenario.stop);
+  ProgressLine progress(options.progress);
+  PoseEstimate estimate;
+  bool stopped = false;
+  const auto loop_begin = Clock::now();
+  const int max_steps = static_cast<int>(std::ceil(scenario.stop.max_time / dt));
+  for (int k = 0; k <= max_steps; ++k) {
+    ServoStep step;
+    step.time = k * dt;
+    const vpHomogeneousMatrix wMc = robot->world_T_camera();
+    const auto t0 = Clock::now();
+    const RgbdCapture& capture = simulator.capture(step.time, wMc, previous_wMc, robot->world_T_held_object());
+    const auto t1 = Clock::now();
+    previous_wMc = wMc;
+    step.dropped = capture.dropped;
+    if (!capture.dropped) estimate = estimator->track(capture);
+    const auto t2 = Clock::now();
+
+    vpColVector velocity;
+    step.lost = estimate.lost;
+    if (estimate.lost) {
+      // Safety stop: never move on a pose the tracker itself does not trust.
+      velocity = vpColVector(6, 0.0);  // every robot here takes 6 values: a twist or 6 joints
+      step.safety_stop = true;
+      if (!stopped) ++result.safety_stops;
+    } else {
+      velocity = controller.compute(estimate.cMo, *robot);
+      step.servo_error_norm = controller.error().frobeniusNorm();
+    }
+    stopped = estimate.lost;
+    step.velocity = robot->move(velocity, dt);
+    const auto t3 = Clock::now();
+
+    step.cMo_true = capture.cMo_true;
+    step.cMo_estimated = estimate.cMo;
+    const PoseError servo = pose_error(capture.cMo_true, desired_cMo);
+    const PoseError tracking = pose_error(estimate.cMo, capture.cMo_true);
+    step.servo_t = servo.translation;
+    step.servo_r = servo.rotation;
+    step.track_t = tracking.translation;
+    step.track_r = tracking.rotation;
+    step.render_ms = ms_between(t0, t1);
+    step.track_ms = step.dropped ? 0.0 : estimate.track_ms;
+    step.control_ms = ms_between(t2, t3);
+    result.steps.push_back(step);
+    if (options.on_step) options.on_step(capture, step);
+    progress.show(step);
+
+    const bool settled = !estimate.lost && convergence.update(step.time, pose_error(estimate.cMo, desired_cMo),
+                                                              step.time >= motion_end);
+    if (settled) {
+      result.converged = true;
+      result.converged_time = convergence.since();
+      result.converged_step = static_cast<int>(std::lround(convergence.since() / dt));
+      break;
+    }
+  }
+  const double loop_seconds = std::chrono::duration<double>(Clock::now() - loop_begin).count();
+  progress.show(result.steps.back(), true);
+
+  result.final_t = result.steps.back().servo_t;
+  result.final_r = result.steps.back().servo_r;
+  result.recovered = !result.steps.back().lost;
+  result.joint_limit_stops = robot->joint_limit_stops();
+  result.steps_per_s = result.steps.size() / std::max(loop_seconds, 1e-9);
+  summarise_tracking(result);
+  return result;
+}
+
+Pose perturbed_start(const TrialSpec& trials, unsigned seed, int trial) {
+  std::mt19937_64 random(seed * 0x9E3779B97F4A7C15ull + static_cast<unsigned>(trial));
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const auto direction = [&] {
+    Eigen::Vector3d d(normal(random), normal(random), normal(random));
+    return d.normalized();
+  };
+  const Eigen::Vector3d t = direction() * trials.translation * uniform(random);
+  const Eigen::Vector3d r = direction() * trials.rotation * uniform(random);
+  return Pose::from_rotation_vector(r, t);
+}
+
+}  // namespace icgp::servo

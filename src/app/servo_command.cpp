@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// `icgp servo SCENARIO`: the closed loop tracker -> ViSP control law -> simulated robot, one
+// run with its log and plots, batch trials, or trackers compared on identical trials.
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <opencv2/imgproc.hpp>
+#include <visp3/core/vpImageConvert.h>
+#include <visp3/gui/vpDisplayX.h>
+
+#include "commands.h"
+#include "icgp/servo/servo_report.h"
+#include "icgp/servo/servo_run.h"
+#include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/conversions.h"
+#include "overlay_video.h"
+
+namespace icgp::app {
+namespace {
+
+namespace fs = std::filesystem;
+using servo::Scenario;
+using servo::ServoResult;
+using servo::TrackerKind;
+
+struct ServoOptions {
+  std::string scenario;
+  std::string tracker;  ///< overrides the scenario's: icgp, visp, oracle
+  int trials = 1;
+  unsigned seed = 0;  ///< 0: the scenario's
+  bool compare = false;
+  std::string summary;
+  std::string out;
+  std::string video;
+  bool display = false;
+  bool quiet = false;
+};
+
+TrackerKind tracker_kind(const std::string& name) {
+  if (name == "icgp") return TrackerKind::kIcgp;
+  if (name == "visp") return TrackerKind::kVisp;
+  if (name == "oracle") return TrackerKind::kOracle;
+  throw std::invalid_argument("--tracker: expected icgp, visp or oracle, got '" + name + "'");
+}
+
+/// Writes the overlay video and shows the live window of a single run.
+class RunViewer {
+ public:
+  RunViewer(const ServoOptions& o, const Scenario& scenario) {
+    if (!o.video.empty()) video_ = std::make_unique<OverlayVideo>(o.video, load_any_mesh(scenario.object.model), scenario.camera.rate_hz);
+    if (o.display) {
+      if (!std::getenv("DISPLAY"))
+        throw std::runtime_error("--display needs an X display (DISPLAY is not set); run without it headless");
+      image_.resize(static_cast<unsigned>(scenario.camera.color.height), static_cast<unsigned>(scenario.camera.color.width));
+      display_ = std::make_unique<vpDisplayX>(image_, 0, 0, "icgp servo: " + scenario.name);
+    }
+    intrinsics_ = scenario.camera.color;
+  }
+
+  bool active() const { return video_ || display_; }
+
+  void show(const servo::RgbdCapture& capture, const servo::ServoStep& step) {
+    const std::string caption = "t " + std::to_string(step.time).substr(0, 5) + " s  error " +
+                                std::to_string(1e3 * step.servo_t).substr(0, 6) + " mm" +
+                                (step.safety_stop ? "  SAFETY STOP" : "");
+    if (video_) {
+      ColorImage color{"Camera1", intrinsics_, Pose(), cv::Mat()};
+      vpImageConvert::convert(capture.color, color.image);  // BGR
+      const Pose truth = to_pose(step.cMo_true);
+      video_->write(color, to_pose(step.cMo_estimated), &truth, caption);
+    }
+    if (display_) {
+      image_ = capture.color;
+      vpDisplay::display(image_);
+      vpDisplay::displayFrame(image_, step.cMo_estimated, to_camera_parameters(intrinsics_), 0.05, vpColor::none, 2);
+      vpDisplay::displayText(image_, 20, 10, caption, vpColor::red);
+      vpDisplay::flush(image_);
+    }
+  }
+
+ private:
+  std::unique_ptr<OverlayVideo> video_;
+  std::unique_ptr<vpDisplayX> display_;
+  vpImage<vpRGBa> image_;
+  Intrinsics intrinsics_;
+};
+
+std::vector<ServoResult> run_trials(const Scenario& scenario, const ServoOptions& o) {
+  std::vector<ServoResult> results;
+  for (int i = 0; i < o.trials; ++i) {
+    servo::ServoRunOptions run;
+    run.seed = scenario.seed + static_cast<unsigned>(i);
+    run.start_offset = servo::perturbed_start(scenario.trials, scenario.seed, i);
+    run.progress = !o.quiet;
+    if (!o.quiet) std::cerr << "trial " << i + 1 << "/" << o.trials << " (" << scenario.name << ")\n";
+    results.push_back(servo::run_servo(scenario, run));
+  }
+  return results;
+}
+
+void run_command(const ServoOptions& o) {
+  Scenario scenario = servo::load_scenario(o.scenario, models_dir());
+  if (!o.tracker.empty()) scenario.tracker.kind = tracker_kind(o.tracker);
+  if (o.seed != 0) scenario.seed = o.seed;
+  const fs::path out = o.out.empty() ? fs::path("out") / "servo" / scenario.name : fs::path(o.out);
+  std::cerr << "scenario " << scenario.name << (scenario.description.empty() ? "" : ": " + scenario.description) << "\n";
+
+  std::vector<servo::TrialsSummary> summaries;
+  if (o.compare || o.trials > 1) {
+    if (!o.video.empty() || o.display) throw std::invalid_argument("--video and --display show a single run, not trials");
+    const std::vector<TrackerKind> kinds =
+        o.compare ? std::vector<TrackerKind>{TrackerKind::kOracle, TrackerKind::kVisp, TrackerKind::kIcgp}
+                  : std::vector<TrackerKind>{scenario.tracker.kind};
+    for (const TrackerKind kind : kinds) {
+      Scenario s = scenario;
+      s.tracker.kind = kind;
+      summaries.push_back(servo::summarise(run_trials(s, o), s.stop));
+    }
+    servo::print_summaries(std::cout, summaries);
+  } else {
+    servo::ServoRunOptions run;
+    run.seed = scenario.seed;
+    run.progress = !o.quiet;
+    RunViewer viewer(o, scenario);
+    if (viewer.active()) run.on_step = [&viewer](const servo::RgbdCapture& c, const servo::ServoStep& s) { viewer.show(c, s); };
+    const ServoResult result = servo::run_servo(scenario, run);
+    servo::print_run(std::cout, result, scenario.stop);
+    servo::write_step_csv(result, (out / "log.csv").string());
+    servo::plot_run(result, out.string());
+    std::cout << "wrote " << (out / "log.csv").string() << ", " << (out / "error.png").string() << ", "
+              << (out / "velocity.png").string() << (o.video.empty() ? "" : ", " + o.video) << "\n";
+    summaries.push_back(servo::summarise({result}, scenario.stop));
+  }
+  const std::string summary = o.summary.empty() ? (out / "summary.json").string() : o.summary;
+  servo::write_summary_json(summaries, summary);
+  std::cout << "wrote " << summary << "\n";
+}
+
+}  // namespace
+
+std::string default_scenario_path() {
+  namespace fs = std::filesystem;
+  const fs::path installed = fs::path(models_dir()).parent_path() / "scenarios" / "default.yaml";
+  return fs::is_regular_file(installed) ? installed.string() : ICGP_SOURCE_SCENARIOS_DIR "/default.yaml";
+}
+
+void register_servo_command(CLI::App& app) {
+  auto o = std::make_shared<ServoOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "servo", "Close the loop: simulated RGB-D camera -> tracker -> ViSP control law -> simulated robot, for a scenario");
+  o->scenario = default_scenario_path();
+  cmd->add_option("scenario", o->scenario, "Scenario file (YAML, see scenarios/)")->check(CLI::ExistingFile)->capture_default_str();
+  cmd->add_option("--tracker", o->tracker, "Tracker in the loop instead of the scenario's: icgp, visp or oracle")
+      ->check(CLI::IsMember({"icgp", "visp", "oracle"}));
+  cmd->add_option("--trials", o->trials, "Batch: runs from random starts within the scenario's trial ranges")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", o->seed, "Seed of the noise and of the random starts (default: the scenario's)");
+  cmd->add_flag("--compare", o->compare, "Run the oracle, visp and icgp trackers on identical trials, one table");
+  cmd->add_option("--summary", o->summary, "Summary JSON (default: OUT/summary.json)");
+  cmd->add_option("--out", o->out, "Folder for the log and plots (default: out/servo/<scenario name>)");
+  cmd->add_option("--video", o->video, "Overlay video (.avi) of a single run: estimated (red) and true (green) outline");
+  cmd->add_flag("--display", o->display, "Show the run in a ViSP window (needs an X display)");
+  cmd->add_flag("--quiet", o->quiet, "No progress lines");
+  cmd->callback([o] { run_command(*o); });
+}
+
+}  // namespace icgp::app

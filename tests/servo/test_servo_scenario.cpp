@@ -1,0 +1,332 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Servo scenario files: a full file read into the struct with its unit conversions, the
+// defaults, model resolution, and errors that name the file and the field.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "icgp/servo/scenario.h"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using icgp::Pose;
+using icgp::servo::load_scenario;
+using icgp::servo::resolve_model_path;
+using icgp::servo::Scenario;
+using icgp::servo::ScenarioError;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+/// A directory of scenario files written by a test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "icgp-scenario-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const fs::path& path() const { return path_; }
+  std::string write(const std::string& name, const std::string& content) const {
+    const fs::path file = path_ / name;
+    std::ofstream(file) << content;
+    return file.string();
+  }
+
+ private:
+  fs::path path_;
+};
+
+/// The smallest valid scenario: the required keys only.
+const std::string kMinimal =
+    "object: {model: textured_box}\n"
+    "start: {t: [0, 0, 0.45], r_deg: [0, 0, 0]}\n"
+    "desired: {t: [0, 0, 0.35], r_deg: [0, 0, 0]}\n";
+
+/// The message of the ScenarioError that loading `text` (saved as `name`) throws; "" if none.
+std::string error_of(const TempDir& dir, const std::string& text, const std::string& name = "bad.yaml") {
+  const std::string file = dir.write(name, text);
+  try {
+    load_scenario(file, ICGP_MODELS_DIR);
+  } catch (const ScenarioError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool same_file(const std::string& a, const std::string& b) { return fs::equivalent(a, b); }
+
+/// The rotation angle of R (radians).
+double angle(const Eigen::Matrix3d& R) { return icgp::rotation_angle_between<double>(Eigen::Matrix3d::Identity(), R); }
+
+}  // namespace
+
+TEST_CASE("a full scenario file is read with its units converted") {
+  TempDir dir;
+  dir.write("a.obj", "v 0 0 0\n");
+  fs::create_directory(dir.path() / "meshes");
+  dir.write("meshes/b.obj", "v 0 0 0\n");
+  dir.write("bg.png", "not really an image");
+  dir.write("icgp.yaml", "modalities: [region]\n");
+  const std::string file = dir.write("full.yaml", R"(
+name: textured-box PBVS
+description: one line
+robot: viper850_eye_to_hand
+arm:
+  initial_joints_deg: [0, 20, 80, 0, 80, -90]
+  eMo: {t: [0, 0.01, 0.1], r_deg: [90, 0, 0]}
+object:
+  model: textured_box
+  regions: [a.obj, meshes/b.obj]
+  motion: {velocity: [0.05, 0, -0.01], start: 0.5, duration: 2.0}
+occluder:
+  size: [0.04, 0.2, 0.02]
+  start_position: [-0.3, 0.01, 0.25]
+  velocity: [0.2, 0, 0]
+  start: 1.5
+background: {enabled: false, texture: bg.png, distance: 0.4}
+camera:
+  color: {width: 320, height: 240, focal: 300}
+  depth: {fu: 280, fv: 281, pu: 160.5, pv: 119, width: 330, height: 250}
+  depth_T_color: {t: [-0.025, 0, 0], r_deg: [0, 1, 0]}
+  rate_hz: 15
+  noise: {color_sigma: 2, depth_sigma_at_1m: 0.001, depth_dropout: 0.05, grazing_angle_deg: 75,
+          edge_dropout_px: 2, motion_blur: 0.5, frame_drop: 0.1}
+start: {t: [0.02, -0.01, 0.45], r_deg: [5, -10, 3]}
+desired: {t: [0, 0, 0.35], r_deg: [0, 0, 0]}
+tracker:
+  type: visp
+  modalities: [region, depth]
+  config: icgp.yaml
+  visp_configuration: edge + dense depth
+control:
+  law: ibvs
+  gain: {at_zero: 2, at_infinity: 0.4, slope_at_zero: 20}
+  max_linear_velocity: 0.2
+  max_angular_velocity_deg: 30
+  max_joint_velocity_deg: 60
+stop: {translation_mm: 2, rotation_deg: 0.5, settle_time: 0.3, max_time: 12}
+trials: {translation_mm: 20, rotation_deg: 15}
+seed: 7
+)");
+  const Scenario s = load_scenario(file, ICGP_MODELS_DIR);
+
+  CHECK((s.file == file && s.name == "textured-box PBVS" && s.description == "one line"));
+  CHECK(s.robot == icgp::servo::RobotKind::kViper850EyeToHand);
+  CHECK(s.arm.initial_joints[1] == Approx(20 * kPi / 180));
+  CHECK(s.arm.initial_joints[2] == Approx(1.3962634015954636));  // 80 deg
+  CHECK(s.arm.initial_joints[5] == Approx(-kPi / 2));
+  CHECK(s.arm.eMo.translation().isApprox(Eigen::Vector3d(0, 0.01, 0.1)));
+  // 90 deg about x: y goes to z.
+  CHECK((s.arm.eMo.rotation() * Eigen::Vector3d::UnitY()).isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
+
+  CHECK(same_file(s.object.model, ICGP_MODELS_DIR "/textured_box/textured_box.obj"));
+  REQUIRE(s.object.regions.size() == 2);
+  CHECK(same_file(s.object.regions[0], (dir.path() / "a.obj").string()));
+  CHECK(same_file(s.object.regions[1], (dir.path() / "meshes/b.obj").string()));
+  CHECK(s.object.linear_velocity.isApprox(Eigen::Vector3d(0.05, 0, -0.01)));
+  CHECK((s.object.motion_start == 0.5 && s.object.motion_duration == 2.0));
+
+  REQUIRE(s.occluder);
+  CHECK(s.occluder->size.isApprox(Eigen::Vector3d(0.04, 0.2, 0.02)));
+  CHECK(s.occluder->start_position_in_camera.isApprox(Eigen::Vector3d(-0.3, 0.01, 0.25)));
+  CHECK(s.occluder->velocity_in_camera.isApprox(Eigen::Vector3d(0.2, 0, 0)));
+  CHECK(s.occluder->start == 1.5);
+
+  CHECK_FALSE(s.background.enabled);
+  CHECK(same_file(s.background.texture, (dir.path() / "bg.png").string()));
+  CHECK(s.background.distance == 0.4);
+
+  const icgp::Intrinsics& c = s.camera.color;
+  CHECK((c.width == 320 && c.height == 240 && c.fu == 300 && c.fv == 300));
+  CHECK((c.pu == 159.5 && c.pv == 119.5));  // centre in the pixel-centre convention
+  const icgp::Intrinsics& d = s.camera.depth;
+  CHECK((d.width == 330 && d.height == 250 && d.fu == 280 && d.fv == 281 && d.pu == 160.5 && d.pv == 119));
+  CHECK(s.camera.depth_T_color.translation().isApprox(Eigen::Vector3d(-0.025, 0, 0)));
+  CHECK(angle(s.camera.depth_T_color.rotation()) == Approx(kPi / 180));
+  CHECK(s.camera.rate_hz == 15);
+  const icgp::servo::NoiseSpec& n = s.camera.noise;
+  CHECK((n.color_sigma == 2 && n.depth_sigma_at_1m == 0.001 && n.depth_dropout == 0.05));
+  CHECK((n.grazing_angle_deg == 75 && n.edge_dropout_px == 2 && n.motion_blur == 0.5 && n.frame_drop == 0.1));
+
+  // start: θu = (5, -10, 3) degrees; its angle is |θu|.
+  const Eigen::Vector3d theta_u = Eigen::Vector3d(5, -10, 3) * kPi / 180;
+  const Pose expected = Pose::from_rotation_vector(theta_u, Eigen::Vector3d(0.02, -0.01, 0.45));
+  CHECK(s.initial_cMo.matrix().isApprox(expected.matrix(), 1e-12));
+  CHECK(angle(s.initial_cMo.rotation()) == Approx(std::sqrt(25.0 + 100.0 + 9.0) * kPi / 180));
+  CHECK(s.desired_cMo.matrix().isApprox(Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 0.35)).matrix()));
+
+  CHECK(s.tracker.kind == icgp::servo::TrackerKind::kVisp);
+  CHECK(s.tracker.modalities == std::vector<std::string>{"region", "depth"});
+  CHECK(same_file(s.tracker.config, (dir.path() / "icgp.yaml").string()));
+  CHECK(s.tracker.visp_configuration == "edge + dense depth");
+
+  CHECK(s.control.law == icgp::servo::ControlLawKind::kIbvs);
+  CHECK((s.control.gain.at_zero == 2 && s.control.gain.at_infinity == 0.4 && s.control.gain.slope_at_zero == 20));
+  CHECK(s.control.gain.adaptive());
+  CHECK(s.control.max_linear_velocity == 0.2);
+  CHECK(s.control.max_angular_velocity == Approx(kPi / 6));
+  CHECK(s.control.max_joint_velocity == Approx(kPi / 3));
+  CHECK(s.stop.converged_translation == Approx(0.002));
+  CHECK(s.stop.converged_rotation == Approx(0.5 * kPi / 180));
+  CHECK((s.stop.settle_time == 0.3 && s.stop.max_time == 12));
+  CHECK(s.trials.translation == Approx(0.02));
+  CHECK(s.trials.rotation == Approx(kPi / 12));
+  CHECK(s.seed == 7);
+}
+
+TEST_CASE("keys left out of a scenario take their defaults") {
+  TempDir dir;
+  const Scenario s = load_scenario(dir.write("pbvs-box.yaml", kMinimal + "control: {gain: 0.8}\n"), ICGP_MODELS_DIR);
+  CHECK((s.name == "pbvs-box" && s.description.empty()));
+  CHECK(s.robot == icgp::servo::RobotKind::kFreeFlyingCamera);
+  CHECK(s.arm.initial_joints[1] == Approx(-60 * icgp::servo::kDegree));
+  CHECK(s.arm.eMo.translation().isApprox(Eigen::Vector3d(0, 0, 0.1)));
+  CHECK((s.object.regions.empty() && s.object.linear_velocity.isZero() && s.object.motion_duration == 0.0));
+  CHECK_FALSE(s.occluder);
+  CHECK((s.background.enabled && s.background.texture.empty() && s.background.distance == 0.3));
+  CHECK((s.camera.color.width == 640 && s.camera.color.height == 480 && s.camera.color.fu == 600));
+  CHECK((s.camera.color.pu == 319.5 && s.camera.color.pv == 239.5));
+  CHECK((s.camera.depth.width == 640 && s.camera.depth.fv == 600 && s.camera.depth.pv == 239.5));
+  CHECK(s.camera.depth_T_color.matrix().isIdentity());
+  CHECK(s.camera.rate_hz == 30);
+  CHECK((s.camera.noise.color_sigma == 0 && s.camera.noise.depth_dropout == 0 && s.camera.noise.frame_drop == 0));
+  CHECK((s.camera.noise.grazing_angle_deg == 90 && s.camera.noise.edge_dropout_px == 0));
+  CHECK(s.tracker.kind == icgp::servo::TrackerKind::kIcgp);
+  CHECK((s.tracker.modalities.empty() && s.tracker.config.empty()));
+  CHECK(s.tracker.visp_configuration == "edge + KLT + dense depth");
+  CHECK(s.control.law == icgp::servo::ControlLawKind::kPbvs);
+  CHECK((s.control.gain.at_zero == 0.8 && s.control.gain.at_infinity == 0.8));  // a number: constant gain
+  CHECK_FALSE(s.control.gain.adaptive());
+  CHECK((s.control.max_linear_velocity == 0.1 && s.control.max_angular_velocity == 0.5));
+  CHECK(s.stop.converged_translation == Approx(0.001));
+  CHECK(s.stop.converged_rotation == Approx(0.1 * kDeg));
+  CHECK((s.stop.max_time == 20 && s.stop.settle_time == 0.2 && s.seed == 1));
+  CHECK(s.trials.translation == Approx(0.02));
+  CHECK(s.trials.rotation == Approx(10 * kDeg));
+
+  // The depth camera defaults to the colour camera as the file gives it; `occluder:` alone
+  // places the default occluder.
+  const Scenario t = load_scenario(
+      dir.write("b.yaml", kMinimal + "occluder:\ncamera: {color: {width: 100, height: 80, focal: 90}}\n"),
+      ICGP_MODELS_DIR);
+  CHECK((t.camera.depth.width == 100 && t.camera.depth.fu == 90 && t.camera.depth.pu == 49.5));
+  REQUIRE(t.occluder);
+  CHECK(t.occluder->size.isApprox(Eigen::Vector3d(0.03, 0.3, 0.03)));
+}
+
+TEST_CASE("model references resolve to a folder of models/ or a file next to the scenario") {
+  TempDir dir;
+  const std::string models = ICGP_MODELS_DIR;
+  CHECK(same_file(resolve_model_path("textured_box", dir.path().string(), models),
+                  models + "/textured_box/textured_box.obj"));
+  CHECK(same_file(resolve_model_path("two_region", dir.path().string(), models), models + "/two_region/object.obj"));
+  dir.write("mine.obj", "v 0 0 0\n");
+  CHECK(same_file(resolve_model_path("mine.obj", dir.path().string(), models), (dir.path() / "mine.obj").string()));
+  CHECK(same_file(resolve_model_path((dir.path() / "mine.obj").string(), "/nonexistent", models),
+                  (dir.path() / "mine.obj").string()));
+  CHECK_THROWS_WITH(resolve_model_path("no_such_model", dir.path().string(), models),
+                    Contains("no_such_model") && Contains(models + "/no_such_model/object.obj") &&
+                        Contains((dir.path() / "no_such_model").string()));
+
+  const Scenario s = load_scenario(
+      dir.write("two.yaml", "object: {model: two_region, regions: [mine.obj]}\n"
+                            "start: {t: [0, 0, 0.4], r_deg: [0, 0, 0]}\ndesired: {t: [0, 0, 0.3], r_deg: [0, 0, 0]}\n"),
+      models);
+  CHECK(same_file(s.object.model, models + "/two_region/object.obj"));
+  REQUIRE(s.object.regions.size() == 1);
+  CHECK(same_file(s.object.regions[0], (dir.path() / "mine.obj").string()));
+}
+
+TEST_CASE("scenario errors name the file and the field") {
+  TempDir dir;
+  const auto error = [&](const std::string& text) { return error_of(dir, text); };
+  const std::string file = (dir.path() / "bad.yaml").string();
+
+  SECTION("missing scenario file") {
+    const std::string missing = (dir.path() / "missing.yaml").string();
+    CHECK_THROWS_WITH(load_scenario(missing, ICGP_MODELS_DIR), missing + ": no such scenario file");
+  }
+  SECTION("YAML syntax error") {
+    CHECK_THAT(error(kMinimal + "control: {gain: [0.5\n"), Contains(file + ": line ") && Contains("column"));
+  }
+  SECTION("unknown keys, at the top and nested") {
+    CHECK_THAT(error(kMinimal + "speed: 3\n"), Contains(file + ": speed: unknown key (expected one of name,"));
+    CHECK_THAT(error(kMinimal + "control: {gian: 0.5}\n"),
+               Contains(file + ": control.gian: unknown key (expected one of law, gain, max_linear_velocity"));
+    CHECK_THAT(error(kMinimal + "camera: {noise: {depth_drop: 0.1}}\n"), Contains(file + ": camera.noise.depth_drop"));
+  }
+  SECTION("wrong types") {
+    CHECK(error(kMinimal + "control: {gain: fast}\n") ==
+          file + ": control.gain: expected a positive number, got 'fast'");
+    CHECK_THAT(error(kMinimal + "camera: {rate_hz: [30]}\n"),
+               Contains(file + ": camera.rate_hz: expected a positive number, got [30]"));
+    CHECK_THAT(error(kMinimal + "camera: {color: {width: 640.5}}\n"),
+               Contains(file + ": camera.color.width: expected a positive integer, got 640.5"));
+    CHECK_THAT(error(kMinimal + "occluder: {size: [1, 2]}\n"),
+               Contains(file + ": occluder.size: expected a list of 3 non-negative numbers, got [1, 2]"));
+    CHECK_THAT(error(kMinimal + "background: {enabled: maybe}\n"),
+               Contains(file + ": background.enabled: expected true or false, got 'maybe'"));
+    CHECK_THAT(error(kMinimal + "control: [pbvs]\n"), Contains(file + ": control: expected a map with the keys law"));
+  }
+  SECTION("out of range") {
+    CHECK(error(kMinimal + "camera: {noise: {depth_dropout: 1.5}}\n") ==
+          file + ": camera.noise.depth_dropout: expected a number in [0, 1), got 1.5");
+    CHECK_THAT(error(kMinimal + "camera: {noise: {grazing_angle_deg: 0}}\n"),
+               Contains(file + ": camera.noise.grazing_angle_deg: expected a number in (0, 90], got 0"));
+    CHECK_THAT(error(kMinimal + "camera: {noise: {motion_blur: 1.01}}\n"),
+               Contains(file + ": camera.noise.motion_blur: expected a number in [0, 1]"));
+    CHECK_THAT(error(kMinimal + "camera: {noise: {edge_dropout_px: -1}}\n"),
+               Contains(file + ": camera.noise.edge_dropout_px: expected a non-negative integer, got -1"));
+    CHECK_THAT(error(kMinimal + "control: {gain: {at_zero: 0}}\n"),
+               Contains(file + ": control.gain.at_zero: expected a positive number, got 0"));
+    CHECK_THAT(error(kMinimal + "control: {max_angular_velocity_deg: -30}\n"),
+               Contains(file + ": control.max_angular_velocity_deg: expected a positive number, got -30"));
+    CHECK_THAT(error(kMinimal + "stop: {max_time: 0}\n"), Contains(file + ": stop.max_time: expected a positive"));
+    CHECK_THAT(error(kMinimal + "seed: -1\n"), Contains(file + ": seed: expected a non-negative integer, got -1"));
+    CHECK_THAT(error("object: {model: textured_box}\nstart: {t: [0, 0, -0.4], r_deg: [0, 0, 0]}\n"
+                     "desired: {t: [0, 0, 0.35], r_deg: [0, 0, 0]}\n"),
+               Contains(file + ": start.t: the object must be in front of the camera (z > 0), got [0, 0, -0.4]"));
+  }
+  SECTION("bad enums and modalities") {
+    CHECK(error(kMinimal + "robot: ur5\n") ==
+          file + ": robot: expected one of free_flying, viper850_eye_in_hand, viper850_eye_to_hand, got 'ur5'");
+    CHECK_THAT(error(kMinimal + "control: {law: vvs}\n"), Contains(file + ": control.law: expected one of pbvs, ibvs"));
+    CHECK_THAT(error(kMinimal + "tracker: {visp_configuration: edge}\n"),
+               Contains(file + ": tracker.visp_configuration: expected one of edge + dense depth, KLT + dense depth"));
+    CHECK_THAT(error(kMinimal + "tracker: {modalities: [region, edge]}\n"),
+               Contains(file + ": tracker.modalities: expected a non-empty list") &&
+                   Contains("got ['region', 'edge']"));
+    CHECK_THAT(error(kMinimal + "tracker: {modalities: []}\n"), Contains(file + ": tracker.modalities: expected"));
+  }
+  SECTION("missing required keys") {
+    CHECK(error("start: {t: [0, 0, 0.4], r_deg: [0, 0, 0]}\n") == file + ": object: required");
+    CHECK(error("object: {model: textured_box}\nstart: {t: [0, 0, 0.4], r_deg: [0, 0, 0]}\n") ==
+          file + ": desired: required");
+    CHECK_THAT(error("object: {model: textured_box}\nstart: {t: [0, 0, 0.4]}\n"
+                     "desired: {t: [0, 0, 0.4], r_deg: [0, 0, 0]}\n"),
+               Contains(file + ": start.r_deg: required"));
+    CHECK_THAT(error("object: {regions: []}\n"), Contains(file + ": object.model: required"));
+  }
+  SECTION("references to files that do not exist") {
+    CHECK_THAT(error("object: {model: no_such_model}\n"),
+               Contains(file + ": object.model: expected a model folder of") && Contains("'no_such_model'") &&
+                   Contains(std::string(ICGP_MODELS_DIR) + "/no_such_model/no_such_model.obj") &&
+                   Contains((dir.path() / "no_such_model").string()));
+    CHECK_THAT(error("object: {model: textured_box, regions: [missing.obj]}\n"),
+               Contains(file + ": object.regions[0]: ") && Contains((dir.path() / "missing.obj").string()));
+    CHECK_THAT(error(kMinimal + "background: {texture: bg.png}\n"),
+               Contains(file + ": background.texture: expected an existing file") &&
+                   Contains((dir.path() / "bg.png").string()));
+    CHECK_THAT(error(kMinimal + "tracker: {config: icgp.yaml}\n"),
+               Contains(file + ": tracker.config: ") && Contains((dir.path() / "icgp.yaml").string()));
+  }
+}
