@@ -103,10 +103,12 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   const double dt = 1.0 / scenario.camera.rate_hz;
   const double motion_end = scenario.object.motion_start + scenario.object.motion_duration;
   vpHomogeneousMatrix previous_wMc = robot->world_T_camera();
+  vpHomogeneousMatrix trusted_cMo;  ///< the last pose the tracker did not report lost
   {
     // The tracker starts at the true pose, as after a detection.
     const RgbdCapture& first = simulator.capture(0.0, previous_wMc, previous_wMc, robot->world_T_held_object());
-    estimator->start(first, first.cMo_true);
+    trusted_cMo = first.cMo_true;
+    estimator->start(first, trusted_cMo);
   }
 
   ConvergenceMonitor convergence(scenario.stop);
@@ -124,7 +126,16 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     const auto t1 = Clock::now();
     previous_wMc = wMc;
     step.dropped = capture.dropped;
-    if (!capture.dropped) estimate = estimator->track(capture);
+    if (!capture.dropped) {
+      estimate = estimator->track(capture);
+      if (estimate.lost) {
+        // The robot stops, so the pose last trusted still holds for a static object: restart
+        // the tracker there for the next frame rather than let it wander while lost.
+        estimator->start(capture, trusted_cMo);
+      } else {
+        trusted_cMo = estimate.cMo;
+      }
+    }
     const auto t2 = Clock::now();
 
     vpColVector velocity;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // `icgp servo SCENARIO`: the closed loop tracker -> ViSP control law -> simulated robot, one
 // run with its log and plots, batch trials, or trackers compared on identical trials.
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -92,9 +93,13 @@ std::vector<ServoResult> run_trials(const Scenario& scenario, const ServoOptions
     servo::ServoRunOptions run;
     run.seed = scenario.seed + static_cast<unsigned>(i);
     run.start_offset = servo::perturbed_start(scenario.trials, scenario.seed, i);
-    run.progress = !o.quiet;
-    if (!o.quiet) std::cerr << "trial " << i + 1 << "/" << o.trials << " (" << scenario.name << ")\n";
+    run.progress = false;  // one line per trial instead
     results.push_back(servo::run_servo(scenario, run));
+    const ServoResult& r = results.back();
+    std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s\n", i + 1, o.trials,
+                 r.tracker.c_str(), servo::succeeded(r, scenario.stop) ? "success" : r.converged ? "settled off target" : "not converged",
+                 1e3 * r.final_t, r.final_r / servo::kDegree, 1e3 * r.max_track_t,
+                 r.safety_stops > 0 ? (", " + std::to_string(r.safety_stops) + " safety stop(s)").c_str() : "");
   }
   return results;
 }

@@ -27,7 +27,7 @@ Scenario small_scenario(const std::string& law, const std::string& tracker) {
                          "  color: {width: 320, height: 240, focal: 300}\n"
                          "  depth_T_color: {t: [-0.025, 0, 0], r_deg: [0, 0, 0]}\n"
                          "start: {t: [0.03, -0.02, 0.45], r_deg: [131.29, 38.07, -12.74]}\n"
-                         "desired: {t: [0, 0, 0.35], r_deg: [145.23, 23.0, -43.24]}\n"
+                         "desired: {t: [0, 0, 0.35], r_deg: [131.2, 26.8, -37.57]}\n"
                          "tracker: {type: " << tracker << ", modalities: [region, depth], config: "
                       << ICGP_TEST_DATA_DIR "/../configs/servo_exact_depth.yaml}\n"
                          "control:\n"

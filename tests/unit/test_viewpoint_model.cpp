@@ -19,6 +19,7 @@
 #include "icgp/model/model_cache.h"
 #include "icgp/model/model_key.h"
 #include "icgp/model/viewpoint_model_generator.h"
+#include "icgp/modality/view_selector.h"
 #include "icgp/render/renderer.h"
 #include "test_meshes.h"
 
@@ -146,6 +147,38 @@ TEST_CASE("viewpoint model: closest_view picks each view for its own direction")
     const Eigen::Vector3f tilted = (d[v] + 0.05f * d[v].unitOrthogonal()).normalized();
     CHECK(model.closest_view(tilted) == v);
   }
+}
+
+TEST_CASE("view selector: keeps its view across a boundary until another is closer by the margin") {
+  ViewpointModelParams params;
+  params.n_divides = 2;
+  params.n_points = 1;
+  ViewpointModel model(ViewpointModel::Kind::kDepth, params, 0);
+  const std::vector<Eigen::Vector3f> d = icosphere_directions(2);
+  for (std::size_t v = 0; v < d.size(); ++v) model.mutable_views()[v].direction = d[v];
+  // Two neighbouring views A and B, and directions along the great circle from A to B.
+  const int a = 0;
+  int b = 1;
+  for (int v = 1; v < model.n_views(); ++v)
+    if (d[v].dot(d[a]) > d[b].dot(d[a])) b = v;
+  const float spacing = std::acos(d[a].dot(d[b]));
+  const Eigen::Vector3f axis = d[a].cross(d[b]).normalized();
+  const auto towards_b = [&](float angle) { return Eigen::AngleAxisf(angle, axis) * d[a]; };
+  const float margin = ViewSelector::kHysteresisDegrees * static_cast<float>(M_PI) / 180.f;
+
+  ViewSelector selector;
+  REQUIRE(selector.select(model, d[a]) == a);
+  // Past the midpoint, but B not yet closer by the margin: A stays (a fresh selector picks B).
+  const Eigen::Vector3f just_past = towards_b(0.5f * spacing + 0.4f * margin);
+  REQUIRE(model.closest_view(just_past) == b);
+  CHECK(selector.select(model, just_past) == a);
+  ViewSelector fresh;
+  CHECK(fresh.select(model, just_past) == b);
+  // B closer by more than the margin: the selector moves to it, and back only past the
+  // margin on the other side.
+  CHECK(selector.select(model, towards_b(0.5f * spacing + 0.6f * margin)) == b);
+  CHECK(selector.select(model, towards_b(0.5f * spacing - 0.4f * margin)) == b);
+  CHECK(selector.select(model, towards_b(0.5f * spacing - 0.6f * margin)) == a);
 }
 
 TEST_CASE("viewpoint model: parameters are validated") {

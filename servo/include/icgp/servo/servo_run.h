@@ -63,7 +63,8 @@ struct ServoRunOptions {
 /// Runs `scenario` to convergence or to its time limit: each step captures the RGB-D
 /// frame at the robot's pose, tracks it, computes the control law from the estimated pose
 /// and moves the robot for one frame period. When the tracker reports lost, the commanded
-/// velocity is zero (safety stop) until it tracks again. The run converges when the servo
+/// velocity is zero (safety stop) and the tracker restarts at the last pose it did not
+/// report lost, until it tracks again. The run converges when the servo
 /// error as the tracker estimates it stays within the scenario's thresholds for its settle
 /// time, after any target motion has ended.
 ServoResult run_servo(const Scenario& scenario, const ServoRunOptions& options = {});
