@@ -62,9 +62,9 @@ class RunViewer {
   bool active() const { return video_ || display_; }
 
   void show(const servo::RgbdCapture& capture, const servo::ServoStep& step) {
-    const std::string caption = "t " + std::to_string(step.time).substr(0, 5) + " s  error " +
-                                std::to_string(1e3 * step.servo_t).substr(0, 6) + " mm" +
-                                (step.safety_stop ? "  SAFETY STOP" : "");
+    char caption[96];
+    std::snprintf(caption, sizeof caption, "t %.2f s  error %.2f mm %.2f deg%s", step.time, 1e3 * step.servo_t,
+                  step.servo_r / servo::kDegree, step.safety_stop ? "  SAFETY STOP" : "");
     if (video_) {
       ColorImage color{"Camera1", intrinsics_, Pose(), cv::Mat()};
       vpImageConvert::convert(capture.color, color.image);  // BGR

@@ -330,3 +330,15 @@ TEST_CASE("scenario errors name the file and the field") {
                Contains(file + ": tracker.config: ") && Contains((dir.path() / "icgp.yaml").string()));
   }
 }
+
+TEST_CASE("every scenario shipped in scenarios/ loads") {
+  namespace fs = std::filesystem;
+  int count = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(ICGP_MODELS_DIR "/../scenarios")) {
+    if (entry.path().extension() != ".yaml") continue;
+    INFO(entry.path());
+    CHECK_NOTHROW(load_scenario(entry.path().string(), ICGP_MODELS_DIR));
+    ++count;
+  }
+  CHECK(count >= 10);
+}

@@ -1,0 +1,24 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Runs `icgp servo` on a small scenario and checks the summary JSON has every key of the
+# machine-readable contract (README / issue: scenario, tracker, trials, ...).
+# -DICGP=<program> -DSCENARIO=<yaml> -DOUT=<folder> [-DARGS=<extra arguments, ;-separated>]
+file(REMOVE_RECURSE "${OUT}")
+execute_process(COMMAND "${ICGP}" servo "${SCENARIO}" --out "${OUT}" --summary "${OUT}/summary.json" --quiet ${ARGS}
+                RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE errors)
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "icgp servo failed (${result}):\n${output}\n${errors}")
+endif()
+file(READ "${OUT}/summary.json" json)
+foreach(key scenario tracker trials converged success_rate final_t_mm final_r_deg median median_track_ms
+            steps_per_s safety_stops)
+  string(FIND "${json}" "\"${key}\":" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "summary.json has no \"${key}\":\n${json}")
+  endif()
+endforeach()
+foreach(file log.csv error.png velocity.png)
+  if(NOT EXISTS "${OUT}/${file}" AND NOT ARGS MATCHES "--trials")
+    message(FATAL_ERROR "icgp servo did not write ${OUT}/${file}")
+  endif()
+endforeach()
+message("${output}")
