@@ -73,9 +73,14 @@ class IcgpEstimator : public PoseEstimator {
 /// ViSP's settings for the edge, KLT and dense-depth features: those of its teabox
 /// tutorial, which suit objects of this size at half a metre. The cameras come from the
 /// simulator, not from these files.
-const char* const kColorSettings = R"(<?xml version="1.0"?>
-<conf>
-  <ecm>
+std::string visp_settings(const std::string& features) {
+  return "<?xml version=\"1.0\"?>\n<conf>\n" + features +
+         "  <face>\n"
+         "    <angle_appear>70</angle_appear><angle_disappear>80</angle_disappear>\n"
+         "    <near_clipping>0.1</near_clipping><far_clipping>100</far_clipping><fov_clipping>1</fov_clipping>\n"
+         "  </face>\n</conf>\n";
+}
+const std::string kColorFeatures = R"(  <ecm>
     <mask><size>5</size><nb_mask>180</nb_mask></mask>
     <range><tracking>8</tracking></range>
     <contrast><edge_threshold>10000</edge_threshold><mu1>0.5</mu1><mu2>0.5</mu2></contrast>
@@ -86,23 +91,11 @@ const char* const kColorSettings = R"(<?xml version="1.0"?>
     <quality>0.015</quality><min_distance>8</min_distance><harris>0.01</harris>
     <size_block>3</size_block><pyramid_lvl>3</pyramid_lvl>
   </klt>
-  <face>
-    <angle_appear>70</angle_appear><angle_disappear>80</angle_disappear>
-    <near_clipping>0.1</near_clipping><far_clipping>100</far_clipping><fov_clipping>1</fov_clipping>
-  </face>
-</conf>
 )";
-const char* const kDepthSettings = R"(<?xml version="1.0"?>
-<conf>
-  <depth_dense><sampling_step><step_X>4</step_X><step_Y>4</step_Y></sampling_step></depth_dense>
-  <face>
-    <angle_appear>70</angle_appear><angle_disappear>80</angle_disappear>
-    <near_clipping>0.1</near_clipping><far_clipping>100</far_clipping><fov_clipping>1</fov_clipping>
-  </face>
-</conf>
-)";
+const std::string kDepthFeatures =
+    "  <depth_dense><sampling_step><step_X>4</step_X><step_Y>4</step_Y></sampling_step></depth_dense>\n";
 
-void write_text(const fs::path& path, const char* text) {
+void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
   if (!out) throw std::runtime_error(path.string() + ": cannot write ViSP's tracker settings");
@@ -114,8 +107,8 @@ VispModelFiles visp_model_files(const std::string& mesh_path) {
   fs::create_directories(dir);
   VispModelFiles files{(dir / "model.cao").string(), (dir / "model.xml").string(), (dir / "model_depth.xml").string()};
   write_cao(load_any_mesh(mesh_path), files.model);
-  write_text(files.color_config, kColorSettings);
-  write_text(files.depth_config, kDepthSettings);
+  write_text(files.color_config, visp_settings(kColorFeatures));
+  write_text(files.depth_config, visp_settings(kDepthFeatures));
   return files;
 }
 

@@ -4,8 +4,12 @@
 //     against the analytic distance to its front face;
 //  2. tracks that cube with vpMbIcgTracker held as a vpMbTracker*: a mesh file written here,
 //     RGB-D frames rendered at a known pose with the depth as the uint16 image of an RGB-D
-//     sensor, and a start 5 mm away from the truth that must converge back to it.
+//     sensor, and a start 5 mm away from the truth that must converge back to it;
+//  3. runs the installed default servo scenario (icgp::servo) with the ground truth in the
+//     loop and checks it converges to the desired pose.
 #include <icgp/render/renderer.h>
+#include <icgp/servo/scenario.h>
+#include <icgp/servo/servo_run.h>
 #include <icgp/visp/conversions.h>
 #include <icgp/visp/vpMbIcgTracker.h>
 #include <visp3/core/vpCameraParameters.h>
@@ -108,6 +112,18 @@ bool check_tracking(const icgp::Mesh& cube, const std::filesystem::path& work_di
   return error_mm < 1.0 && error_deg < 0.5;
 }
 
+bool check_servo() {
+  icgp::servo::Scenario scenario =
+      icgp::servo::load_scenario(ICGP_CONSUMER_SCENARIOS_DIR "/default.yaml", ICGP_CONSUMER_MODELS_DIR);
+  scenario.tracker.kind = icgp::servo::TrackerKind::kOracle;
+  icgp::servo::ServoRunOptions options;
+  options.progress = false;
+  const icgp::servo::ServoResult result = icgp::servo::run_servo(scenario, options);
+  std::cout << "servo, default scenario with the oracle: " << (result.converged ? "converged" : "did not converge")
+            << " in " << result.steps.size() << " steps, " << result.final_t * 1e3 << " mm from the desired pose\n";
+  return result.converged && result.final_t < scenario.stop.converged_translation;
+}
+
 }  // namespace
 
 int main() {
@@ -115,5 +131,6 @@ int main() {
   const icgp::Mesh cube = make_cube(0.05f);  // a 10 cm cube
   const bool depth_ok = check_rendered_depth(cube);
   const bool tracking_ok = check_tracking(cube, work_dir);
-  return depth_ok && tracking_ok ? 0 : 1;
+  const bool servo_ok = check_servo();
+  return depth_ok && tracking_ok && servo_ok ? 0 : 1;
 }

@@ -134,13 +134,24 @@ TEST_CASE("icosphere: 10*4^n+2 unit directions, evenly spread, in a fixed order"
   CHECK_THROWS_AS(icosphere_directions(-1), std::invalid_argument);
 }
 
-TEST_CASE("viewpoint model: closest_view picks each view for its own direction") {
+namespace {
+
+/// A model with no points whose views look along the icosphere directions of n_divides 2.
+ViewpointModel model_of_views() {
   ViewpointModelParams params;
   params.n_divides = 2;
   params.n_points = 1;
   ViewpointModel model(ViewpointModel::Kind::kDepth, params, 0);
   const std::vector<Eigen::Vector3f> d = icosphere_directions(2);
   for (std::size_t v = 0; v < d.size(); ++v) model.mutable_views()[v].direction = d[v];
+  return model;
+}
+
+}  // namespace
+
+TEST_CASE("viewpoint model: closest_view picks each view for its own direction") {
+  const ViewpointModel model = model_of_views();
+  const std::vector<Eigen::Vector3f> d = icosphere_directions(2);
   for (int v = 0; v < model.n_views(); ++v) {
     CHECK(model.closest_view(d[v]) == v);
     // A slightly tilted direction still belongs to its view (views are ~15 degrees apart).
@@ -150,12 +161,8 @@ TEST_CASE("viewpoint model: closest_view picks each view for its own direction")
 }
 
 TEST_CASE("view selector: keeps its view across a boundary until another is closer by the margin") {
-  ViewpointModelParams params;
-  params.n_divides = 2;
-  params.n_points = 1;
-  ViewpointModel model(ViewpointModel::Kind::kDepth, params, 0);
+  const ViewpointModel model = model_of_views();
   const std::vector<Eigen::Vector3f> d = icosphere_directions(2);
-  for (std::size_t v = 0; v < d.size(); ++v) model.mutable_views()[v].direction = d[v];
   // Two neighbouring views A and B, and directions along the great circle from A to B.
   const int a = 0;
   int b = 1;
