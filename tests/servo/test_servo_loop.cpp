@@ -3,12 +3,12 @@
 // with icgp in the loop (checked against the ground truth), and a tracker that reports lost
 // stops the robot within the step.
 #include <catch2/catch.hpp>
-#include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include "icgp/servo/scenario.h"
 #include "icgp/servo/servo_controller.h"
 #include "icgp/servo/servo_run.h"
+#include "../unit/test_temp_dir.h"
 
 using namespace icgp::servo;
 
@@ -18,11 +18,9 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 /// A small, fast scenario: 320x240 camera, coarse viewpoint models, the textured box.
 Scenario small_scenario(const std::string& law, const std::string& tracker) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "icgp-test-servo-loop";
-  fs::create_directories(dir);
-  const fs::path file = dir / (law + "_" + tracker + ".yaml");
-  std::ofstream(file) << "object: {model: textured_box}\n"
+  const icgp::test::TempDir dir("icgp-test-servo-loop");
+  std::ostringstream yaml;
+  yaml << "object: {model: textured_box}\n"
                          "camera:\n"
                          "  color: {width: 320, height: 240, focal: 300}\n"
                          "  depth_T_color: {t: [-0.025, 0, 0], r_deg: [0, 0, 0]}\n"
@@ -36,7 +34,7 @@ Scenario small_scenario(const std::string& law, const std::string& tracker) {
                          "  max_linear_velocity: 0.1\n"
                          "  max_angular_velocity_deg: 30\n"
                          "stop: {translation_mm: 1, rotation_deg: 0.1, settle_time: 0.2, max_time: 8}\n";
-  return load_scenario(file.string(), ICGP_MODELS_DIR);
+  return load_scenario(dir.write(law + "_" + tracker + ".yaml", yaml.str()), ICGP_MODELS_DIR);
 }
 
 ServoRunOptions quiet() {

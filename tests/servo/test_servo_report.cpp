@@ -10,6 +10,7 @@
 #include <vector>
 #include <yaml-cpp/yaml.h>
 
+#include "../unit/test_temp_dir.h"
 #include "icgp/servo/servo_report.h"
 
 namespace fs = std::filesystem;
@@ -17,25 +18,12 @@ using icgp::servo::ServoResult;
 using icgp::servo::ServoStep;
 using icgp::servo::StopSpec;
 using icgp::servo::TrialsSummary;
+using icgp::test::TempDir;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
-
-/// A fresh empty folder under the temp folder, removed at the end of the test.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name) {
-    path = fs::temp_directory_path() / ("icgp_test_servo_report_" + name);
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code error;
-    fs::remove_all(path, error);
-  }
-};
 
 std::string read(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -236,11 +224,11 @@ TEST_CASE("print_run and print_summaries write the numbers", "[servo][report]") 
 }
 
 TEST_CASE("write_summary_json writes the contract keys in mm and degrees", "[servo][report]") {
-  TempDir dir("json");
+  TempDir dir("icgp_test_servo_report_json");
   StopSpec stop;
   const TrialsSummary s = icgp::servo::summarise({run_a(), run_b(), run_c(), run_d()}, stop);
 
-  const fs::path one = dir.path / "nested" / "folder" / "summary.json";  // parents created
+  const fs::path one = dir.path() / "nested" / "folder" / "summary.json";  // parents created
   icgp::servo::write_summary_json({s}, one.string());
   const std::string text = read(one);
   CHECK(text.find("\"success_rate\": 0.5") != std::string::npos);
@@ -274,7 +262,7 @@ TEST_CASE("write_summary_json writes the contract keys in mm and degrees", "[ser
   // Several summaries: an array; no converged run: null time.
   TrialsSummary failed = icgp::servo::summarise({run_b()}, stop);
   failed.tracker = "visp";
-  const fs::path many = dir.path / "compare.json";
+  const fs::path many = dir.path() / "compare.json";
   icgp::servo::write_summary_json({s, failed}, many.string());
   const YAML::Node array = YAML::LoadFile(many.string());
   REQUIRE(array.IsSequence());
@@ -286,11 +274,11 @@ TEST_CASE("write_summary_json writes the contract keys in mm and degrees", "[ser
 }
 
 TEST_CASE("write_step_csv writes a header and one line per step", "[servo][report]") {
-  TempDir dir("csv");
+  TempDir dir("icgp_test_servo_report_csv");
   ServoResult r = run_a();
   r.steps[1].velocity = vpColVector();  // an empty velocity is written as zeros
   r.steps[2].dropped = true;
-  const fs::path path = dir.path / "sub" / "steps.csv";
+  const fs::path path = dir.path() / "sub" / "steps.csv";
   icgp::servo::write_step_csv(r, path.string());
   const std::vector<std::string> lines = lines_of(read(path));
   REQUIRE(lines.size() == 1 + 3);
@@ -304,12 +292,12 @@ TEST_CASE("write_step_csv writes a header and one line per step", "[servo][repor
 }
 
 TEST_CASE("plot_run draws error.png and velocity.png with gnuplot", "[servo][report]") {
-  TempDir dir("plot");
+  TempDir dir("icgp_test_servo_report_plot");
   ServoResult r = run_a();
   r.steps.push_back(run_b().steps.front());  // a safety stop and a lost frame to mark
   r.steps.back().time = 0.3;
   r.steps[0].track_t = 0.0;  // zero on a log scale must not break the plot
-  const fs::path out = dir.path / "plots";
+  const fs::path out = dir.path() / "plots";
   icgp::servo::plot_run(r, out.string());
   for (const char* name : {"error.png", "velocity.png"}) {
     const std::string png = read(out / name);
@@ -322,15 +310,14 @@ TEST_CASE("plot_run draws error.png and velocity.png with gnuplot", "[servo][rep
   // No steps at all still gives the two (empty) figures.
   ServoResult empty;
   empty.scenario = "nothing";
-  icgp::servo::plot_run(empty, (dir.path / "empty").string());
-  CHECK(read(dir.path / "empty" / "error.png").compare(0, 4, "\x89PNG") == 0);
-  CHECK(read(dir.path / "empty" / "velocity.png").compare(0, 4, "\x89PNG") == 0);
+  icgp::servo::plot_run(empty, (dir.path() / "empty").string());
+  CHECK(read(dir.path() / "empty" / "error.png").compare(0, 4, "\x89PNG") == 0);
+  CHECK(read(dir.path() / "empty" / "velocity.png").compare(0, 4, "\x89PNG") == 0);
 }
 
 TEST_CASE("an output folder that cannot be created is named in the error", "[servo][report]") {
-  TempDir dir("errors");
-  const fs::path blocker = dir.path / "a_file";
-  std::ofstream(blocker) << "not a folder\n";
+  TempDir dir("icgp_test_servo_report_errors");
+  const fs::path blocker = dir.write("a_file", "not a folder\n");
   const std::string folder = (blocker / "out").string();
   StopSpec stop;
   const TrialsSummary s = icgp::servo::summarise({run_a()}, stop);
@@ -340,17 +327,17 @@ TEST_CASE("an output folder that cannot be created is named in the error", "[ser
   CHECK_THROWS_WITH(icgp::servo::write_step_csv(run_a(), folder + "/steps.csv"), Contains(folder));
   CHECK_THROWS_WITH(icgp::servo::plot_run(run_a(), folder), Contains(folder));
   // A path that is a folder cannot be written as a file.
-  CHECK_THROWS_WITH(icgp::servo::write_step_csv(run_a(), dir.path.string()), Contains(dir.path.string()));
+  CHECK_THROWS_WITH(icgp::servo::write_step_csv(run_a(), dir.path().string()), Contains(dir.path().string()));
 }
 
 TEST_CASE("plot_run without gnuplot says so", "[servo][report]") {
-  TempDir dir("no_gnuplot");
+  TempDir dir("icgp_test_servo_report_no_gnuplot");
   const char* old_path = std::getenv("PATH");
   const std::string saved = old_path ? old_path : "";
-  ::setenv("PATH", dir.path.string().c_str(), 1);  // a folder without gnuplot
+  ::setenv("PATH", dir.path().string().c_str(), 1);  // a folder without gnuplot
   std::string message;
   try {
-    icgp::servo::plot_run(run_a(), (dir.path / "plots").string());
+    icgp::servo::plot_run(run_a(), (dir.path() / "plots").string());
   } catch (const std::runtime_error& e) {
     message = e.what();
   }

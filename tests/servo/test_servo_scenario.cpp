@@ -3,10 +3,9 @@
 // defaults, model resolution, and errors that name the file and the field.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 
+#include "../unit/test_temp_dir.h"
 #include "icgp/servo/scenario.h"
 
 namespace fs = std::filesystem;
@@ -16,34 +15,12 @@ using icgp::servo::load_scenario;
 using icgp::servo::resolve_model_path;
 using icgp::servo::Scenario;
 using icgp::servo::ScenarioError;
+using icgp::test::TempDir;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
-
-/// A directory of scenario files written by a test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "icgp-scenario-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const fs::path& path() const { return path_; }
-  std::string write(const std::string& name, const std::string& content) const {
-    const fs::path file = path_ / name;
-    std::ofstream(file) << content;
-    return file.string();
-  }
-
- private:
-  fs::path path_;
-};
 
 /// The smallest valid scenario: the required keys only.
 const std::string kMinimal =
@@ -70,7 +47,7 @@ double angle(const Eigen::Matrix3d& R) { return icgp::rotation_angle_between<dou
 }  // namespace
 
 TEST_CASE("a full scenario file is read with its units converted") {
-  TempDir dir;
+  TempDir dir("icgp-scenario");
   dir.write("a.obj", "v 0 0 0\n");
   fs::create_directory(dir.path() / "meshes");
   dir.write("meshes/b.obj", "v 0 0 0\n");
@@ -184,7 +161,7 @@ seed: 7
 }
 
 TEST_CASE("keys left out of a scenario take their defaults") {
-  TempDir dir;
+  TempDir dir("icgp-scenario");
   const Scenario s = load_scenario(dir.write("pbvs-box.yaml", kMinimal + "control: {gain: 0.8}\n"), ICGP_MODELS_DIR);
   CHECK((s.name == "pbvs-box" && s.description.empty()));
   CHECK(s.robot == icgp::servo::RobotKind::kFreeFlyingCamera);
@@ -224,7 +201,7 @@ TEST_CASE("keys left out of a scenario take their defaults") {
 }
 
 TEST_CASE("model references resolve to a folder of models/ or a file next to the scenario") {
-  TempDir dir;
+  TempDir dir("icgp-scenario");
   const std::string models = ICGP_MODELS_DIR;
   CHECK(same_file(resolve_model_path("textured_box", dir.path().string(), models),
                   models + "/textured_box/textured_box.obj"));
@@ -247,7 +224,7 @@ TEST_CASE("model references resolve to a folder of models/ or a file next to the
 }
 
 TEST_CASE("scenario errors name the file and the field") {
-  TempDir dir;
+  TempDir dir("icgp-scenario");
   const auto error = [&](const std::string& text) { return error_of(dir, text); };
   const std::string file = (dir.path() / "bad.yaml").string();
 

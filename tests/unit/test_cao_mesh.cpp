@@ -4,51 +4,29 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iomanip>
 #include <sstream>
 
 #include "icgp/visp/cao_mesh_loader.h"
+#include "test_meshes.h"
+#include "test_temp_dir.h"
 
 namespace fs = std::filesystem;
 using Eigen::Vector3d;
 using icgp::Mesh;
 using icgp::Pose;
+using icgp::test::for_each_triangle;
+using icgp::test::mesh_signed_volume;
+using icgp::test::mesh_surface_area;
+using icgp::test::TempDir;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 const fs::path kData = ICGP_TEST_DATA_DIR;
 const fs::path kModels = kData / "realsense-cube" / "models";
-
-Vector3d vertex(const icgp::MeshPart& part, int index) { return part.vertices[index].cast<double>(); }
-
-/// Calls f(a, b, c) for every triangle of the mesh.
-template <typename F>
-void for_each_triangle(const Mesh& mesh, F&& f) {
-  for (const icgp::MeshPart& part : mesh.parts)
-    for (const Eigen::Vector3i& t : part.triangles) f(vertex(part, t[0]), vertex(part, t[1]), vertex(part, t[2]));
-}
-
-double surface_area(const Mesh& mesh) {
-  double area = 0.0;
-  for_each_triangle(mesh, [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-    area += 0.5 * (b - a).cross(c - a).norm();
-  });
-  return area;
-}
-
-/// Divergence theorem: positive and equal to the volume for closed surfaces whose
-/// triangles face outwards.
-double signed_volume(const Mesh& mesh) {
-  double volume = 0.0;
-  for_each_triangle(
-      mesh, [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { volume += a.dot(b.cross(c)) / 6.0; });
-  return volume;
-}
 
 double box_area(double x, double y, double z) { return 2.0 * (x * y + y * z + x * z); }
 
@@ -99,30 +77,6 @@ void check_vertices_are(const Mesh& mesh, const std::vector<Vector3d>& expected,
   }
   for (std::size_t i = 0; i < expected.size(); ++i) CHECK(used[i]);
 }
-
-/// A directory of .cao files written by a test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "icgp-cao-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::string write(const std::string& name, const std::string& content) const {
-    const fs::path file = path_ / name;
-    fs::create_directories(file.parent_path());
-    std::ofstream(file) << content;
-    return file.string();
-  }
-  std::string path(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
 
 /// The .cao text of points, lines, faces from lines, faces from points, cylinders and
 /// circles (each list already formatted, one entry per line).
@@ -193,16 +147,16 @@ TEST_CASE("cube.cao: a 0.042 m cube with outward faces") {
   const Mesh mesh = icgp::load_cao_mesh((kModels / "cube" / "cube.cao").string());
   const double side = 0.042;
   CHECK(mesh.triangle_count() == 12);
-  CHECK(surface_area(mesh) == Approx(6 * side * side).epsilon(1e-6));
-  CHECK(signed_volume(mesh) == Approx(side * side * side).epsilon(1e-6));
+  CHECK(mesh_surface_area(mesh) == Approx(6 * side * side).epsilon(1e-6));
+  CHECK(mesh_signed_volume(mesh) == Approx(side * side * side).epsilon(1e-6));
   check_bounds(mesh, {-side, 0, 0}, {0, side, side}, 1e-7);
 }
 
 TEST_CASE("realsense teabox.cao: a 0.165 x 0.068 x 0.08 m box") {
   const Mesh mesh = icgp::load_cao_mesh((kModels / "teabox" / "teabox.cao").string());
   CHECK(mesh.triangle_count() == 12);
-  CHECK(surface_area(mesh) == Approx(box_area(0.165, 0.068, 0.08)).epsilon(1e-6));
-  CHECK(signed_volume(mesh) == Approx(0.165 * 0.068 * 0.08).epsilon(1e-6));
+  CHECK(mesh_surface_area(mesh) == Approx(box_area(0.165, 0.068, 0.08)).epsilon(1e-6));
+  CHECK(mesh_signed_volume(mesh) == Approx(0.165 * 0.068 * 0.08).epsilon(1e-6));
   check_bounds(mesh, {0, 0, -0.08}, {0.165, 0.068, 0}, 1e-7);
 }
 
@@ -221,8 +175,8 @@ TEST_CASE("teabox-blender teabox.cao: a slanted prism with the file's dimensions
   const double base_area = polygon_area({{0.031598, -0.04}, {0.034, 0.037166}, {-0.031598, 0.04}, {-0.034, -0.037166}});
 
   CHECK(mesh.triangle_count() == 12);
-  CHECK(surface_area(mesh) == Approx(area).epsilon(1e-6));
-  CHECK(signed_volume(mesh) == Approx(base_area * height).epsilon(1e-6));
+  CHECK(mesh_surface_area(mesh) == Approx(area).epsilon(1e-6));
+  CHECK(mesh_signed_volume(mesh) == Approx(base_area * height).epsilon(1e-6));
   Vector3d lo, hi;
   bounds_of(p, lo, hi);
   check_bounds(mesh, lo, hi, 1e-7);
@@ -232,8 +186,8 @@ TEST_CASE("lego-square.cao: four bricks placed by the load() transforms") {
   const double x = 0.032, y = 0.016, z = 0.0096;
   const Mesh brick = icgp::load_cao_mesh((kModels / "lego-square" / "lego_parts" / "brick-2x4.cao").string());
   CHECK(brick.triangle_count() == 12);
-  CHECK(surface_area(brick) == Approx(box_area(x, y, z)).epsilon(1e-6));
-  CHECK(signed_volume(brick) == Approx(x * y * z).epsilon(1e-6));
+  CHECK(mesh_surface_area(brick) == Approx(box_area(x, y, z)).epsilon(1e-6));
+  CHECK(mesh_signed_volume(brick) == Approx(x * y * z).epsilon(1e-6));
   check_bounds(brick, {0, 0, 0}, {x, y, z}, 1e-7);
 
   // The load() lines of lego-square.cao: X' = R(tu) X + t.
@@ -250,8 +204,8 @@ TEST_CASE("lego-square.cao: four bricks placed by the load() transforms") {
   const std::string square_path = (kModels / "lego-square" / "lego-square.cao").string();
   const Mesh square = icgp::load_cao_mesh(square_path);
   CHECK(square.triangle_count() == 4 * brick.triangle_count());
-  CHECK(surface_area(square) == Approx(4 * surface_area(brick)).epsilon(1e-6));
-  CHECK(signed_volume(square) == Approx(4 * x * y * z).epsilon(1e-5));
+  CHECK(mesh_surface_area(square) == Approx(4 * mesh_surface_area(brick)).epsilon(1e-6));
+  CHECK(mesh_signed_volume(square) == Approx(4 * x * y * z).epsilon(1e-5));
   check_vertices_are(square, placed, 1e-6);
   Vector3d lo, hi;
   bounds_of(placed, lo, hi);
@@ -272,18 +226,18 @@ TEST_CASE("a T transform moves the cube's bounds") {
   const Mesh mesh = icgp::load_cao_mesh((kModels / "cube" / "cube.cao").string(), T);
   // Rotating by 90 degrees about z maps (x, y, z) to (-y, x, z).
   check_bounds(mesh, {0.1 - 0.042, 0.2 - 0.042, 0.3}, {0.1, 0.2, 0.3 + 0.042}, 1e-6);
-  CHECK(signed_volume(mesh) == Approx(0.042 * 0.042 * 0.042).epsilon(1e-5));
+  CHECK(mesh_signed_volume(mesh) == Approx(0.042 * 0.042 * 0.042).epsilon(1e-5));
 }
 
 TEST_CASE("a cylinder becomes its open lateral surface") {
-  TempDir dir;
+  TempDir dir("icgp-cao");
   const Vector3d p1(0.1, -0.2, 0.3), p2(0.15, -0.08, 0.5);
   const double radius = 0.04, height = (p2 - p1).norm();
   const std::string path = dir.write("cylinder.cao", cao({p1, p2}, {}, {}, {}, {"0 1 " + number(radius)}));
   const Mesh mesh = icgp::load_cao_mesh(path);
 
   CHECK(mesh.triangle_count() == 2 * 48);
-  CHECK(surface_area(mesh) == Approx(2 * kPi * radius * height).epsilon(0.01));
+  CHECK(mesh_surface_area(mesh) == Approx(2 * kPi * radius * height).epsilon(0.01));
   const Vector3d axis = (p2 - p1).normalized();
   for (const Eigen::Vector3f& v : mesh.all_vertices()) {
     const Vector3d d = v.cast<double>() - p1;
@@ -302,7 +256,7 @@ TEST_CASE("a cylinder becomes its open lateral surface") {
 }
 
 TEST_CASE("a circle becomes a disc in the plane of its three points") {
-  TempDir dir;
+  TempDir dir("icgp-cao");
   const Vector3d centre(0.2, 0.1, -0.05), p2 = centre + Vector3d(0.03, 0.01, 0.02),
                                           p3 = centre + Vector3d(-0.01, 0.04, 0.01);
   const double radius = 0.06;
@@ -310,7 +264,7 @@ TEST_CASE("a circle becomes a disc in the plane of its three points") {
   const Mesh mesh = icgp::load_cao_mesh(path);
 
   CHECK(mesh.triangle_count() == 48);
-  CHECK(surface_area(mesh) == Approx(kPi * radius * radius).epsilon(0.01));
+  CHECK(mesh_surface_area(mesh) == Approx(kPi * radius * radius).epsilon(0.01));
   const Vector3d normal = (p2 - centre).cross(p3 - centre).normalized();
   for (const Eigen::Vector3f& v : mesh.all_vertices()) {
     CHECK(std::abs((v.cast<double>() - centre).dot(normal)) < 1e-6);
@@ -322,13 +276,13 @@ TEST_CASE("a circle becomes a disc in the plane of its three points") {
 }
 
 TEST_CASE("non-convex faces are ear-clipped exactly") {
-  TempDir dir;
+  TempDir dir("icgp-cao");
   SECTION("an L listed from a corner that does not see the whole face") {
     const double z = 0.01;
     const std::vector<Vector3d> L = {{0.2, 0, z}, {0.2, 0.1, z}, {0.1, 0.1, z}, {0.1, 0.2, z}, {0, 0.2, z}, {0, 0, z}};
     const Mesh mesh = icgp::load_cao_mesh(dir.write("L.cao", cao(L, {}, {}, {face_of_all(L.size())})));
     CHECK(mesh.triangle_count() == 4);
-    CHECK(surface_area(mesh) == Approx(0.03).epsilon(1e-6));
+    CHECK(mesh_surface_area(mesh) == Approx(0.03).epsilon(1e-6));
     for_each_triangle(mesh, [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) {
       CHECK((b - a).cross(c - a).z() > 0.0);  // the file's counter-clockwise winding kept
       const Vector3d centroid = (a + b + c) / 3.0;
@@ -345,7 +299,7 @@ TEST_CASE("non-convex faces are ear-clipped exactly") {
     for (const Eigen::Vector2d& q : comb) points.push_back(R * Vector3d(q.x(), q.y(), 0) + offset);
     const Mesh mesh = icgp::load_cao_mesh(dir.write("comb.cao", cao(points, {}, {}, {face_of_all(points.size())})));
     CHECK(mesh.triangle_count() == comb.size() - 3);  // the straight corner adds no triangle
-    CHECK(surface_area(mesh) == Approx(polygon_area(comb)).epsilon(1e-6));
+    CHECK(mesh_surface_area(mesh) == Approx(polygon_area(comb)).epsilon(1e-6));
     const Vector3d normal = R.col(2);
     for_each_triangle(mesh, [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) {
       CHECK((b - a).cross(c - a).dot(normal) > 0.0);
@@ -354,12 +308,12 @@ TEST_CASE("non-convex faces are ear-clipped exactly") {
 }
 
 TEST_CASE("faces from lines are meshed, lone lines are not") {
-  TempDir dir;
+  TempDir dir("icgp-cao");
   const std::vector<Vector3d> points = {{0, 0, 0}, {0.1, 0, 0}, {0.1, 0.1, 0}, {0, 0.1, 0}, {0, 0, 0.5}, {0, 0, 0.7}};
   const std::string path = dir.write("lines.cao", cao(points, {"0 1", "1 2", "2 3", "3 0", "4 5"}, {"4 0 1 2 3"}));
   const Mesh mesh = icgp::load_cao_mesh(path);
   CHECK(mesh.triangle_count() == 2);
-  CHECK(surface_area(mesh) == Approx(0.01).epsilon(1e-6));
+  CHECK(mesh_surface_area(mesh) == Approx(0.01).epsilon(1e-6));
   check_bounds(mesh, {0, 0, 0}, {0.1, 0.1, 0}, 1e-7);
 
   const std::string lines_only = dir.write("lines-only.cao", cao(points, {"4 5"}));
@@ -368,7 +322,7 @@ TEST_CASE("faces from lines are meshed, lone lines are not") {
 }
 
 TEST_CASE("load() includes apply their transform, and T applies on top") {
-  TempDir dir;
+  TempDir dir("icgp-cao");
   const Vector3d lo(0.01, 0.02, 0.03), hi(0.05, 0.04, 0.09);
   const std::vector<Vector3d> corners = box_corners(lo, hi);
   // Faces of box_corners' numbering (bit 0: x, bit 1: y, bit 2: z), counter-clockwise from outside.
@@ -384,7 +338,7 @@ TEST_CASE("load() includes apply their transform, and T applies on top") {
   expected.insert(expected.end(), {own, own + Vector3d(0.1, 0, 0), own + Vector3d(0, 0.1, 0)});
   const Mesh mesh = icgp::load_cao_mesh(path);
   CHECK(mesh.triangle_count() == 13);
-  CHECK(signed_volume(icgp::load_cao_mesh(dir.path("parts/box.cao"))) == Approx((hi - lo).prod()).epsilon(1e-6));
+  CHECK(mesh_signed_volume(icgp::load_cao_mesh(dir.file("parts/box.cao"))) == Approx((hi - lo).prod()).epsilon(1e-6));
   check_vertices_are(mesh, expected, 1e-6);
 
   const Vector3d T_theta_u(-0.3, 0.1, 0.6), T_t(0.5, 0.4, -0.1);
@@ -393,9 +347,9 @@ TEST_CASE("load() includes apply their transform, and T applies on top") {
 }
 
 TEST_CASE("unreadable models give a std::runtime_error naming the file and the problem") {
-  TempDir dir;
+  TempDir dir("icgp-cao");
   SECTION("missing file") {
-    const std::string missing = dir.path("does-not-exist.cao");
+    const std::string missing = dir.file("does-not-exist.cao");
     CHECK_THAT(error_of([&] { icgp::load_cao_mesh(missing); }), Catch::Contains(missing));
   }
   SECTION("a coordinate that is not a number") {
@@ -448,7 +402,7 @@ TEST_CASE("tessellations below 3 segments are refused") {
 }
 
 TEST_CASE("load_any_mesh applies T * (scale * X) to .cao and assimp formats alike") {
-  TempDir dir;
+  TempDir dir("icgp-cao");
   const Pose T = Pose::from_rotation_vector({0, 0, kPi / 2}, {0.1, 0.2, 0.3});
   const double scale = 2.0;
 

@@ -2,7 +2,7 @@
 // write_cao checked against truth independent of the writer: the written file is parsed
 // here, read back with ViSP's parser (load_cao_mesh) and loaded by ViSP's own tracker.
 #include <catch2/catch.hpp>
-#include <cstdlib>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -12,31 +12,20 @@
 #include "icgp/io/mesh_loader.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/cao_writer.h"
+#include "test_meshes.h"
+#include "test_temp_dir.h"
 
 namespace fs = std::filesystem;
 using Eigen::Vector3d;
 using icgp::Mesh;
+using icgp::test::for_each_triangle;
+using icgp::test::mesh_signed_volume;
+using icgp::test::mesh_surface_area;
+using icgp::test::TempDir;
 
 namespace {
 
 const fs::path kModels = ICGP_MODELS_DIR;
-
-/// A directory for written models, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "icgp-cao-writer-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string path(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
 
 /// What a "V1, faces from points only" .cao file lists, parsed here from its text.
 struct CaoFile {
@@ -96,30 +85,6 @@ Vector3d newell_normal(const CaoFile& cao, const std::vector<int>& face) {
   return n;
 }
 
-/// Calls f(a, b, c) for every triangle of the mesh.
-template <typename F>
-void for_each_triangle(const Mesh& mesh, F&& f) {
-  for (const icgp::MeshPart& part : mesh.parts)
-    for (const Eigen::Vector3i& t : part.triangles)
-      f(part.vertices[t[0]].cast<double>(), part.vertices[t[1]].cast<double>(), part.vertices[t[2]].cast<double>());
-}
-
-double surface_area(const Mesh& mesh) {
-  double area = 0.0;
-  for_each_triangle(mesh, [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-    area += 0.5 * (b - a).cross(c - a).norm();
-  });
-  return area;
-}
-
-/// Divergence theorem: the volume, positive, for a closed surface whose triangles face outwards.
-double signed_volume(const Mesh& mesh) {
-  double volume = 0.0;
-  for_each_triangle(
-      mesh, [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { volume += a.dot(b.cross(c)) / 6.0; });
-  return volume;
-}
-
 /// Every triangle of a convex mesh faces away from `centre`.
 void check_outward(const Mesh& mesh, const Vector3d& centre) {
   int inward = 0;
@@ -156,8 +121,8 @@ void check_same_surface(const Mesh& original, const Mesh& read_back) {
     CHECK(lo1[i] == lo0[i]);  // coordinates are written with enough digits to read back exactly
     CHECK(hi1[i] == hi0[i]);
   }
-  CHECK(surface_area(read_back) == Approx(surface_area(original)).epsilon(1e-9));
-  CHECK(signed_volume(read_back) == Approx(signed_volume(original)).epsilon(1e-9));
+  CHECK(mesh_surface_area(read_back) == Approx(mesh_surface_area(original)).epsilon(1e-9));
+  CHECK(mesh_signed_volume(read_back) == Approx(mesh_signed_volume(original)).epsilon(1e-9));
 }
 
 /// ViSP's tracker loads the model; returns how many polygons it made of it.
@@ -180,13 +145,13 @@ Mesh flat_mesh(const std::vector<Vector3d>& vertices, const std::vector<Eigen::V
 }  // namespace
 
 TEST_CASE("textured box: 8 points, 6 quads, the same outward surface") {
-  TempDir dir;
+  TempDir dir("icgp-cao-writer");
   const Mesh box = icgp::load_mesh((kModels / "textured_box" / "textured_box.obj").string());
   REQUIRE(box.triangle_count() == 12);
-  CHECK(signed_volume(box) == Approx(0.08 * 0.16 * 0.06).epsilon(1e-6));
+  CHECK(mesh_signed_volume(box) == Approx(0.08 * 0.16 * 0.06).epsilon(1e-6));
   check_outward(box, Vector3d::Zero());
 
-  const std::string path = dir.path("box.cao");
+  const std::string path = dir.file("box.cao");
   icgp::write_cao(box, path);
   const CaoFile cao = parse_cao(path);
   CHECK(cao.points.size() == 8);  // the loader's 24 vertices (4 per face) are welded
@@ -198,17 +163,17 @@ TEST_CASE("textured box: 8 points, 6 quads, the same outward surface") {
 
   const Mesh read_back = icgp::load_cao_mesh(path);
   check_same_surface(box, read_back);
-  CHECK(surface_area(read_back) == Approx(2 * (0.08 * 0.16 + 0.16 * 0.06 + 0.08 * 0.06)).epsilon(1e-6));
+  CHECK(mesh_surface_area(read_back) == Approx(2 * (0.08 * 0.16 + 0.16 * 0.06 + 0.08 * 0.06)).epsilon(1e-6));
   check_outward(read_back, Vector3d::Zero());
 
   CHECK(visp_polygon_count(path) == 6);
 }
 
 TEST_CASE("two-region box: the two parts' split sides become one quad each") {
-  TempDir dir;
+  TempDir dir("icgp-cao-writer");
   const Mesh object = icgp::load_mesh((kModels / "two_region" / "object.obj").string());
   REQUIRE(object.parts.size() == 2);
-  const std::string path = dir.path("two_region.cao");
+  const std::string path = dir.file("two_region.cao");
   icgp::write_cao(object, path);
 
   // The side vertices at y = 0.015 where body and lid meet lie on straight edges: dropped.
@@ -221,16 +186,16 @@ TEST_CASE("two-region box: the two parts' split sides become one quad each") {
 
   const Mesh read_back = icgp::load_cao_mesh(path);
   check_same_surface(object, read_back);
-  CHECK(signed_volume(read_back) == Approx(0.10 * 0.08 * 0.06).epsilon(1e-6));
+  CHECK(mesh_signed_volume(read_back) == Approx(0.10 * 0.08 * 0.06).epsilon(1e-6));
   check_outward(read_back, Vector3d::Zero());
   CHECK(visp_polygon_count(path) == 6);
 }
 
 TEST_CASE("labelled cylinder: 64 side quads and one 64-corner polygon per cap") {
-  TempDir dir;
+  TempDir dir("icgp-cao-writer");
   const Mesh cylinder = icgp::load_mesh((kModels / "labelled_cylinder" / "labelled_cylinder.obj").string());
   REQUIRE(cylinder.triangle_count() == 256);  // 64 segments: 2 triangles per side facet, fans of 64 per cap
-  const std::string path = dir.path("cylinder.cao");
+  const std::string path = dir.file("cylinder.cao");
   icgp::write_cao(cylinder, path);
 
   const CaoFile cao = parse_cao(path);
@@ -249,12 +214,12 @@ TEST_CASE("labelled cylinder: 64 side quads and one 64-corner polygon per cap") 
 
 TEST_CASE("a non-convex flat face becomes one polygon without its straight-edge vertices") {
   // An L-shaped plate in z = 0 facing +z, made of three 0.01 m squares (0,0)-(2,1) and (0,1)-(1,2).
-  TempDir dir;
+  TempDir dir("icgp-cao-writer");
   const double s = 0.01;
   const std::vector<Vector3d> v{{0, 0, 0}, {s, 0, 0}, {2 * s, 0, 0}, {0, s, 0},
                                 {s, s, 0}, {2 * s, s, 0}, {0, 2 * s, 0}, {s, 2 * s, 0}};
   const Mesh plate = flat_mesh(v, {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {3, 4, 7}, {3, 7, 6}});
-  const std::string path = dir.path("plate.cao");
+  const std::string path = dir.file("plate.cao");
   icgp::write_cao(plate, path);
 
   const CaoFile cao = parse_cao(path);
@@ -265,13 +230,13 @@ TEST_CASE("a non-convex flat face becomes one polygon without its straight-edge 
   CHECK(newell_normal(cao, cao.faces[0]).norm() / 2 == Approx(3 * s * s).epsilon(1e-6));
 
   const Mesh read_back = icgp::load_cao_mesh(path);
-  CHECK(surface_area(read_back) == Approx(surface_area(plate)).epsilon(1e-9));
+  CHECK(mesh_surface_area(read_back) == Approx(mesh_surface_area(plate)).epsilon(1e-9));
   CHECK(visp_polygon_count(path) == 1);
 }
 
 TEST_CASE("a flat face with a hole is written as its triangles") {
   // A square ring in z = 0 facing +z: outer half-size 0.02 m, inner 0.01 m, 8 triangles.
-  TempDir dir;
+  TempDir dir("icgp-cao-writer");
   const double a = 0.02, b = 0.01;
   const std::vector<Vector3d> v{{-a, -a, 0}, {a, -a, 0}, {a, a, 0}, {-a, a, 0},
                                 {-b, -b, 0}, {b, -b, 0}, {b, b, 0}, {-b, b, 0}};
@@ -282,8 +247,8 @@ TEST_CASE("a flat face with a hole is written as its triangles") {
     triangles.emplace_back(i, 4 + j, 4 + i);
   }
   const Mesh ring = flat_mesh(v, triangles);
-  REQUIRE(surface_area(ring) == Approx(4 * a * a - 4 * b * b));
-  const std::string path = dir.path("ring.cao");
+  REQUIRE(mesh_surface_area(ring) == Approx(4 * a * a - 4 * b * b));
+  const std::string path = dir.file("ring.cao");
   icgp::write_cao(ring, path);
 
   const CaoFile cao = parse_cao(path);
@@ -293,17 +258,18 @@ TEST_CASE("a flat face with a hole is written as its triangles") {
   for (const auto& face : cao.faces) CHECK(newell_normal(cao, face).normalized().isApprox(Vector3d::UnitZ(), 1e-9));
 
   const Mesh read_back = icgp::load_cao_mesh(path);
-  CHECK(surface_area(read_back) == Approx(surface_area(ring)).epsilon(1e-9));
+  CHECK(mesh_surface_area(read_back) == Approx(mesh_surface_area(ring)).epsilon(1e-9));
   CHECK(visp_polygon_count(path) == 8);
 }
 
 TEST_CASE("write_cao refuses an empty mesh and names a path it cannot write") {
-  TempDir dir;
-  CHECK_THROWS_AS(icgp::write_cao(Mesh(), dir.path("empty.cao")), std::invalid_argument);
-  CHECK(!fs::exists(dir.path("empty.cao")));
+  TempDir dir("icgp-cao-writer");
+  CHECK_THROWS_AS(icgp::write_cao(Mesh(), dir.file("empty.cao")), std::invalid_argument);
+  CHECK(!fs::exists(dir.file("empty.cao")));
 
   const Mesh box = icgp::load_mesh((kModels / "textured_box" / "textured_box.obj").string());
-  const std::string unwritable = dir.path("no-such-directory/box.cao");
+  // Not dir.file(), which would create the folder.
+  const std::string unwritable = (dir.path() / "no-such-directory" / "box.cao").string();
   try {
     icgp::write_cao(box, unwritable);
     FAIL("no exception for an unwritable path");

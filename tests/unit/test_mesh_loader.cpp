@@ -2,8 +2,6 @@
 // load_mesh against independent truth: small meshes written here in several formats with
 // known geometry, colours and texture pixels, and the project's models against the sizes
 // documented in models/README.md.
-#include <stdlib.h>  // mkdtemp
-
 #include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
@@ -11,7 +9,6 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
@@ -22,39 +19,20 @@
 #include <vector>
 
 #include "icgp/io/mesh_loader.h"
+#include "test_meshes.h"
+#include "test_temp_dir.h"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using icgp::load_mesh;
 using icgp::Mesh;
+using icgp::test::mesh_signed_volume;
+using icgp::test::mesh_surface_area;
+using icgp::test::TempDir;
 
 namespace {
 
 // ---- test fixtures -------------------------------------------------------------------
-
-/// A fresh directory removed at the end of the test.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "icgp_mesh_loader_XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
-
-std::string write_file(const std::string& path, const std::string& content) {
-  fs::create_directories(fs::path(path).parent_path());
-  std::ofstream(path, std::ios::binary) << content;
-  return path;
-}
 
 // A unit cube centred at the origin: corner i has x, y, z set by bits 0, 1, 2 of i; faces
 // counter-clockwise seen from outside.
@@ -79,8 +57,8 @@ std::string write_cube_obj(const TempDir& dir) {
   for (int i = 0; i < 8; ++i) text += "v " + xyz(cube_corner(i)) + "\n";
   text += "usemtl paint\n";
   for (const auto& quad : kCubeQuads) text += "f" + quad_indices(quad, 1) + "\n";
-  write_file(dir.file("cube.mtl"), "newmtl paint\nKd 0.2 0.4 0.6\n");
-  return write_file(dir.file("cube.obj"), text);
+  dir.write("cube.mtl", "newmtl paint\nKd 0.2 0.4 0.6\n");
+  return dir.write("cube.obj", text);
 }
 
 std::string cube_ply_text() {
@@ -113,28 +91,6 @@ cv::Mat small_texture_bgr() {
 }
 
 // ---- measurements --------------------------------------------------------------------
-
-double surface_area(const Mesh& mesh) {
-  double area = 0.0;
-  for (const auto& part : mesh.parts)
-    for (const auto& t : part.triangles) {
-      const Eigen::Vector3d a = part.vertices[t[0]].cast<double>(), b = part.vertices[t[1]].cast<double>(),
-                            c = part.vertices[t[2]].cast<double>();
-      area += 0.5 * (b - a).cross(c - a).norm();
-    }
-  return area;
-}
-
-/// Divergence theorem: the enclosed volume for a closed, outward-oriented mesh.
-double signed_volume(const Mesh& mesh) {
-  double volume = 0.0;
-  for (const auto& part : mesh.parts)
-    for (const auto& t : part.triangles)
-      volume += part.vertices[t[0]].cast<double>().dot(
-                    part.vertices[t[1]].cast<double>().cross(part.vertices[t[2]].cast<double>())) /
-                6.0;
-  return volume;
-}
 
 /// Every directed edge, with vertices identified by position (texture seams split vertices),
 /// appears once and its reverse once: the surface is closed and consistently oriented.
@@ -239,7 +195,7 @@ std::string write_quad_gltf(const TempDir& dir, const cv::Mat& texture) {
   const std::string buffer = R"({"byteLength":)" + std::to_string(geometry.size()) +
                              R"(,"uri":"data:application/octet-stream;base64,)" + base64(geometry) + R"("})";
   const std::string image = R"({"uri":"data:image/png;base64,)" + base64(png_bytes(texture)) + R"("})";
-  return write_file(dir.file("quad.gltf"), quad_gltf_json(buffer, image));
+  return dir.write("quad.gltf", quad_gltf_json(buffer, image));
 }
 
 std::string padded(std::string chunk, char pad) {
@@ -264,7 +220,7 @@ std::string write_quad_glb(const TempDir& dir, const cv::Mat& texture) {
   const std::string chunks = glb_chunk(json, 0x4E4F534Au) + glb_chunk(binary, 0x004E4942u);
   std::string file;
   append_raw(file, std::vector<std::uint32_t>{0x46546C67u, 2u, static_cast<std::uint32_t>(12 + chunks.size())});
-  return write_file(dir.file("quad.glb"), file + chunks);
+  return dir.write("quad.glb", file + chunks);
 }
 
 // ---- the project's models --------------------------------------------------------------
@@ -298,7 +254,7 @@ double cylinder_prism_volume(double radius, double height, int segments) {
 // ---- formats -----------------------------------------------------------------------------
 
 TEST_CASE("OBJ cube: shared vertices, triangles, bounds, area, orientation and MTL colour") {
-  TempDir dir;
+  TempDir dir("icgp_mesh_loader");
   const std::string path = write_cube_obj(dir);
   const Mesh mesh = load_mesh(path);
   CHECK(mesh.source == path);
@@ -306,48 +262,48 @@ TEST_CASE("OBJ cube: shared vertices, triangles, bounds, area, orientation and M
   CHECK(mesh.vertex_count() == 8);
   CHECK(mesh.triangle_count() == 12);
   check_bounds(mesh, Eigen::Vector3f::Constant(-0.5f), Eigen::Vector3f::Constant(0.5f));
-  CHECK(surface_area(mesh) == Approx(6.0));
-  CHECK(signed_volume(mesh) == Approx(1.0));
+  CHECK(mesh_surface_area(mesh) == Approx(6.0));
+  CHECK(mesh_signed_volume(mesh) == Approx(1.0));
   CHECK(closed_and_consistently_oriented(mesh));
   CHECK(mesh.parts[0].material.diffuse_rgb.isApprox(Eigen::Vector3f(0.2f, 0.4f, 0.6f)));
   check_untextured(mesh);
 }
 
 TEST_CASE("scale option multiplies every vertex") {
-  TempDir dir;
+  TempDir dir("icgp_mesh_loader");
   const Mesh mesh = load_mesh(write_cube_obj(dir), {0.01});
   check_bounds(mesh, Eigen::Vector3f::Constant(-0.005f), Eigen::Vector3f::Constant(0.005f), 1e-9f);
-  CHECK(surface_area(mesh) == Approx(6e-4));
-  CHECK(signed_volume(mesh) == Approx(1e-6));
+  CHECK(mesh_surface_area(mesh) == Approx(6e-4));
+  CHECK(mesh_signed_volume(mesh) == Approx(1e-6));
 }
 
 TEST_CASE("ASCII PLY and ASCII STL cubes load with the same geometry as the OBJ") {
-  TempDir dir;
+  TempDir dir("icgp_mesh_loader");
   const std::string path = GENERATE(as<std::string>{}, "cube.ply", "cube.stl");
-  const Mesh mesh = load_mesh(write_file(dir.file(path), path == "cube.ply" ? cube_ply_text() : cube_stl_text()));
+  const Mesh mesh = load_mesh(dir.write(path, path == "cube.ply" ? cube_ply_text() : cube_stl_text()));
   INFO(path);
   CHECK(mesh.triangle_count() == 12);
   // STL repeats each corner per facet with a facet normal; normals are stripped, so the
   // corners are shared again.
   CHECK(mesh.vertex_count() == 8);
   check_bounds(mesh, Eigen::Vector3f::Constant(-0.5f), Eigen::Vector3f::Constant(0.5f));
-  CHECK(surface_area(mesh) == Approx(6.0));
-  CHECK(signed_volume(mesh) == Approx(1.0));
+  CHECK(mesh_surface_area(mesh) == Approx(6.0));
+  CHECK(mesh_signed_volume(mesh) == Approx(1.0));
   CHECK(closed_and_consistently_oriented(mesh));
 }
 
 TEST_CASE("textured OBJ: texture coordinates unflipped, texture read relative to the model's folder") {
-  TempDir dir;
+  TempDir dir("icgp_mesh_loader");
   const cv::Mat texture = small_texture_bgr();
   fs::create_directories(dir.file("tex"));
   REQUIRE(cv::imwrite(dir.file("tex/quad.png"), texture));
   // A Windows-style separator in map_Kd must still find the file.
   const std::string separator = GENERATE(as<std::string>{}, "/", "\\");
-  write_file(dir.file("quad.mtl"), "newmtl printed\nKd 1 0.5 0.25\nmap_Kd tex" + separator + "quad.png\n");
-  const std::string path = write_file(dir.file("quad.obj"),
-                                      "mtllib quad.mtl\nv 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\n"
-                                      "vt 0.1 0.2\nvt 0.9 0.2\nvt 0.9 0.7\nvt 0.1 0.7\n"
-                                      "usemtl printed\nf 1/1 2/2 3/3 4/4\n");
+  dir.write("quad.mtl", "newmtl printed\nKd 1 0.5 0.25\nmap_Kd tex" + separator + "quad.png\n");
+  const std::string path = dir.write("quad.obj",
+                                     "mtllib quad.mtl\nv 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\n"
+                                     "vt 0.1 0.2\nvt 0.9 0.2\nvt 0.9 0.7\nvt 0.1 0.7\n"
+                                     "usemtl printed\nf 1/1 2/2 3/3 4/4\n");
   const Mesh mesh = load_mesh(path);
   REQUIRE(mesh.parts.size() == 1);
   const icgp::MeshPart& part = mesh.parts[0];
@@ -362,7 +318,7 @@ TEST_CASE("textured OBJ: texture coordinates unflipped, texture read relative to
 }
 
 TEST_CASE("glTF and GLB: node transform applied, base colour, embedded PNG texture") {
-  TempDir dir;
+  TempDir dir("icgp_mesh_loader");
   const cv::Mat texture = small_texture_bgr();
   const bool binary = GENERATE(false, true);
   const std::string path = binary ? write_quad_glb(dir, texture) : write_quad_gltf(dir, texture);
@@ -372,7 +328,7 @@ TEST_CASE("glTF and GLB: node transform applied, base colour, embedded PNG textu
   const icgp::MeshPart& part = mesh.parts[0];
   CHECK(part.triangles.size() == 2);
   check_bounds(mesh, Eigen::Vector3f(1.f, 2.f, 3.f), Eigen::Vector3f(3.f, 4.f, 3.f));
-  CHECK(surface_area(mesh) == Approx(4.0));
+  CHECK(mesh_surface_area(mesh) == Approx(4.0));
   // The file's (u, v) with v down becomes (u, 1 - v): the same image point, v up.
   REQUIRE(part.texcoords.size() == part.vertices.size());
   for (std::size_t i = 0; i < part.vertices.size(); ++i) {
@@ -384,10 +340,10 @@ TEST_CASE("glTF and GLB: node transform applied, base colour, embedded PNG textu
 }
 
 TEST_CASE("points and lines are dropped, triangles kept") {
-  TempDir dir;
-  const Mesh mesh = load_mesh(write_file(dir.file("mixed.obj"),
-                                         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nv 6 6 6\n"
-                                         "f 1 2 3\nl 4 5\np 5\n"));
+  TempDir dir("icgp_mesh_loader");
+  const Mesh mesh = load_mesh(dir.write("mixed.obj",
+                                        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nv 6 6 6\n"
+                                        "f 1 2 3\nl 4 5\np 5\n"));
   CHECK(mesh.triangle_count() == 1);
   check_bounds(mesh, Eigen::Vector3f(0.f, 0.f, 0.f), Eigen::Vector3f(1.f, 1.f, 0.f));
 }
@@ -395,38 +351,38 @@ TEST_CASE("points and lines are dropped, triangles kept") {
 // ---- errors --------------------------------------------------------------------------------
 
 TEST_CASE("a missing file is an error naming it") {
-  TempDir dir;
+  TempDir dir("icgp_mesh_loader");
   const std::string path = dir.file("nowhere.obj");
   CHECK_THAT(message_of<std::runtime_error>([&] { load_mesh(path); }), Contains(path) && Contains("no such file"));
   CHECK_THAT(message_of<std::runtime_error>([&] { load_mesh(dir.file("")); }), Contains("no such file"));
 }
 
 TEST_CASE("garbage and triangle-free files are errors naming the file") {
-  TempDir dir;
+  TempDir dir("icgp_mesh_loader");
   std::string noise;
   for (int i = 0; i < 3000; ++i) noise += static_cast<char>((i * 7919 + 13) % 256);
   const std::string name = GENERATE(as<std::string>{}, "garbage.ply", "garbage.stl", "garbage.glb", "garbage.obj",
                                     "garbage.dae", "garbage.unknown");
-  const std::string path = write_file(dir.file(name), noise);
+  const std::string path = dir.write(name, noise);
   CHECK_THAT(message_of<std::runtime_error>([&] { load_mesh(path); }), Contains(path));
 
-  const std::string lines = write_file(dir.file("lines.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n");
+  const std::string lines = dir.write("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n");
   CHECK_THAT(message_of<std::runtime_error>([&] { load_mesh(lines); }), Contains(lines) && Contains("no triangles"));
-  const std::string empty = write_file(dir.file("empty.obj"), "");
+  const std::string empty = dir.write("empty.obj", "");
   CHECK_THAT(message_of<std::runtime_error>([&] { load_mesh(empty); }), Contains(empty));
 }
 
 TEST_CASE("a missing texture file is an error naming the model and the texture") {
-  TempDir dir;
-  write_file(dir.file("lost.mtl"), "newmtl printed\nmap_Kd missing.png\n");
-  const std::string path = write_file(dir.file("lost.obj"),
-                                      "mtllib lost.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
-                                      "usemtl printed\nf 1/1 2/2 3/3\n");
+  TempDir dir("icgp_mesh_loader");
+  dir.write("lost.mtl", "newmtl printed\nmap_Kd missing.png\n");
+  const std::string path = dir.write("lost.obj",
+                                     "mtllib lost.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                     "usemtl printed\nf 1/1 2/2 3/3\n");
   CHECK_THAT(message_of<std::runtime_error>([&] { load_mesh(path); }), Contains(path) && Contains("missing.png"));
 }
 
 TEST_CASE("a non-positive or non-finite scale is an invalid argument naming the file") {
-  TempDir dir;
+  TempDir dir("icgp_mesh_loader");
   const std::string path = write_cube_obj(dir);
   const double scale = GENERATE(0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
                                 std::numeric_limits<double>::infinity());
@@ -439,8 +395,8 @@ TEST_CASE("models/textured_box: 0.08 x 0.16 x 0.06 m, closed, a texture on every
   const Mesh mesh = load_mesh(model("textured_box/textured_box.obj"));
   CHECK(mesh.triangle_count() == 12);
   check_bounds(mesh, Eigen::Vector3f(-0.04f, -0.08f, -0.03f), Eigen::Vector3f(0.04f, 0.08f, 0.03f));
-  CHECK(surface_area(mesh) == Approx(2 * (0.08 * 0.16 + 0.16 * 0.06 + 0.08 * 0.06)));
-  CHECK(signed_volume(mesh) == Approx(0.08 * 0.16 * 0.06));
+  CHECK(mesh_surface_area(mesh) == Approx(2 * (0.08 * 0.16 + 0.16 * 0.06 + 0.08 * 0.06)));
+  CHECK(mesh_signed_volume(mesh) == Approx(0.08 * 0.16 * 0.06));
   CHECK(closed_and_consistently_oriented(mesh));
   check_textured_everywhere(mesh);
 }
@@ -449,7 +405,7 @@ TEST_CASE("models/textureless_mug: r 0.04 m, h 0.10 m, handle to x = 0.076 m, pl
   const Mesh mesh = load_mesh(model("textureless_mug/textureless_mug.obj"));
   CHECK(mesh.triangle_count() == 856);
   check_bounds(mesh, Eigen::Vector3f(-0.04f, -0.05f, -0.04f), Eigen::Vector3f(0.076f, 0.05f, 0.04f));
-  CHECK(signed_volume(mesh) > cylinder_prism_volume(0.04, 0.10, 64));  // body plus the handle
+  CHECK(mesh_signed_volume(mesh) > cylinder_prism_volume(0.04, 0.10, 64));  // body plus the handle
   CHECK(closed_and_consistently_oriented(mesh));
   check_untextured(mesh);
 }
@@ -458,7 +414,7 @@ TEST_CASE("models/labelled_cylinder: r 0.04 m, h 0.10 m, closed, textured everyw
   const Mesh mesh = load_mesh(model("labelled_cylinder/labelled_cylinder.obj"));
   CHECK(mesh.triangle_count() == 256);
   check_bounds(mesh, Eigen::Vector3f(-0.04f, -0.05f, -0.04f), Eigen::Vector3f(0.04f, 0.05f, 0.04f));
-  CHECK(signed_volume(mesh) == Approx(cylinder_prism_volume(0.04, 0.10, 64)));
+  CHECK(mesh_signed_volume(mesh) == Approx(cylinder_prism_volume(0.04, 0.10, 64)));
   CHECK(closed_and_consistently_oriented(mesh));
   check_textured_everywhere(mesh);
 }
@@ -471,13 +427,13 @@ TEST_CASE("models/two_region: region meshes share the frame and together make ob
   CHECK(object.triangle_count() == 20);
   CHECK(object.parts.size() == 2);
   CHECK(closed_and_consistently_oriented(object));
-  CHECK(signed_volume(object) == Approx(0.10 * 0.08 * 0.06));
+  CHECK(mesh_signed_volume(object) == Approx(0.10 * 0.08 * 0.06));
   check_untextured(object);
 
   Mesh regions = body;
   regions.append(lid);
   CHECK(regions.triangle_count() == object.triangle_count());
-  CHECK(surface_area(regions) == Approx(surface_area(object)));
+  CHECK(mesh_surface_area(regions) == Approx(mesh_surface_area(object)));
   CHECK(closed_and_consistently_oriented(regions));
   check_bounds(regions, Eigen::Vector3f(-0.05f, -0.04f, -0.03f), Eigen::Vector3f(0.05f, 0.04f, 0.03f));
   check_bounds(lid, Eigen::Vector3f(-0.05f, 0.015f, -0.03f), Eigen::Vector3f(0.05f, 0.04f, 0.03f));
@@ -493,11 +449,11 @@ TEST_CASE("models/labelled_can: a printed side and plain caps as two regions of 
   check_bounds(object, Eigen::Vector3f(-0.04f, -0.05f, -0.04f), Eigen::Vector3f(0.04f, 0.05f, 0.04f));
   CHECK(closed_and_consistently_oriented(object));
   // 64 facets: the inscribed polygon's volume, r² h (n/2) sin(2π/n).
-  CHECK(signed_volume(object) == Approx(0.04 * 0.04 * 0.10 * 32 * std::sin(2 * M_PI / 64)).epsilon(1e-4));
+  CHECK(mesh_signed_volume(object) == Approx(0.04 * 0.04 * 0.10 * 32 * std::sin(2 * M_PI / 64)).epsilon(1e-4));
   Mesh regions = label;
   regions.append(caps);
   CHECK(regions.triangle_count() == object.triangle_count());
-  CHECK(surface_area(regions) == Approx(surface_area(object)));
+  CHECK(mesh_surface_area(regions) == Approx(mesh_surface_area(object)));
   CHECK(closed_and_consistently_oriented(regions));
   REQUIRE(label.parts.size() == 1);
   REQUIRE(caps.parts.size() == 1);

@@ -53,4 +53,31 @@ inline Mesh make_triangle(const Eigen::Vector3f& a, const Eigen::Vector3f& b, co
   return mesh;
 }
 
+/// Calls f(a, b, c) with the corners (as Eigen::Vector3d) of every triangle of the mesh.
+template <typename F>
+void for_each_triangle(const Mesh& mesh, F&& f) {
+  for (const MeshPart& part : mesh.parts)
+    for (const Eigen::Vector3i& t : part.triangles)
+      f(part.vertices[t[0]].cast<double>(), part.vertices[t[1]].cast<double>(), part.vertices[t[2]].cast<double>());
+}
+
+/// The total area of the mesh's triangles.
+inline double mesh_surface_area(const Mesh& mesh) {
+  double area = 0.0;
+  for_each_triangle(mesh, [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    area += 0.5 * (b - a).cross(c - a).norm();
+  });
+  return area;
+}
+
+/// Divergence theorem: the enclosed volume, positive, for a closed surface whose triangles
+/// face outwards.
+inline double mesh_signed_volume(const Mesh& mesh) {
+  double volume = 0.0;
+  for_each_triangle(mesh, [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    volume += a.dot(b.cross(c)) / 6.0;
+  });
+  return volume;
+}
+
 }  // namespace icgp::test

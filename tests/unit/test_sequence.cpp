@@ -9,36 +9,22 @@
 #include <fstream>
 #include <iterator>
 #include <opencv2/imgcodecs.hpp>
-#include <unistd.h>
 
 #include "icgp/eval/sequence.h"
 #include "icgp/eval/sequence_writer.h"
 #include "test_meshes.h"
+#include "test_temp_dir.h"
 
 using namespace icgp;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
+using icgp::test::TempDir;
 
 namespace {
 
 const fs::path kData = ICGP_TEST_DATA_DIR;
 const fs::path kBlender = kData / "teabox-blender";
 const fs::path kRealsense = kData / "realsense-cube";
-
-/// An empty folder of its own under the system temp folder, removed on destruction.
-class TempDir {
- public:
-  explicit TempDir(const std::string& name)
-      : path_(fs::temp_directory_path() / ("icgp_test_sequence_" + name + "_" + std::to_string(getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 /// Copies file contents only: the vendored data is read-only and copies must be editable.
 void copy_contents(const fs::path& from, const fs::path& to) {
@@ -67,8 +53,6 @@ void copy_blender_frames(const fs::path& to, int frames) {
     copy_contents(kBlender / name, to / name);
   }
 }
-
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 std::string read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -224,13 +208,13 @@ TEST_CASE("sequence errors name the file and what was expected") {
                         Contains("/nonexistent/icgp-seq") && Contains("does not exist"));
   }
   SECTION("empty folder") {
-    TempDir dir("empty");
+    TempDir dir("icgp_test_sequence_empty");
     REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()),
                         Contains(dir.path().string()) && Contains("unknown sequence layout") &&
                             Contains("sequence.yaml") && Contains("color_image_0000.jpg"));
   }
   SECTION("truncated RealSense depth file") {
-    TempDir dir("truncated");
+    TempDir dir("icgp_test_sequence_truncated");
     copy_tree(kRealsense, dir.path());
     const fs::path bin = dir.path() / "depth_image_0002.bin";
     fs::resize_file(bin, fs::file_size(bin) / 2);
@@ -239,7 +223,7 @@ TEST_CASE("sequence errors name the file and what was expected") {
     REQUIRE_THROWS_WITH(seq.load(2), Contains("depth_image_0002.bin") && Contains("truncated"));
   }
   SECTION("depth image of another size") {
-    TempDir dir("depth_size");
+    TempDir dir("icgp_test_sequence_depth_size");
     copy_tree(kRealsense, dir.path());
     const std::uint32_t header[2] = {80, 100};  // height, width (little-endian host assumed)
     std::ofstream out(dir.path() / "depth_image_0003.bin", std::ios::binary);
@@ -250,30 +234,30 @@ TEST_CASE("sequence errors name the file and what was expected") {
     REQUIRE_THROWS_WITH(seq.load(3), Contains("depth_image_0003.bin") && Contains("100x80") && Contains("640x480"));
   }
   SECTION("malformed ground-truth pose") {
-    TempDir dir("pose");
+    TempDir dir("icgp_test_sequence_pose");
     copy_blender_frames(dir.path(), 3);
-    write_text(dir.path() / "camera_poses/Camera_002.txt", "1 0 0 0\n0 1 zero 0\n0 0 1 0.5\n0 0 0 1\n");
+    dir.write("camera_poses/Camera_002.txt", "1 0 0 0\n0 1 zero 0\n0 0 1 0.5\n0 0 0 1\n");
     const Sequence seq = Sequence::open(dir.path().string());
     REQUIRE(seq.size() == 3);
     CHECK_NOTHROW(seq.load(0));
     REQUIRE_THROWS_WITH(seq.load(1), Contains("Camera_002.txt") && Contains("line 2") && Contains("'zero'"));
   }
   SECTION("missing depth frame") {
-    TempDir dir("missing_frame");
+    TempDir dir("icgp_test_sequence_missing_frame");
     copy_blender_frames(dir.path(), 3);
     fs::remove(dir.path() / "depth/Image0002.exr");
     REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()), Contains("Image0002.exr") && Contains("missing"));
   }
   SECTION("gap in the colour images") {
-    TempDir dir("gap");
+    TempDir dir("icgp_test_sequence_gap");
     copy_blender_frames(dir.path(), 3);
     fs::remove(dir.path() / "images/0002.jpg");
     REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()), Contains("0002.jpg") && Contains("missing frame"));
   }
   SECTION("intrinsics XML without <px>") {
-    TempDir dir("xml");
+    TempDir dir("icgp_test_sequence_xml");
     copy_blender_frames(dir.path(), 1);
-    write_text(dir.path() / "teabox.xml", "<conf><camera><py>700</py><u0>320</u0><v0>240</v0></camera></conf>");
+    dir.write("teabox.xml", "<conf><camera><py>700</py><u0>320</u0><v0>240</v0></camera></conf>");
     REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()), Contains("teabox.xml") && Contains("<px>"));
   }
   SECTION("frame index out of range") {
@@ -342,7 +326,7 @@ double ray_box_depth(const Intrinsics& k, double u, double v, const Pose& camera
 }  // namespace
 
 TEST_CASE("sequence writer: exact ground truth, depth and colour read back through Sequence") {
-  TempDir dir("writer");
+  TempDir dir("icgp_test_sequence_writer");
   const SequenceWriter writer = box_sequence_writer(42);
   writer.write(dir.path().string());
 
@@ -392,7 +376,7 @@ TEST_CASE("sequence writer: the same seed gives identical files, noise keeps the
   noise.color_sigma = 4.0;
   noise.depth_sigma_at_1m = 0.002;
   noise.depth_dropout = 0.05;
-  TempDir a("seed_a"), b("seed_b"), clean("seed_clean");
+  TempDir a("icgp_test_sequence_seed_a"), b("icgp_test_sequence_seed_b"), clean("icgp_test_sequence_seed_clean");
   box_sequence_writer(7, noise).write(a.path().string());
   box_sequence_writer(7, noise).write(b.path().string());
   box_sequence_writer(7).write(clean.path().string());
@@ -410,21 +394,21 @@ TEST_CASE("sequence writer: the same seed gives identical files, noise keeps the
 }
 
 TEST_CASE("sequence writer: refuses a non-empty folder that is not a sequence") {
-  TempDir dir("writer_refuse");
-  write_text(dir.path() / "notes.txt", "keep me");
+  TempDir dir("icgp_test_sequence_writer_refuse");
+  dir.write("notes.txt", "keep me");
   REQUIRE_THROWS_WITH(box_sequence_writer(1).write(dir.path().string()),
                       Contains(dir.path().string()) && Contains("refusing"));
   CHECK(fs::exists(dir.path() / "notes.txt"));
 }
 
 TEST_CASE("icgp layout errors name the file and what was expected") {
-  TempDir dir("icgp_errors");
+  TempDir dir("icgp_test_sequence_icgp_errors");
   box_sequence_writer(3).write(dir.path().string());
   SECTION("malformed pose line") {
     std::string poses = read_bytes(dir.path() / "poses/box.txt");
     const std::size_t third_line = poses.find('\n', poses.find('\n') + 1) + 1;
     poses.insert(third_line, "1 2 3 ");
-    write_text(dir.path() / "poses/box.txt", poses);
+    dir.write("poses/box.txt", poses);
     REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()),
                         Contains("box.txt") && Contains("line 3") && Contains("expected 16 numbers"));
   }
@@ -440,14 +424,14 @@ TEST_CASE("icgp layout errors name the file and what was expected") {
   SECTION("missing intrinsics key") {
     std::string yaml = read_bytes(dir.path() / "sequence.yaml");
     yaml.replace(yaml.find("fu: 170"), 7, "f: 170");
-    write_text(dir.path() / "sequence.yaml", yaml);
+    dir.write("sequence.yaml", yaml);
     REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()),
                         Contains("sequence.yaml") && Contains("depth_camera.fu"));
   }
 }
 
 TEST_CASE("sequence writer: a spinning object turns at its rate in the ground truth and the depth") {
-  TempDir dir("spin");
+  TempDir dir("icgp_test_sequence_spin");
   SequenceWriterOptions options;
   options.frame_count = 4;
   options.color_intrinsics = options.depth_intrinsics = small_camera(200.0);

@@ -4,13 +4,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <catch2/catch.hpp>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
 
 #include "icgp/tracker/tracker_config.h"
+#include "test_temp_dir.h"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -18,31 +18,9 @@ using Catch::Matchers::StartsWith;
 using icgp::load_tracker_config;
 using icgp::to_yaml;
 using icgp::TrackerConfig;
+using icgp::test::TempDir;
 
 namespace {
-
-/// A directory of configuration files written by a test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "icgp-config-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const fs::path& path() const { return path_; }
-  std::string write(const std::string& name, const std::string& content) const {
-    const fs::path file = path_ / name;
-    std::ofstream(file) << content;
-    return file.string();
-  }
-
- private:
-  fs::path path_;
-};
 
 /// Every value of a YAML document by its dotted key ("region.scales" -> "[6, 4, 2, 1]").
 std::map<std::string, std::string> flatten(const YAML::Node& node, const std::string& prefix = "") {
@@ -200,7 +178,7 @@ TEST_CASE("tracker config: defaults are the reference values of ALGORITHMS.md") 
 }
 
 TEST_CASE("tracker config: empty files and empty sections give the defaults") {
-  TempDir dir;
+  TempDir dir("icgp-config");
   const std::string defaults = to_yaml(TrackerConfig{});
   CHECK(to_yaml(load_tracker_config(dir.write("empty.yaml", ""))) == defaults);
   CHECK(to_yaml(load_tracker_config(dir.write("comments.yaml", "# nothing set\n"))) == defaults);
@@ -208,7 +186,7 @@ TEST_CASE("tracker config: empty files and empty sections give the defaults") {
 }
 
 TEST_CASE("tracker config: a partial file overrides only its keys") {
-  TempDir dir;
+  TempDir dir("icgp-config");
   const std::string file = dir.write("partial.yaml",
                                      "tracker:\n  n_corr_iterations: 7\n"
                                      "region:\n  scales: [3, 1]\n  function_amplitude: 0.4\n"
@@ -229,7 +207,7 @@ TEST_CASE("tracker config: a partial file overrides only its keys") {
 }
 
 TEST_CASE("tracker config: to_yaml writes every key and round-trips exactly") {
-  TempDir dir;
+  TempDir dir("icgp-config");
   const auto defaults = flatten_yaml(to_yaml(TrackerConfig{}));
   const auto every_key = flatten_yaml(kEveryKey);
   // The file sets every key to_yaml writes, each to a value other than its default ...
@@ -279,7 +257,7 @@ TEST_CASE("tracker config: docs/configuration.md lists every key with its defaul
 }
 
 TEST_CASE("tracker config: unreadable files and YAML syntax errors name the file") {
-  TempDir dir;
+  TempDir dir("icgp-config");
   const std::string missing = (dir.path() / "missing.yaml").string();
   CHECK_THROWS_WITH(load_tracker_config(missing), StartsWith(missing + ": ") && Contains("no such file"));
   const std::string folder = dir.path().string();
@@ -324,7 +302,7 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
       {"modalities: []", "modalities: expected a non-empty list of distinct names"},
       {"cache_dir: [a]", "cache_dir: expected a string"},
   };
-  TempDir dir;
+  TempDir dir("icgp-config");
   const std::string file = (dir.path() / "config.yaml").string();
   for (const Case& c : cases) {
     INFO(c.yaml);

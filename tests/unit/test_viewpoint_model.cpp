@@ -22,6 +22,7 @@
 #include "icgp/modality/view_selector.h"
 #include "icgp/render/renderer.h"
 #include "test_meshes.h"
+#include "test_temp_dir.h"
 
 using namespace icgp;
 namespace fs = std::filesystem;
@@ -70,16 +71,6 @@ bool same_payload(const ViewpointModel& a, const ViewpointModel& b) {
   return a.payload_size() == b.payload_size() && std::memcmp(a.payload(), b.payload(), a.payload_size()) == 0;
 }
 
-/// A fresh folder under the temporary directory, removed at the end of the test.
-struct TemporaryFolder {
-  fs::path path;
-  explicit TemporaryFolder(const std::string& name)
-      : path(fs::temp_directory_path() / ("icgp-test-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TemporaryFolder() { fs::remove_all(path); }
-};
 
 /// Everything written to std::cerr while it lives.
 struct CerrCapture {
@@ -497,9 +488,9 @@ TEST_CASE("model keys: geometry and every parameter, not the file name") {
 }
 
 TEST_CASE("model cache: round trip is exact, and the default folder follows the environment") {
-  TemporaryFolder folder("round-trip");
+  icgp::test::TempDir folder("round-trip");
   const ViewpointModel& model = box_models().region;
-  const std::string path = (folder.path / "sub" / "box.icgpmodel").string();
+  const std::string path = (folder.path() / "sub" / "box.icgpmodel").string();
   save_viewpoint_model(model, path);
   const ViewpointModel loaded = load_viewpoint_model(path);
   CHECK(loaded.kind() == model.kind());
@@ -507,7 +498,7 @@ TEST_CASE("model cache: round trip is exact, and the default folder follows the 
   CHECK(loaded.params() == model.params());
   CHECK(same_payload(loaded, model));
   CHECK(fs::file_size(path) == 112 + model.payload_size());
-  CHECK_THROWS_AS(load_viewpoint_model((folder.path / "missing.icgpmodel").string()), ModelFileError);
+  CHECK_THROWS_AS(load_viewpoint_model((folder.path() / "missing.icgpmodel").string()), ModelFileError);
 
   CHECK(model_cache_path("/c", "my box!", ViewpointModel::Kind::kDepth, 0xabcull) ==
         "/c/my_box_-depth-0000000000000abc.icgpmodel");
@@ -524,11 +515,11 @@ TEST_CASE("model cache: round trip is exact, and the default folder follows the 
 }
 
 TEST_CASE("model cache: missing, truncated, corrupted, foreign and stale files are regenerated with a reason") {
-  TemporaryFolder folder("damaged");
+  icgp::test::TempDir folder("damaged");
   const Mesh mesh = box();
   const ViewpointModelParams p = coarse_params();
   const auto kind = ViewpointModel::Kind::kDepth;
-  const std::string dir = folder.path.string();
+  const std::string dir = folder.path().string();
   const ViewpointModel& truth = box_models().depth;
   const std::string path = model_cache_path(dir, "box", kind, truth.key());
 
@@ -577,8 +568,8 @@ TEST_CASE("model cache: missing, truncated, corrupted, foreign and stale files a
 }
 
 TEST_CASE("model cache: an unwritable folder still gives the model, with a warning") {
-  TemporaryFolder folder("unwritable");
-  const fs::path file = folder.path / "a-file";
+  icgp::test::TempDir folder("unwritable");
+  const fs::path file = folder.path() / "a-file";
   std::ofstream(file) << "not a folder";
   CerrCapture err;
   std::vector<CachedModelInfo> info;
