@@ -191,6 +191,11 @@ RgbdSimulator::RgbdSimulator(const Scenario& scenario, const vpHomogeneousMatrix
                              const vpHomogeneousMatrix& world_T_object, std::uint64_t seed)
     : impl_(std::make_unique<Impl>(scenario, world_T_camera, world_T_object, seed)) {
   Impl& d = *impl_;
+  Lighting lighting;
+  lighting.direction_in_camera = scenario.lighting.direction_in_camera.normalized().cast<float>();
+  lighting.ambient = static_cast<float>(scenario.lighting.ambient);
+  lighting.diffuse = static_cast<float>(scenario.lighting.diffuse);
+  d.renderer.set_lighting(lighting);
   d.object = d.renderer.add_body(load_any_mesh(scenario.object.model), 1);
   d.add_background(seed);
   if (scenario.occluder) {

@@ -282,6 +282,16 @@ void read_background(const Value& v, BackgroundSpec& background, const fs::path&
   if (auto x = s.get("distance")) background.distance = number(*x, kNonNegative);
 }
 
+void read_lighting(const Value& v, LightingSpec& lighting) {
+  const Section s(v, {"direction", "ambient", "diffuse"});
+  if (auto x = s.get("direction")) {
+    lighting.direction_in_camera = numbers<3>(*x);
+    if (!(lighting.direction_in_camera.norm() > 0.0)) x->expected("a non-zero direction");
+  }
+  if (auto x = s.get("ambient")) lighting.ambient = number(*x, kFraction);
+  if (auto x = s.get("diffuse")) lighting.diffuse = number(*x, kFraction);
+}
+
 void read_noise(const Value& v, NoiseSpec& noise) {
   const Section s(v, {"color_sigma", "depth_sigma_at_1m", "depth_dropout", "grazing_angle_deg", "edge_dropout_px",
                       "motion_blur", "frame_drop"});
@@ -394,7 +404,7 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) {
 
   const fs::path folder = fs::path(path).parent_path();
   const Section s({root, document}, {"name", "description", "robot", "arm", "object", "occluder", "background",
-                                     "camera", "start", "desired", "tracker", "control", "stop", "trials", "seed"});
+                                     "lighting", "camera", "start", "desired", "tracker", "control", "stop", "trials", "seed"});
   Scenario scenario;
   scenario.file = path;
   scenario.name = fs::path(path).stem().string();
@@ -408,6 +418,7 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) {
   read_object(s.required("object"), scenario.object, folder.string(), models_dir);
   if (auto x = s.get("occluder")) scenario.occluder = read_occluder(*x);
   if (auto x = s.get("background")) read_background(*x, scenario.background, folder);
+  if (auto x = s.get("lighting")) read_lighting(*x, scenario.lighting);
   if (auto x = s.get("camera")) read_camera(*x, scenario.camera);
   scenario.initial_cMo = object_pose(s.required("start"));
   scenario.desired_cMo = object_pose(s.required("desired"));

@@ -319,3 +319,17 @@ TEST_CASE("every scenario shipped in scenarios/ loads") {
   }
   CHECK(count >= 10);
 }
+
+TEST_CASE("lighting: a light on the camera, its direction must not be zero") {
+  TempDir dir("icgp-scenario");
+  const Scenario s = load_scenario(
+      dir.write("lit.yaml", kMinimal + "lighting: {direction: [0, 1, 1], ambient: 0.2, diffuse: 0.8}\n"), ICGP_MODELS_DIR);
+  CHECK(s.lighting.direction_in_camera.isApprox(Eigen::Vector3d(0, 1, 1)));
+  CHECK((s.lighting.ambient == 0.2 && s.lighting.diffuse == 0.8));
+  const Scenario defaults = load_scenario(dir.write("plain.yaml", kMinimal), ICGP_MODELS_DIR);
+  CHECK(defaults.lighting.direction_in_camera.isApprox(Eigen::Vector3d(0, 0, 1)));
+  CHECK_THROWS_WITH(load_scenario(dir.write("dark.yaml", kMinimal + "lighting: {direction: [0, 0, 0]}\n"), ICGP_MODELS_DIR),
+                    Contains("dark.yaml") && Contains("lighting.direction: expected a non-zero direction"));
+  CHECK_THROWS_WITH(load_scenario(dir.write("bright.yaml", kMinimal + "lighting: {ambient: 1.5}\n"), ICGP_MODELS_DIR),
+                    Contains("lighting.ambient: expected a number in [0, 1]"));
+}

@@ -73,6 +73,13 @@ struct BackgroundSpec {
   double distance = 0.3;  ///< metres behind the object's origin, along the initial optical axis
 };
 
+/// How the scene is lit: a light fixed to the colour camera (Lambertian shading).
+struct LightingSpec {
+  Eigen::Vector3d direction_in_camera{0.0, 0.0, 1.0};  ///< direction the light travels
+  double ambient = 0.35;
+  double diffuse = 0.65;
+};
+
 /// Sensor imperfections. Zero (and 90 deg) = exact renders.
 struct NoiseSpec {
   double color_sigma = 0.0;        ///< Gaussian noise per colour channel, 8-bit levels
@@ -166,6 +173,7 @@ struct Scenario {
   ObjectSpec object;
   std::optional<OccluderSpec> occluder;
   BackgroundSpec background;
+  LightingSpec lighting;
   CameraSpec camera;
   /// Camera-object poses (ViSP cMo): where the run starts, and where the servo must bring it.
   Pose initial_cMo;
