@@ -41,20 +41,33 @@ void DepthModality::start(const Frame&) {
   occlusions_.reset();
 }
 
+DepthModality::Search DepthModality::search_of_pass(const DepthImage& depth, const Posef& depth_T_body,
+                                                    int corr_iter) const {
+  // At most considered_distance / stride_length samples along each side of the window: a
+  // sparse grid finds a surface point close enough for a point-to-plane error, and the
+  // first, widest search stays as cheap as the later ones. The grid is the image lattice
+  // of multiples of one step for all points of the pass (their spacing at the body origin's
+  // depth), not a grid of each window's own: the windows of neighbouring points then read
+  // the same pixels, so a frame reads (and converts, see DepthImage::source) few distinct
+  // pixels.
+  Search search;
+  search.considered_distance = static_cast<float>(iteration_value(params_.considered_distances, corr_iter));
+  const float spacing = std::min(search.considered_distance, static_cast<float>(params_.stride_length));
+  const float body_z = std::max(depth_T_body.translation().z(), 0.01f);
+  search.step = std::max(1, static_cast<int>(std::ceil(2.f * spacing * static_cast<float>(depth.intrinsics.fu) / body_z)));
+  // In the last, narrowest searches a window holds only a few lattice samples, and the one
+  // nearest to a point near an edge may lie across it; the pixel the point projects to
+  // keeps such points on their own surface at the right pose.
+  search.projected_pixel = corr_iter + 1 >= static_cast<int>(params_.considered_distances.size());
+  return search;
+}
+
 bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point,
-                                             float considered_distance, Eigen::Vector3f& closest) const {
+                                             const Search& search, Eigen::Vector3f& closest) const {
   const Intrinsics& k = depth.intrinsics;
   const Eigen::Vector2f centre = k.project<float>(point);
-  const float half = considered_distance * static_cast<float>(k.fu) / point.z();
-  // The pixel the point projects to, then at most considered_distance / stride_length
-  // samples along each side of the window: a sparse grid finds a surface point close enough
-  // for a point-to-plane error, and the first, widest search stays as cheap as the later
-  // ones. The grid is the image lattice of multiples of `step`, not one of the window's
-  // own: the windows of neighbouring points then read the same pixels, so a frame reads
-  // (and converts, see DepthImage::source) few distinct pixels. The projected pixel itself
-  // keeps points near an edge from taking a sample across it as their closest at the
-  // right pose.
-  float best = considered_distance * considered_distance;
+  const float half = search.considered_distance * static_cast<float>(k.fu) / point.z();
+  float best = search.considered_distance * search.considered_distance;
   bool found = false;
   const float ifu = static_cast<float>(1.0 / k.fu), ifv = static_cast<float>(1.0 / k.fv);
   const float pu = static_cast<float>(k.pu), pv = static_cast<float>(k.pv);
@@ -69,12 +82,11 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
       found = true;
     }
   };
-  const int centre_row = round_to_int(centre.y()), centre_col = round_to_int(centre.x());
-  if (centre_row >= 0 && centre_row < depth.depth.rows && centre_col >= 0 && centre_col < depth.depth.cols)
-    consider(centre_row, centre_col);
-
-  const float samples_per_side = std::max(1.f, considered_distance / static_cast<float>(params_.stride_length));
-  const int step = std::max(1, static_cast<int>(std::ceil(2.f * half / samples_per_side)));
+  if (search.projected_pixel) {
+    const int row = round_to_int(centre.y()), col = round_to_int(centre.x());
+    if (row >= 0 && row < depth.depth.rows && col >= 0 && col < depth.depth.cols) consider(row, col);
+  }
+  const int step = search.step;
   const int row_min = std::max(0, lattice_ceil(centre.y() - half, step));
   const int row_max = std::min(depth.depth.rows - 1, static_cast<int>(std::floor(centre.y() + half)));
   const int col_min = std::max(0, lattice_ceil(centre.x() - half, step));
@@ -90,7 +102,7 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
   const Posef depth_T_body_now = depth_T_body();
   const Eigen::Vector3f camera_in_body = depth_T_body_now.inverse().translation();
   const int view = view_selector_.select(*model_, camera_in_body.normalized());
-  const float considered = static_cast<float>(iteration_value(params_.considered_distances, corr_iter));
+  const Search search = search_of_pass(depth, depth_T_body_now, corr_iter);
   const bool test_occlusions = params_.measure_occlusions && frames_since_start_ >= params_.n_unoccluded_iterations;
 
   n_considered_ = std::min(model_->view_point_count(view), params_.n_points_max);
@@ -107,7 +119,7 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
       if (X.z() <= 0.f) continue;
       if (with_occlusion_test && occlusions_.occluded(p)) continue;
       Eigen::Vector3f measured;
-      if (!find_closest_measurement(depth, X, considered, measured)) continue;
+      if (!find_closest_measurement(depth, X, search, measured)) continue;
       correspondences_.push_back({points[p].position, points[p].normal, measured});
     }
   };

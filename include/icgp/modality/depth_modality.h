@@ -37,7 +37,14 @@ class DepthModality : public Modality {
   };
 
   const DepthImage& depth_image(const Frame& frame) const;
-  bool find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point, float considered_distance,
+  /// How a correspondence pass searches the depth image around each point.
+  struct Search {
+    float considered_distance;  ///< metres
+    int step;                   ///< pixels between samples, on the image lattice of its multiples
+    bool projected_pixel;       ///< also try the pixel the point projects to
+  };
+  Search search_of_pass(const DepthImage& depth, const Posef& depth_T_body, int corr_iter) const;
+  bool find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point, const Search& search,
                                 Eigen::Vector3f& closest) const;
   Posef depth_T_body() const;
   void update_quality();
