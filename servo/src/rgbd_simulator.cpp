@@ -53,8 +53,7 @@ vpHomogeneousMatrix interpolate(const vpHomogeneousMatrix& from, const vpHomogen
 struct RgbdSimulator::Impl {
   Scenario scenario;
   Renderer renderer;
-  Renderer::BodyHandle object{}, occluder{};
-  bool has_occluder = false;
+  Renderer::BodyHandle object{}, occluder{};  ///< occluder: when the scenario has one
   vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
   cv::RNG rng;
   RgbdCapture capture;
@@ -87,7 +86,7 @@ struct RgbdSimulator::Impl {
   }
 
   void place_occluder(double time) {
-    if (!has_occluder) return;
+    if (!scenario.occluder) return;
     const OccluderSpec& o = *scenario.occluder;
     const bool present = time >= o.start;
     renderer.set_body_visible(occluder, present);
@@ -198,10 +197,7 @@ RgbdSimulator::RgbdSimulator(const Scenario& scenario, const vpHomogeneousMatrix
   d.renderer.set_lighting(lighting);
   d.object = d.renderer.add_body(load_any_mesh(scenario.object.model), 1);
   d.add_background(seed);
-  if (scenario.occluder) {
-    d.occluder = d.renderer.add_body(box_mesh(scenario.occluder->size), 3);
-    d.has_occluder = true;
-  }
+  if (scenario.occluder) d.occluder = d.renderer.add_body(box_mesh(scenario.occluder->size), 3);
 }
 
 RgbdSimulator::~RgbdSimulator() = default;

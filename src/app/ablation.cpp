@@ -118,17 +118,7 @@ void run_ablation(const std::string& summary_path, int frame_limit) {
       std::printf("%-24s %8.2f %9.2f %9.2f %9.2f %10.2f %8.0f\n", c.name.c_str(), r.add_auc, r.adds_auc, r.mean_t_mm,
                   r.mean_r_deg, r.median_ms, r.hz);
       std::fflush(stdout);
-      json_rows.push_back(JsonObject()
-                              .add("sequence", s.name)
-                              .add("config", c.name)
-                              .add("add_auc", r.add_auc)
-                              .add("adds_auc", r.adds_auc)
-                              .add("mean_t_mm", r.mean_t_mm)
-                              .add("mean_r_deg", r.mean_r_deg)
-                              .add("median_ms", r.median_ms)
-                              .add("hz", r.hz)
-                              .add("tracked", r.tracked)
-                              .add("frames", r.frames));
+      json_rows.push_back(JsonObject().add("sequence", s.name).add("config", c.name).add_fields(r.to_json()));
     }
   }
   std::printf("\nmulti-region applies to labelled_can, labelled_can_spin and two_region (the others have one colour region).\n");

@@ -183,18 +183,9 @@ void run_compare(const CompareOptions& o) {
 
   if (!o.summary.empty()) {
     std::vector<JsonObject> json_rows;
-    for (const CompareRow& row : rows) {
-      const TrackingSummary& s = row.summary;
-      json_rows.push_back(JsonObject()
-                              .add("tracker", row.tracker)
-                              .add("config", row.config)
-                              .add("mean_t_mm", s.mean_t_mm)
-                              .add("max_t_mm", s.max_t_mm)
-                              .add("mean_r_deg", s.mean_r_deg)
-                              .add("max_r_deg", s.max_r_deg)
-                              .add("median_ms", s.median_ms)
-                              .add("hz", s.hz));
-    }
+    for (const CompareRow& row : rows)
+      json_rows.push_back(
+          JsonObject().add("tracker", row.tracker).add("config", row.config).add_fields(row.summary.to_json()));
     JsonObject().add("rows", json_rows).add("visp_layer_overhead_percent", overhead_percent).write(o.summary);
     std::cout << "wrote " << o.summary << "\n";
   }

@@ -372,26 +372,29 @@ void vpMbIcgTracker::track_with_depth(const vpImage<vpRGBa>& I, unsigned int dep
   track_current_frame(nullptr);
 }
 
+template <typename Image>
+void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& images,
+                                       std::map<std::string, const std::vector<vpColVector>*>& clouds,
+                                       std::map<std::string, unsigned int>& widths,
+                                       std::map<std::string, unsigned int>& heights) {
+  unsigned int width = 0, height = 0;
+  const auto& cloud = cloud_of_depth_camera(clouds, widths, heights, width, height);
+  track_with_depth(images, width, height,
+                   [&cloud, width](int row, int col) { return cloud_depth(cloud, width, row, col); });
+}
+
 void vpMbIcgTracker::track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
                            std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
                            std::map<std::string, unsigned int>& mapOfPointCloudWidths,
                            std::map<std::string, unsigned int>& mapOfPointCloudHeights) {
-  unsigned int width = 0, height = 0;
-  const auto& cloud =
-      cloud_of_depth_camera(mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights, width, height);
-  track_with_depth(mapOfImages, width, height,
-                   [&cloud, width](int row, int col) { return cloud_depth(cloud, width, row, col); });
+  track_with_clouds(mapOfImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
 }
 
 void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
                            std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
                            std::map<std::string, unsigned int>& mapOfPointCloudWidths,
                            std::map<std::string, unsigned int>& mapOfPointCloudHeights) {
-  unsigned int width = 0, height = 0;
-  const auto& cloud =
-      cloud_of_depth_camera(mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights, width, height);
-  track_with_depth(mapOfColorImages, width, height,
-                   [&cloud, width](int row, int col) { return cloud_depth(cloud, width, row, col); });
+  track_with_clouds(mapOfColorImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
 }
 
 namespace {

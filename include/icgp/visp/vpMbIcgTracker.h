@@ -203,6 +203,11 @@ class vpMbIcgTracker : public vpMbTracker {
   using DepthReader = std::function<float(int row, int col)>;
   /// Tracks the colour camera's image with a depth image of depthWidth x depthHeight read
   /// through `read`; `depthFromColorCamera`: seen by "Camera1" itself (one registered cloud).
+  /// The map-of-clouds calls of both image types: "Camera2"'s organised cloud, size checked.
+  template <typename Image>
+  void track_with_clouds(std::map<std::string, const Image*>& images,
+                         std::map<std::string, const std::vector<vpColVector>*>& clouds,
+                         std::map<std::string, unsigned int>& widths, std::map<std::string, unsigned int>& heights);
   template <typename Image>
   void track_with_depth(std::map<std::string, const Image*>& images, unsigned int depthWidth,
                         unsigned int depthHeight, DepthReader read);
