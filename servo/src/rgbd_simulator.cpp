@@ -3,13 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <visp3/core/vpImageConvert.h>
 
 #include "icgp/eval/sequence_writer.h"
 #include "icgp/render/renderer.h"
+#include "icgp/render/sensor_effects.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
 
@@ -19,8 +20,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 /// Renders averaged for motion blur.
 constexpr int kBlurSamples = 4;
-/// A depth step this large (relative to Z) between neighbours is a discontinuity.
-constexpr float kDiscontinuity = 0.03f;
 
 /// A closed box centred on its origin, flat grey: the passing occluder.
 Mesh box_mesh(const Eigen::Vector3d& size) {
@@ -58,7 +57,7 @@ struct RgbdSimulator::Impl {
   cv::RNG rng;
   RgbdCapture capture;
   bool has_capture = false;
-  cv::Mat color_sum, noise, depth_normals;
+  cv::Mat noise;
 
   Impl(const Scenario& s, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& wMo, std::uint64_t seed)
       : scenario(s), world_T_camera_start(wMc), world_T_object_start(wMo), rng(seed) {}
@@ -101,15 +100,11 @@ struct RgbdSimulator::Impl {
     const Intrinsics& k = scenario.camera.color;
     const double blur = scenario.camera.noise.motion_blur;
     if (blur <= 0.0) return renderer.render(k, to_pose(wMc.inverse()), kRenderColor).color;
-    color_sum = cv::Mat::zeros(k.height, k.width, CV_32FC3);
-    for (int i = 0; i < kBlurSamples; ++i) {
+    return average_color_renders(kBlurSamples, [&](int i) {
       const double back = blur * i / kBlurSamples;  // fraction of the step before the capture
       const vpHomogeneousMatrix pose = interpolate(wMc, previous_wMc, back);
-      cv::accumulate(renderer.render(k, to_pose(pose.inverse()), kRenderColor).color, color_sum);
-    }
-    cv::Mat color;
-    color_sum.convertTo(color, CV_8UC3, 1.0 / kBlurSamples);
-    return color;
+      return renderer.render(k, to_pose(pose.inverse()), kRenderColor).color;
+    });
   }
 
   void add_color_noise(cv::Mat& color) {
@@ -131,8 +126,8 @@ struct RgbdSimulator::Impl {
     const bool grazing = n.grazing_angle_deg < 90.0;
     RenderOutput out = renderer.render(k, depth_T_world, kRenderDepth | (grazing ? kRenderNormals : 0u));
     cv::Mat& depth = out.depth;
-    if (grazing) remove_grazing(depth, out.normals, std::cos(n.grazing_angle_deg * kPi / 180.0));
-    if (n.edge_dropout_px > 0) remove_edges(depth, n.edge_dropout_px);
+    if (grazing) remove_grazing_depth(depth, out.normals, k, n.grazing_angle_deg);
+    remove_depth_edges(depth, n.edge_dropout_px);
     if (n.depth_dropout > 0.0) {
       cv::Mat u(depth.size(), CV_32FC1);
       rng.fill(u, cv::RNG::UNIFORM, 0.0, 1.0);
@@ -145,34 +140,6 @@ struct RgbdSimulator::Impl {
       depth += g.mul(z2);  // where depth is 0, z2 is 0: missing stays missing
     }
     return depth;
-  }
-
-  void remove_grazing(cv::Mat& depth, const cv::Mat& normals, double min_cos) const {
-    const Intrinsics& k = scenario.camera.depth;
-    for (int r = 0; r < depth.rows; ++r) {
-      float* z = depth.ptr<float>(r);
-      const cv::Vec3f* normal = normals.ptr<cv::Vec3f>(r);
-      for (int c = 0; c < depth.cols; ++c) {
-        if (z[c] <= 0.f) continue;
-        const cv::Vec3f ray((c - k.pu) / k.fu, (r - k.pv) / k.fv, 1.f);
-        if (std::abs(normal[c].dot(ray)) < min_cos * cv::norm(ray)) z[c] = 0.f;
-      }
-    }
-  }
-
-  static void remove_edges(cv::Mat& depth, int radius) {
-    cv::Mat edges = cv::Mat::zeros(depth.size(), CV_8UC1);
-    for (int r = 0; r + 1 < depth.rows; ++r) {
-      const float* z = depth.ptr<float>(r);
-      const float* below = depth.ptr<float>(r + 1);
-      for (int c = 0; c + 1 < depth.cols; ++c) {
-        const float nearest = std::min({z[c], z[c + 1], below[c]});
-        const float farthest = std::max({z[c], z[c + 1], below[c]});
-        if (farthest > 0.f && farthest - nearest > kDiscontinuity * farthest) edges.at<uchar>(r, c) = 255;
-      }
-    }
-    cv::dilate(edges, edges, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius + 1, 2 * radius + 1)));
-    depth.setTo(0.f, edges);
   }
 
   void store_depth(const cv::Mat& depth) {

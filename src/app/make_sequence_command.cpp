@@ -69,6 +69,24 @@ void register_make_sequence_command(CLI::App& app) {
   cmd->add_option("--depth-dropout", o->writer.noise.depth_dropout, "Fraction of depth pixels missing")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--grazing-angle", o->writer.noise.grazing_angle_deg,
+                  "Depth missing where the surface is seen more obliquely than this, degrees (90: never)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--depth-edge-holes", o->writer.noise.depth_edge_holes_px,
+                  "Depth missing within this many pixels of a depth discontinuity (0: never)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--antialias", o->writer.antialias_samples, "Multisample antialiasing of colour, samples per pixel (0: off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--motion-blur", o->writer.motion_blur.samples,
+                  "Colour renders averaged over the exposure of each frame (1: sharp)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--exposure", o->writer.motion_blur.exposure, "Exposure as a fraction of the frame interval (motion blur)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->callback([o] { run_make_sequence(*o); });
 }
 

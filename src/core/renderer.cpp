@@ -132,28 +132,30 @@ GLuint link_program(const std::vector<GLuint>& shaders) {
   return program;
 }
 
-/// Offscreen render targets of one image size.
+/// Offscreen render targets of one image size; multisampled when `samples` > 0.
 struct Framebuffer {
   GLuint fbo = 0;
   std::vector<GLuint> color;
   GLuint depth_buffer = 0;
 
-  Framebuffer(int width, int height, const std::vector<GLenum>& color_formats) : color(color_formats.size()) {
+  Framebuffer(int width, int height, const std::vector<GLenum>& color_formats, int samples = 0)
+      : color(color_formats.size()) {
     glGenFramebuffers(1, &fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glGenRenderbuffers(static_cast<GLsizei>(color.size()), color.data());
     for (std::size_t i = 0; i < color.size(); ++i) {
       glBindRenderbuffer(GL_RENDERBUFFER, color[i]);
-      glRenderbufferStorage(GL_RENDERBUFFER, color_formats[i], width, height);
+      glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, color_formats[i], width, height);
       glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), GL_RENDERBUFFER,
                                 color[i]);
     }
     glGenRenderbuffers(1, &depth_buffer);
     glBindRenderbuffer(GL_RENDERBUFFER, depth_buffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT32F, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw RenderError("offscreen framebuffer of " + std::to_string(width) + "x" + std::to_string(height) +
+                        (samples > 0 ? " with " + std::to_string(samples) + " samples" : std::string()) +
                         " is incomplete");
   }
   ~Framebuffer() {
@@ -274,6 +276,9 @@ struct Renderer::Impl {
   bool reversed_z = false;  ///< glClipControl available: float depth with uniform precision
   std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> framebuffers;
   std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> silhouette_framebuffers;
+  /// Antialiased colour: drawn into a multisampled target, resolved into a plain one.
+  std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> multisample_framebuffers, resolve_framebuffers;
+  int color_samples = 0;
   std::vector<GpuBody> bodies;
   Lighting lighting;
   struct {
@@ -309,6 +314,8 @@ struct Renderer::Impl {
       for (auto& part : body.parts) release_part(part);
     framebuffers.clear();
     silhouette_framebuffers.clear();
+    multisample_framebuffers.clear();
+    resolve_framebuffers.clear();
     glDeleteProgram(program);
     glDeleteProgram(silhouette_program);
   }
@@ -318,6 +325,41 @@ struct Renderer::Impl {
     if (!fb)
       fb = std::make_unique<Framebuffer>(width, height, std::vector<GLenum>{GL_R32F, GL_RGBA32F, GL_R8UI, GL_RGBA8});
     return *fb;
+  }
+
+  /// Draws the shaded colour with `color_samples` samples per pixel and resolves it into
+  /// `color` (CV_8UC3, the image size): edges become coverage-weighted blends as a camera's
+  /// pixel integrates them. Depth, normals and ids stay single-sampled: a blend of two ids
+  /// or depths would be neither surface.
+  void render_multisampled_color(const Intrinsics& k, const Pose& camera_T_world, double near, double far,
+                                 const Eigen::Vector4f& background, cv::Mat& color) {
+    const int W = k.width, H = k.height;
+    auto& multisampled = multisample_framebuffers[{W, H}];
+    if (!multisampled) multisampled = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_RGBA8}, color_samples);
+    auto& resolved = resolve_framebuffers[{W, H}];
+    if (!resolved) resolved = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_RGBA8});
+
+    glBindFramebuffer(GL_FRAMEBUFFER, multisampled->fbo);
+    glViewport(0, 0, W, H);
+    // The shader writes colour at location kColorAttachment: route only that one.
+    GLenum draw_buffers[kAttachmentCount] = {GL_NONE, GL_NONE, GL_NONE, GL_NONE};
+    draw_buffers[kColorAttachment] = GL_COLOR_ATTACHMENT0;
+    glDrawBuffers(kAttachmentCount, draw_buffers);
+    glClearBufferfv(GL_COLOR, kColorAttachment, background.data());
+    clear_depth_for_drawing();
+    draw(k, camera_T_world, near, far);
+
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, multisampled->fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved->fbo);
+    const GLenum resolve_buffer = GL_COLOR_ATTACHMENT0;
+    glDrawBuffers(1, &resolve_buffer);
+    glBlitFramebuffer(0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved->fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, W, H, GL_BGR, GL_UNSIGNED_BYTE, color.data);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
 
   Framebuffer& silhouette_framebuffer(int width, int height) {
@@ -501,6 +543,21 @@ const Pose& Renderer::body_pose(BodyHandle body) const { return impl_->body(body
 void Renderer::set_body_visible(BodyHandle body, bool visible) { impl_->body(body).visible = visible; }
 void Renderer::set_lighting(const Lighting& lighting) { impl_->lighting = lighting; }
 
+void Renderer::set_color_antialiasing(int samples) {
+  if (samples == impl_->color_samples) return;
+  impl_->context.make_current();
+  GLint max_samples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  if (samples < 0 || samples == 1 || samples > max_samples)
+    throw std::invalid_argument("renderer: colour antialiasing samples must be 0 (off) or 2.." +
+                                std::to_string(max_samples) + " on this OpenGL implementation, got " +
+                                std::to_string(samples));
+  impl_->color_samples = samples;
+  impl_->multisample_framebuffers.clear();  // they hold the previous sample count
+}
+
+int Renderer::color_antialiasing() const { return impl_->color_samples; }
+
 RenderOutput Renderer::render(const Intrinsics& intrinsics, const Pose& camera_T_world, unsigned targets) {
   intrinsics.validate("render intrinsics");
   const int W = intrinsics.width, H = intrinsics.height;
@@ -516,6 +573,13 @@ RenderOutput Renderer::render(const Intrinsics& intrinsics, const Pose& camera_T
   if (!impl_->depth_range(camera_T_world, near, far)) return out;  // nothing in front of the camera
 
   impl_->context.make_current();
+  const Eigen::Vector4f background(impl_->lighting.background_rgb.x(), impl_->lighting.background_rgb.y(),
+                                   impl_->lighting.background_rgb.z(), 1.f);
+  if ((targets & kRenderColor) && impl_->color_samples > 0) {
+    impl_->render_multisampled_color(intrinsics, camera_T_world, near, far, background, out.color);
+    targets &= ~unsigned(kRenderColor);
+    if (targets == 0) return out;
+  }
   Framebuffer& fb = impl_->framebuffer(W, H);
   glBindFramebuffer(GL_FRAMEBUFFER, fb.fbo);
   glViewport(0, 0, W, H);
@@ -526,8 +590,6 @@ RenderOutput Renderer::render(const Intrinsics& intrinsics, const Pose& camera_T
 
   const float zeros[4] = {0.f, 0.f, 0.f, 0.f};
   const GLuint zero_id[4] = {0, 0, 0, 0};
-  const Eigen::Vector4f background(impl_->lighting.background_rgb.x(), impl_->lighting.background_rgb.y(),
-                                   impl_->lighting.background_rgb.z(), 1.f);
   if (targets & kRenderDepth) glClearBufferfv(GL_COLOR, kDepthAttachment, zeros);
   if (targets & kRenderNormals) glClearBufferfv(GL_COLOR, kNormalAttachment, zeros);
   if (targets & kRenderIds) glClearBufferuiv(GL_COLOR, kIdAttachment, zero_id);

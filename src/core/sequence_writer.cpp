@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "icgp/render/renderer.h"
+#include "icgp/render/sensor_effects.h"
 
 namespace icgp {
 
@@ -219,6 +220,26 @@ bool is_file_name_safe(const std::string& name) {
 
 }  // namespace
 
+SensorNoise SensorNoise::realsense_class() {
+  SensorNoise n;
+  n.color_sigma = 1.5;
+  n.depth_sigma_at_1m = 0.0015;
+  n.depth_dropout = 0.05;
+  n.grazing_angle_deg = 80.0;
+  n.depth_edge_holes_px = 1;
+  return n;
+}
+
+SensorNoise SensorNoise::kinect_class() {
+  SensorNoise n;
+  n.color_sigma = 4.0;
+  n.depth_sigma_at_1m = 0.005;
+  n.depth_dropout = 0.2;
+  n.grazing_angle_deg = 75.0;
+  n.depth_edge_holes_px = 2;
+  return n;
+}
+
 cv::Mat procedural_clutter_texture(std::uint64_t seed) {
   Random random = stream(seed, kBackgroundStream);
   return procedural_texture(random);
@@ -286,6 +307,11 @@ SequenceWriter::SequenceWriter(SequenceWriterOptions options)
   o.depth_intrinsics.validate("SequenceWriter: depth_intrinsics");
   require(o.noise.color_sigma >= 0.0 && o.noise.depth_sigma_at_1m >= 0.0, "noise sigmas must not be negative");
   require(o.noise.depth_dropout >= 0.0 && o.noise.depth_dropout < 1.0, "depth_dropout must be in [0, 1)");
+  require(o.noise.grazing_angle_deg > 0.0, "grazing_angle_deg must be positive (90 or more: no grazing holes)");
+  require(o.noise.depth_edge_holes_px >= 0, "depth_edge_holes_px must not be negative");
+  require(o.antialias_samples >= 0, "antialias_samples must not be negative (0 = off)");
+  require(o.motion_blur.samples >= 1, "motion_blur.samples must be at least 1 (1 = sharp)");
+  require(o.motion_blur.exposure > 0.0 && o.motion_blur.exposure <= 1.0, "motion_blur.exposure must be in (0, 1]");
   require(!o.background.enabled || (o.background.distance > 0.0 && o.background.tile_size > 0.0),
           "background distance and tile_size must be positive");
   require(o.background.texture_bgr.empty() || o.background.texture_bgr.type() == CV_8UC3,
@@ -310,6 +336,14 @@ void SequenceWriter::add_object(const std::string& name, const Mesh& mesh, const
 }
 
 Pose SequenceWriter::color_T_world(int index) const { return trajectory_.camera_T_world(index / options_.frame_rate); }
+
+double SequenceWriter::exposure_time(double frame_seconds, int sample) const {
+  const MotionBlur& blur = options_.motion_blur;
+  // Sample centres of `samples` equal slices of the exposure: symmetric about the frame's
+  // time, so their mean pose is the ground truth's.
+  const double offset = ((sample + 0.5) / blur.samples - 0.5) * blur.exposure / options_.frame_rate;
+  return frame_seconds + offset;
+}
 
 void SequenceWriter::write(const std::string& dir_name) const {
   const SequenceWriterOptions& o = options_;
@@ -350,16 +384,30 @@ void SequenceWriter::write(const std::string& dir_name) const {
   std::vector<std::ofstream> pose_files;
   for (const Object& object : objects_) pose_files.emplace_back(dir / "poses" / (object.name + ".txt"));
 
+  renderer.set_color_antialiasing(o.antialias_samples);
+  const auto place_objects = [&](double seconds) {
+    for (std::size_t k = 0; k < objects_.size(); ++k) renderer.set_body_pose(bodies[k], objects_[k].world_T_object_at(seconds));
+  };
+  const bool grazing_holes = o.noise.grazing_angle_deg < 90.0;
   char name[32];
   for (int i = 0; i < o.frame_count; ++i) {
+    const double seconds = i / o.frame_rate;
+    cv::Mat color = average_color_renders(o.motion_blur.samples, [&](int sample) {
+      const double t = exposure_time(seconds, sample);
+      place_objects(t);
+      return renderer.render(o.color_intrinsics, trajectory_.camera_T_world(t), kRenderColor).color;
+    });
+
+    // Depth and ground truth at the frame's time, the middle of the exposure.
     const Pose camera_T_world = color_T_world(i);
+    place_objects(seconds);
     std::vector<Pose> world_T_objects;
-    for (std::size_t k = 0; k < objects_.size(); ++k) {
-      world_T_objects.push_back(objects_[k].world_T_object_at(i / o.frame_rate));
-      renderer.set_body_pose(bodies[k], world_T_objects.back());
-    }
-    cv::Mat color = renderer.render(o.color_intrinsics, camera_T_world, kRenderColor).color;
-    cv::Mat depth = renderer.render(o.depth_intrinsics, o.depth_T_color * camera_T_world, kRenderDepth).depth;
+    for (const Renderer::BodyHandle body : bodies) world_T_objects.push_back(renderer.body_pose(body));
+    RenderOutput depth_render = renderer.render(o.depth_intrinsics, o.depth_T_color * camera_T_world,
+                                                kRenderDepth | (grazing_holes ? kRenderNormals : 0u));
+    cv::Mat& depth = depth_render.depth;
+    if (grazing_holes) remove_grazing_depth(depth, depth_render.normals, o.depth_intrinsics, o.noise.grazing_angle_deg);
+    remove_depth_edges(depth, o.noise.depth_edge_holes_px);
     Random noise = stream(o.seed, kNoiseStream, std::uint64_t(i));
     if (o.noise.color_sigma > 0.0) add_color_noise(color, o.noise.color_sigma, noise);
     add_depth_noise(depth, o.noise, noise);

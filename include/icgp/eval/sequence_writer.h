@@ -59,6 +59,27 @@ struct SensorNoise {
   /// error grows with the square of the distance.
   double depth_sigma_at_1m = 0.0;
   double depth_dropout = 0.0;  ///< fraction of depth pixels randomly reported as missing (0)
+  /// Depth is missing where the surface is seen more obliquely than this (angle between its
+  /// normal and the viewing ray, degrees); 90 = never.
+  double grazing_angle_deg = 90.0;
+  /// Depth is missing within this many pixels of a depth discontinuity; 0 = never.
+  int depth_edge_holes_px = 0;
+
+  /// A RealSense-class active stereo sensor: sigma 0.0015 Z^2, 5 % dropout, holes along
+  /// depth edges (1 px) and beyond 80 deg, mild colour noise.
+  static SensorNoise realsense_class();
+  /// A Kinect-class structured-light sensor: sigma 0.005 Z^2, 20 % dropout, holes along
+  /// depth edges (2 px) and beyond 75 deg, visible colour noise.
+  static SensorNoise kinect_class();
+};
+
+/// A colour camera's exposure: each colour image is the mean of `samples` renders spread
+/// evenly over `exposure` of the frame interval, centred on the frame's time, with camera
+/// and objects moved along their motion; the ground truth is the pose at that centre (the
+/// middle of the exposure). Depth stays a single render at the frame's time.
+struct MotionBlur {
+  int samples = 1;        ///< renders per colour image; 1 = sharp
+  double exposure = 0.5;  ///< fraction of the frame interval the shutter is open, (0, 1]
 };
 
 /// A large textured plane behind the objects (at world Z = target.z - distance), so region
@@ -91,6 +112,10 @@ struct SequenceWriterOptions {
   OrbitOptions motion;
   BackgroundPlane background;
   SensorNoise noise;
+  /// Multisample antialiasing of the colour images (samples per pixel, 0 = off): object
+  /// edges blend into the background over a pixel as on a real camera.
+  int antialias_samples = 0;
+  MotionBlur motion_blur;
   bool progress = true;  ///< report progress on stderr
 };
 
@@ -120,8 +145,11 @@ class SequenceWriter {
   void add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object = Pose(),
                   const std::string& mesh_path = "", const Eigen::Vector3d& spin = Eigen::Vector3d::Zero());
 
-  /// The colour camera pose of frame `index`.
+  /// The colour camera pose of frame `index` (at its time, the middle of its exposure).
   Pose color_T_world(int index) const;
+  /// The instant (seconds) of render `sample` of a colour image whose frame is at
+  /// `frame_seconds` (MotionBlur): frame_seconds itself for a sharp image.
+  double exposure_time(double frame_seconds, int sample) const;
 
   /// Renders every frame into `dir`. The folder is created when absent; an existing one
   /// must be empty or hold an earlier icgp sequence, whose files are replaced (other

@@ -83,6 +83,13 @@ class Renderer {
   /// Hidden bodies are not drawn (and do not occlude).
   void set_body_visible(BodyHandle body, bool visible);
   void set_lighting(const Lighting& lighting);
+  /// Multisample antialiasing of colour renders: `samples` per pixel (0 = off, the
+  /// default), so edges blend as a real camera's pixels integrate them. Only the colour
+  /// target is affected; depth, normals and ids stay exact per pixel. Throws
+  /// std::invalid_argument for 1, a negative count or more than the implementation has
+  /// (GL_MAX_SAMPLES), naming the allowed range.
+  void set_color_antialiasing(int samples);
+  int color_antialiasing() const;
 
   /// Renders every visible body seen from a camera at camera_T_world with `intrinsics`
   /// (its width/height is the output size). Only the requested targets are filled.
