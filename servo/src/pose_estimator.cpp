@@ -3,14 +3,11 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
 #include "icgp/tracker/tracker_config.h"
-#include "icgp/visp/cao_mesh_loader.h"
-#include "icgp/visp/cao_writer.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/visp_baseline.h"
 #include "icgp/visp/vpMbIcgTracker.h"
@@ -70,46 +67,10 @@ class IcgpEstimator : public PoseEstimator {
   std::string name_;
 };
 
-/// ViSP's settings for the edge, KLT and dense-depth features: those of its teabox
-/// tutorial, which suit objects of this size at half a metre. The cameras come from the
-/// simulator, not from these files.
-std::string visp_settings(const std::string& features) {
-  return "<?xml version=\"1.0\"?>\n<conf>\n" + features +
-         "  <face>\n"
-         "    <angle_appear>70</angle_appear><angle_disappear>80</angle_disappear>\n"
-         "    <near_clipping>0.1</near_clipping><far_clipping>100</far_clipping><fov_clipping>1</fov_clipping>\n"
-         "  </face>\n</conf>\n";
-}
-const std::string kColorFeatures = R"(  <ecm>
-    <mask><size>5</size><nb_mask>180</nb_mask></mask>
-    <range><tracking>8</tracking></range>
-    <contrast><edge_threshold>10000</edge_threshold><mu1>0.5</mu1><mu2>0.5</mu2></contrast>
-    <sample><step>4</step></sample>
-  </ecm>
-  <klt>
-    <mask_border>5</mask_border><max_features>300</max_features><window_size>5</window_size>
-    <quality>0.015</quality><min_distance>8</min_distance><harris>0.01</harris>
-    <size_block>3</size_block><pyramid_lvl>3</pyramid_lvl>
-  </klt>
-)";
-const std::string kDepthFeatures =
-    "  <depth_dense><sampling_step><step_X>4</step_X><step_Y>4</step_Y></sampling_step></depth_dense>\n";
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write ViSP's tracker settings");
-}
-
 /// The .cao model and XML settings vpMbGenericTracker reads, written for the scenario's mesh.
 VispModelFiles visp_model_files(const std::string& mesh_path) {
   const fs::path dir = fs::temp_directory_path() / "icgp-servo-visp" / fs::path(mesh_path).stem();
-  fs::create_directories(dir);
-  VispModelFiles files{(dir / "model.cao").string(), (dir / "model.xml").string(), (dir / "model_depth.xml").string()};
-  write_cao(load_any_mesh(mesh_path), files.model);
-  write_text(files.color_config, visp_settings(kColorFeatures));
-  write_text(files.depth_config, visp_settings(kDepthFeatures));
-  return files;
+  return VispModelFiles::written_for_mesh(mesh_path, dir.string());
 }
 
 /// vpMbGenericTracker through its RGB-D API: grey image and organised point cloud.

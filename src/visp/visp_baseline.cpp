@@ -3,12 +3,15 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <stdexcept>
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
+#include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/cao_writer.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
 
@@ -16,8 +19,41 @@ namespace icgp {
 
 namespace {
 
+namespace fs = std::filesystem;
+
 int color_tracker_types(const VispTrackerConfiguration& c) {
   return (c.edge ? vpMbGenericTracker::EDGE_TRACKER : 0) | (c.klt ? vpMbGenericTracker::KLT_TRACKER : 0);
+}
+
+/// ViSP's settings for the edge, KLT and dense-depth features: those of its teabox
+/// tutorial, which suit objects of 5-20 cm at half a metre. The cameras come from the
+/// frames or the caller, not from these files.
+std::string visp_settings(const std::string& features) {
+  return "<?xml version=\"1.0\"?>\n<conf>\n" + features +
+         "  <face>\n"
+         "    <angle_appear>70</angle_appear><angle_disappear>80</angle_disappear>\n"
+         "    <near_clipping>0.1</near_clipping><far_clipping>100</far_clipping><fov_clipping>1</fov_clipping>\n"
+         "  </face>\n</conf>\n";
+}
+const std::string kColorFeatures = R"(  <ecm>
+    <mask><size>5</size><nb_mask>180</nb_mask></mask>
+    <range><tracking>8</tracking></range>
+    <contrast><edge_threshold>10000</edge_threshold><mu1>0.5</mu1><mu2>0.5</mu2></contrast>
+    <sample><step>4</step></sample>
+  </ecm>
+  <klt>
+    <mask_border>5</mask_border><max_features>300</max_features><window_size>5</window_size>
+    <quality>0.015</quality><min_distance>8</min_distance><harris>0.01</harris>
+    <size_block>3</size_block><pyramid_lvl>3</pyramid_lvl>
+  </klt>
+)";
+const std::string kDepthFeatures =
+    "  <depth_dense><sampling_step><step_X>4</step_X><step_Y>4</step_Y></sampling_step></depth_dense>\n";
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path.string() + ": cannot write ViSP's tracker settings");
 }
 
 }  // namespace
@@ -36,12 +72,22 @@ VispTrackerConfiguration visp_reference_configuration(const std::string& name) {
 }
 
 VispModelFiles VispModelFiles::beside_model(const std::string& cao_path) {
-  namespace fs = std::filesystem;
   const fs::path model(cao_path);
   const fs::path stem = model.parent_path() / model.stem();
   VispModelFiles files{cao_path, stem.string() + ".xml", stem.string() + "_depth.xml"};
   for (const std::string* file : {&files.model, &files.color_config, &files.depth_config})
     if (!fs::is_regular_file(*file)) throw std::runtime_error(*file + ": missing ViSP model or tracker settings file");
+  return files;
+}
+
+VispModelFiles VispModelFiles::written_for_mesh(const std::string& mesh_path, const std::string& dir) {
+  fs::create_directories(dir);
+  const fs::path folder(dir);
+  VispModelFiles files{(folder / "model.cao").string(), (folder / "model.xml").string(),
+                       (folder / "model_depth.xml").string()};
+  write_cao(load_any_mesh(mesh_path), files.model);
+  write_text(files.color_config, visp_settings(kColorFeatures));
+  write_text(files.depth_config, visp_settings(kDepthFeatures));
   return files;
 }
 

@@ -37,6 +37,12 @@ struct VispModelFiles {
   /// `<stem>.xml` and `<stem>_depth.xml` beside `<stem>.cao`: how ViSP's tutorials and both
   /// data sets arrange them. Throws std::runtime_error naming a missing file.
   static VispModelFiles beside_model(const std::string& cao_path);
+  /// For an object known only as a mesh (any format load_any_mesh reads): `dir`/model.cao
+  /// written from it (write_cao) and ViSP settings for edges, KLT and dense depth (those of
+  /// ViSP's teabox tutorial, for objects of 5-20 cm at about half a metre) as model.xml and
+  /// model_depth.xml. `dir` is created; its earlier files are replaced. Throws
+  /// std::runtime_error naming a file that cannot be read or written.
+  static VispModelFiles written_for_mesh(const std::string& mesh_path, const std::string& dir);
 };
 
 /// vpMbGenericTracker set up for `configuration` as a ViSP user does before giving it a
