@@ -15,6 +15,7 @@
 #include "icgp/visp/visp_baseline.h"
 #include "single_thread_scope.h"
 #include "bench_runner.h"
+#include "sweep.h"
 
 namespace icgp::app {
 namespace {
@@ -28,6 +29,8 @@ struct BenchOptions {
   std::string summary;
   int frames = 0;
   bool ablation = false;
+  bool sweep = false;
+  SweepOptions sweep_options;
 };
 
 struct BenchRow {
@@ -144,11 +147,36 @@ void register_bench_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--config", o->config, "icgp tracker configuration (YAML) for the ICG rows; default: the sequence folder's icgp.yaml, else the reference parameters")->check(CLI::ExistingFile);
   cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...]}");
-  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all; --sweep: frames per cell, default 60)")->check(CLI::PositiveNumber);
   cmd->add_flag("--ablation", o->ablation,
                  "Instead: ICG+ with each descriptor and without each cue (the paper's Tables III/IV) on "
                  "teabox-blender and rendered ambiguous-geometry sequences");
-  cmd->callback([o] { o->ablation ? run_ablation(o->summary, o->frames) : run_bench(*o); });
+  CLI::Option* sweep =
+      cmd->add_flag("--sweep", o->sweep,
+                    "Instead: icgp's defaults, the reference parameters (icg_reference) and ViSP over 4 models x "
+                    "3 depth sensors x 3 image conditions plus grey cells without depth, rendered with ground truth");
+  sweep->excludes("--ablation");
+  cmd->add_option("--out", o->sweep_options.out, "--sweep: folder of the cached sequences, ViSP models and plot script")
+      ->capture_default_str();
+  cmd->add_option("--plot", o->sweep_options.plot, "--sweep: PNG of the mean error against depth noise")
+      ->capture_default_str();
+  cmd->add_flag("--quick", o->sweep_options.quick,
+                "--sweep: one model, two conditions and its grey cell, 320x240, at most 8 frames (a test)");
+  cmd->add_option("--viewpoint-models", o->sweep_options.viewpoint_models,
+                  "--sweep: YAML whose region_model/depth_model replace both presets' (e.g. coarse models for a test)")
+      ->check(CLI::ExistingFile);
+  cmd->callback([o] {
+    if (o->sweep) {
+      SweepOptions sweep_options = o->sweep_options;
+      sweep_options.summary = o->summary;
+      if (o->frames > 0) sweep_options.frames = o->frames;
+      run_sweep(sweep_options);
+    } else if (o->ablation) {
+      run_ablation(o->summary, o->frames);
+    } else {
+      run_bench(*o);
+    }
+  });
 }
 
 }  // namespace icgp::app

@@ -7,6 +7,11 @@ namespace icgp::app {
 
 TrackingSummary run_configuration(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
                                   const StartFunction& start, const TrackFunction& track) {
+  return evaluate_configuration(frames, body, mesh, start, track).summary();
+}
+
+TrackingEvaluation evaluate_configuration(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                                          const StartFunction& start, const TrackFunction& track) {
   TrackingEvaluation evaluation(mesh);
   start(frames.front(), *frames.front().truth(body));
   for (const Frame& frame : frames) {
@@ -16,7 +21,7 @@ TrackingSummary run_configuration(const std::vector<Frame>& frames, const std::s
     evaluation.add(frame.index, result.reference_T_body, truth ? std::optional<Pose>(*truth) : std::nullopt,
                    result.tracked, ms);
   }
-  return evaluation.summary();
+  return evaluation;
 }
 
 TrackingSummary run_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,

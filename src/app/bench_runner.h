@@ -23,6 +23,9 @@ using TrackFunction = std::function<TrackedPose(const Frame&, double* ms)>;
 
 TrackingSummary run_configuration(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
                                   const StartFunction& start, const TrackFunction& track);
+/// The same run with every frame's errors kept (TrackingEvaluation::frames()).
+TrackingEvaluation evaluate_configuration(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                                          const StartFunction& start, const TrackFunction& track);
 
 /// run_configuration for icgp's tracker built from `config`.
 TrackingSummary run_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
