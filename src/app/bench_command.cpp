@@ -157,14 +157,18 @@ void register_bench_command(CLI::App& app) {
                     "3 depth sensors x 3 image conditions plus grey cells without depth, rendered with ground truth");
   sweep->excludes("--ablation");
   cmd->add_option("--out", o->sweep_options.out, "--sweep: folder of the cached sequences, ViSP models and plot script")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(sweep);
   cmd->add_option("--plot", o->sweep_options.plot, "--sweep: PNG of the mean error against depth noise")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(sweep);
   cmd->add_flag("--quick", o->sweep_options.quick,
-                "--sweep: one model, two conditions and its grey cell, 320x240, at most 8 frames (a test)");
+                "--sweep: one model, two conditions and its grey cell, 320x240, at most 8 frames (a test)")
+      ->needs(sweep);
   cmd->add_option("--viewpoint-models", o->sweep_options.viewpoint_models,
                   "--sweep: YAML whose region_model/depth_model replace both presets' (e.g. coarse models for a test)")
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->needs(sweep);
   cmd->callback([o] {
     if (o->sweep) {
       SweepOptions sweep_options = o->sweep_options;
