@@ -19,9 +19,14 @@ void register_model_command(CLI::App& app);
 void register_config_command(CLI::App& app);
 void register_servo_command(CLI::App& app);
 
+/// Help of the flag that applies SequenceOptions::blender_principal_point.
+inline constexpr const char* kBlenderPrincipalPointHelp =
+    "visp-blender sequences: read the XML's principal point in Blender's pixel-edge convention (0.5 px "
+    "less), for every tracker compared (default: exactly as the XML writes it)";
+
 /// The tracker configuration for a sequence: the explicit file when given, else the
 /// sequence folder's own icgp.yaml (as ViSP data folders carry their tracker XML), else the
-/// reference defaults. Says on stderr which one it uses.
+/// icgp defaults (preset "default"). Says on stderr which one it uses.
 TrackerConfig sequence_tracker_config(const std::string& explicit_file, const std::string& sequence_dir);
 
 /// `icgp bench --ablation`: ICG+ rows with each descriptor and without each cue, on

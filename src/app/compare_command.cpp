@@ -43,6 +43,7 @@ struct CompareOptions {
   std::vector<std::string> modalities;
   std::string summary;
   int frames = 0;
+  SequenceOptions sequence_options;
 };
 
 struct CompareRow {
@@ -87,7 +88,7 @@ void print_table(const std::vector<CompareRow>& rows, double reference_ms) {
 }
 
 void run_compare(const CompareOptions& o) {
-  const Sequence sequence = Sequence::open(o.sequence);
+  const Sequence sequence = Sequence::open(o.sequence, o.sequence_options);
   if (!sequence.has_ground_truth() || sequence.objects().size() != 1 || sequence.objects().front().mesh_path.empty())
     throw std::runtime_error("compare needs a sequence with ground truth for one object with a ViSP model: " +
                              o.sequence);
@@ -216,6 +217,7 @@ void register_compare_command(CLI::App& app) {
   cmd->add_option("--summary", o->summary,
                   "Write the table as JSON: {\"rows\": [...], \"visp_layer_overhead_percent\": x}");
   cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
+  cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
   cmd->callback([o] { run_compare(*o); });
 }
 

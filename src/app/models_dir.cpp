@@ -23,7 +23,7 @@ TrackerConfig sequence_tracker_config(const std::string& explicit_file, const st
   std::string file = explicit_file;
   const std::filesystem::path own = std::filesystem::path(sequence_dir) / "icgp.yaml";
   if (file.empty() && std::filesystem::is_regular_file(own)) file = own.string();
-  std::cerr << "tracker configuration: " << (file.empty() ? "reference defaults" : file) << "\n";
+  std::cerr << "tracker configuration: " << (file.empty() ? "icgp defaults" : file) << "\n";
   return file.empty() ? TrackerConfig{} : load_tracker_config(file);
 }
 

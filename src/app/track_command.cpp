@@ -62,6 +62,20 @@ std::string frame_line(const FrameEvaluation& e) {
   return line;
 }
 
+/// The standard deviation each cue was weighed with in the frame's last iteration.
+std::string noise_columns(const BodyResult& result) {
+  std::string text;
+  char value[32];
+  for (const ModalityQuality& q : result.modalities) {
+    if (q.abstained)
+      std::snprintf(value, sizeof value, "%sno-data", text.empty() ? "" : " ");
+    else
+      std::snprintf(value, sizeof value, "%s%.3g", text.empty() ? "" : " ", q.sigma);
+    text += value;
+  }
+  return text;
+}
+
 std::string caption(const FrameEvaluation& e) {
   char text[160];
   if (e.has_truth)
@@ -116,7 +130,8 @@ void run_track(const TrackOptions& o) {
   std::optional<OverlayVideo> video;
   if (!o.video.empty()) video.emplace(o.video, mesh, sequence.frame_rate());
 
-  if (!o.quiet) std::printf("\nframe      t mm    r deg  quality  tracked       ms\n");
+  if (!o.quiet)
+    std::printf("\nframe      t mm    r deg  quality  tracked       ms  cue sigma (px; depth: m at 1 m)\n");
   const SingleThreadScope single_thread;
   tracker.start(first, initial_pose);
   for (int i = 0; i < sequence.size(); ++i) {
@@ -126,7 +141,7 @@ void run_track(const TrackOptions& o) {
     const std::optional<Pose> truth = truth_of(frame, body);
     const FrameEvaluation& e =
         evaluation.add(frame.index, result.reference_T_body, truth, result.tracked, ms, result.quality);
-    if (!o.quiet) std::cout << frame_line(e) << "\n";
+    if (!o.quiet) std::cout << frame_line(e) << "  " << noise_columns(result) << "\n";
     if (video) video->write(frame.colors.at(0), result.reference_T_body, truth ? &*truth : nullptr, caption(e));
   }
 
@@ -168,6 +183,7 @@ void register_track_command(CLI::App& app) {
   cmd->add_option("--depth-intrinsics", o->sequence_options.depth_intrinsics_file,
                   "ViSP XML with the depth camera (default: <colour>_depth.xml)")
       ->check(CLI::ExistingFile);
+  cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
   cmd->add_flag("--quiet", o->quiet, "Print only the summary");
   cmd->callback([o] { run_track(*o); });
 }

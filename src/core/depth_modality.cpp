@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "icgp/geometry/rounding.h"
@@ -11,7 +12,7 @@
 namespace icgp {
 
 DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params)
-    : Modality(body), model_(std::move(model)), params_(std::move(params)) {
+    : Modality(body), model_(std::move(model)), params_(std::move(params)), noise_(params_.noise) {
   if (!model_ || model_->kind() != ViewpointModel::Kind::kDepth)
     throw std::invalid_argument("depth modality of '" + body.name + "' needs a depth viewpoint model");
   occlusion_ = {params_.occlusion_radius, params_.occlusion_threshold};
@@ -38,6 +39,7 @@ Posef DepthModality::depth_T_body() const { return depth_T_reference_ * body().r
 
 void DepthModality::start(const Frame&) {
   frames_since_start_ = 0;
+  noise_.reset();
   occlusions_.reset();
 }
 
@@ -63,7 +65,8 @@ DepthModality::Search DepthModality::search_of_pass(const DepthImage& depth, con
 }
 
 bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point,
-                                             const Search& search, Eigen::Vector3f& closest) const {
+                                             const Search& search, Eigen::Vector3f& closest,
+                                             bool& saw_depth) const {
   const Intrinsics& k = depth.intrinsics;
   const Eigen::Vector2f centre = k.project<float>(point);
   const float half = search.considered_distance * static_cast<float>(k.fu) / point.z();
@@ -73,7 +76,8 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   const float pu = static_cast<float>(k.pu), pv = static_cast<float>(k.pv);
   const auto consider = [&](int row, int col) {
     const float z = depth.at(row, col);
-    if (z <= 0.f) return;
+    if (!(z > 0.f && z < std::numeric_limits<float>::infinity())) return;
+    saw_depth = true;
     const Eigen::Vector3f P((col - pu) * ifu * z, (row - pv) * ifv * z, z);
     const float d2 = (P - point).squaredNorm();
     if (d2 < best) {
@@ -114,28 +118,43 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
     });
   auto collect = [&](bool with_occlusion_test) {
     correspondences_.clear();
+    saw_depth_ = false;
     for (int p = 0; p < n_considered_; ++p) {
       const Eigen::Vector3f X = depth_T_body_now * points[p].position;
       if (X.z() <= 0.f) continue;
       if (with_occlusion_test && occlusions_.occluded(p)) continue;
       Eigen::Vector3f measured;
-      if (!find_closest_measurement(depth, X, search, measured)) continue;
+      if (!find_closest_measurement(depth, X, search, measured, saw_depth_)) continue;
       correspondences_.push_back({points[p].position, points[p].normal, measured});
     }
   };
   collect(test_occlusions);
   if (test_occlusions && static_cast<int>(correspondences_.size()) < params_.min_n_unoccluded_points) collect(false);
+  estimate_noise();
+  last_corr_iter_ = corr_iter;
+}
+
+void DepthModality::estimate_noise() {
+  const Posef body_T_depth = depth_T_body().inverse();
+  normalised_residuals_.clear();
+  for (const Correspondence& c : correspondences_)
+    normalised_residuals_.push_back(c.body_normal.dot(c.body_point - body_T_depth * c.measured) / c.measured.z());
+  noise_.estimate(normalised_residuals_);
+}
+
+double DepthModality::sigma(int corr_iter) const {
+  return noise_.sigma(iteration_value(params_.standard_deviations, corr_iter));
 }
 
 void DepthModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
   const Posef body_T_depth = depth_T_body().inverse();
-  const float sigma = static_cast<float>(iteration_value(params_.standard_deviations, corr_iter));
+  const float sigma = static_cast<float>(this->sigma(corr_iter));
   Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
   Eigen::Matrix<float, 6, 6> H_sum = Eigen::Matrix<float, 6, 6>::Zero();
   for (const Correspondence& c : correspondences_) {
     const Eigen::Vector3f P = body_T_depth * c.measured;  // measured point, body frame
     const float residual = c.body_normal.dot(c.body_point - P);
-    const float w2 = 1.f / (sigma * sigma * c.measured.z() * c.measured.z());
+    const float w2 = noise_.weight(residual / c.measured.z(), sigma) / (sigma * sigma * c.measured.z() * c.measured.z());
     Eigen::Matrix<float, 6, 1> J;
     J << P.cross(c.body_normal), c.body_normal;
     g_sum -= (w2 * residual) * J;
@@ -149,13 +168,12 @@ double DepthModality::log_likelihood(int corr_iter) const {
   // Double precision throughout: numeric derivatives of this function must resolve
   // variations far below float resolution of a pose.
   const Pose body_T_depth = (depth_T_reference_.cast<double>() * body().reference_T_body).inverse();
-  const double sigma = iteration_value(params_.standard_deviations, corr_iter);
+  const double sigma = this->sigma(corr_iter);
   double sum = 0.0;
   for (const Correspondence& c : correspondences_) {
     const double residual = c.body_normal.cast<double>().dot(c.body_point.cast<double>() -
                                                              body_T_depth * c.measured.cast<double>());
-    const double z = c.measured.z();
-    sum -= 0.5 * residual * residual / (sigma * sigma * z * z);
+    sum -= noise_.loss(residual / (sigma * c.measured.z()));
   }
   return sum;
 }
@@ -184,6 +202,8 @@ void DepthModality::update_quality() {
   quality_.n_valid = static_cast<int>(correspondences_.size());
   quality_.valid_fraction = n_considered_ > 0 ? static_cast<double>(correspondences_.size()) / n_considered_ : 0.0;
   quality_.score = n_considered_ > 0 ? static_cast<double>(n_inliers) / n_considered_ : 0.0;
+  quality_.abstained = !saw_depth_;
+  quality_.sigma = sigma(last_corr_iter_);
 }
 
 }  // namespace icgp

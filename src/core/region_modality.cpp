@@ -11,7 +11,7 @@
 namespace icgp {
 
 RegionModality::RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params)
-    : Modality(body), model_(std::move(model)), params_(std::move(params)) {
+    : Modality(body), model_(std::move(model)), params_(std::move(params)), noise_(params_.noise) {
   if (!model_ || model_->kind() != ViewpointModel::Kind::kRegion)
     throw std::invalid_argument("region modality of '" + body.name + "' needs a region viewpoint model");
   occlusion_ = {params_.occlusion_radius, params_.occlusion_threshold};
@@ -119,6 +119,7 @@ void RegionModality::count_line_pixels(const Frame& frame) {
 
 void RegionModality::start(const Frame& frame) {
   frames_since_start_ = 0;
+  noise_.reset();
   occlusions_.reset();
   histograms_.emplace(params_.n_histogram_bins, color_image(frame).image.channels());
   count_line_pixels(frame);
@@ -228,6 +229,21 @@ void RegionModality::correspondences(const Frame& frame, int corr_iter) {
   };
   collect(true);
   if (static_cast<int>(lines_.size()) < params_.min_n_unoccluded_lines) collect(false);
+  estimate_noise(pose);
+  last_corr_iter_ = corr_iter;
+}
+
+void RegionModality::estimate_noise(const Posef& camera_T_body) {
+  normalised_residuals_.clear();
+  for (const Line& line : lines_) {
+    const float pixels = (line_position(line, camera_T_body, intrinsics_) - line.mean) / line.normal_factor;
+    normalised_residuals_.push_back(pixels * std::sqrt(min_variance_ / line.variance));
+  }
+  noise_.estimate(normalised_residuals_);
+}
+
+double RegionModality::sigma(int corr_iter) const {
+  return noise_.sigma(iteration_value(params_.standard_deviations, corr_iter));
 }
 
 float RegionModality::line_position(const Line& line, const Posef& camera_T_body, const Intrinsics& k) const {
@@ -238,7 +254,7 @@ float RegionModality::line_position(const Line& line, const Posef& camera_T_body
 void RegionModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
   const Posef pose = camera_T_reference_ * body().reference_T_body.cast<float>();
   const Eigen::Matrix3f R_t = pose.rotation().transpose();
-  const float sigma_r = static_cast<float>(iteration_value(params_.standard_deviations, corr_iter));
+  const float sigma_r = static_cast<float>(sigma(corr_iter));
   const bool gaussian = corr_iter < params_.n_global_iterations;
   const int n_dist = params_.distribution_length;
   const float centre = (n_dist - 1) / 2.f;
@@ -282,7 +298,7 @@ double RegionModality::log_likelihood(int corr_iter) const {
   // The integral of the derivative add_gradient_hessian uses: a Gaussian around μ in the
   // global iterations, afterwards the linear interpolation of ln p(d) (scaled alike).
   const Pose pose = camera_T_reference_.cast<double>() * body().reference_T_body;
-  const double sigma_r = iteration_value(params_.standard_deviations, corr_iter);
+  const double sigma_r = sigma(corr_iter);
   const int n_dist = params_.distribution_length;
   const double centre = (n_dist - 1) / 2.0;
   double sum = 0.0;
@@ -341,6 +357,7 @@ void RegionModality::update_quality(const Frame&) {
   quality_.n_valid = static_cast<int>(lines_.size());
   quality_.valid_fraction = n_considered_ > 0 ? static_cast<double>(lines_.size()) / n_considered_ : 0.0;
   quality_.score = n_considered_ > 0 ? agreement / n_considered_ : 0.0;
+  quality_.sigma = sigma(last_corr_iter_);
 }
 
 }  // namespace icgp

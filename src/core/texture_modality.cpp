@@ -186,7 +186,8 @@ TextureModality::TextureModality(Body& body, TextureParams params)
       params_(std::move(params)),
       extractor_(params_),
       lifter_(body.mesh, MeasuredOcclusion{params_.occlusion_radius, params_.occlusion_threshold}),
-      matcher_(extractor_.norm()) {
+      matcher_(extractor_.norm()),
+      noise_(params_.noise) {
   Eigen::Vector3f lo, hi;
   body.mesh.bounds(lo, hi);
   const Eigen::Vector3f centre = 0.5f * (lo + hi);
@@ -249,6 +250,7 @@ void TextureModality::start(const Frame& frame) {
   detect(frame);
   make_keyframe(frame);
   matches_.clear();
+  noise_.reset();
   quality_ = {};
 }
 
@@ -280,6 +282,24 @@ void TextureModality::correspondences(const Frame& frame, int corr_iter) {
     match();
   }
   update_weights();
+  estimate_noise();
+  last_corr_iter_ = corr_iter;
+}
+
+void TextureModality::estimate_noise() {
+  const Posef T = camera_T_body().cast<float>();
+  residual_components_.clear();
+  for (const Match& m : matches_) {
+    const Eigen::Vector3f X = T * m.body_point;
+    if (X.z() <= 0.f) continue;
+    const Eigen::Vector2f e = intrinsics_.project<float>(X) - m.image_point;
+    residual_components_.insert(residual_components_.end(), {e.x(), e.y()});
+  }
+  noise_.estimate(residual_components_);
+}
+
+double TextureModality::sigma(int corr_iter) const {
+  return noise_.sigma(iteration_value(params_.standard_deviations, corr_iter));
 }
 
 void TextureModality::update_weights() {
@@ -299,7 +319,7 @@ void TextureModality::update_weights() {
 void TextureModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
   update_weights();
   const Posef T = camera_T_body().cast<float>();
-  const float sigma = static_cast<float>(iteration_value(params_.standard_deviations, corr_iter));
+  const float sigma = static_cast<float>(this->sigma(corr_iter));
   const float inverse_variance = 1.f / (sigma * sigma);
   Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
   Eigen::Matrix<float, 6, 6> H_sum = Eigen::Matrix<float, 6, 6>::Zero();
@@ -319,7 +339,7 @@ void TextureModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H
 
 double TextureModality::log_likelihood(int corr_iter) const {
   const Pose T = camera_T_body();
-  const double sigma = iteration_value(params_.standard_deviations, corr_iter);
+  const double sigma = this->sigma(corr_iter);
   double sum = 0.0;
   for (const Match& m : matches_) {
     const Eigen::Vector3d X = T * m.body_point.cast<double>();
@@ -364,6 +384,8 @@ void TextureModality::update_quality() {
   quality_.n_valid = static_cast<int>(matches_.size());
   quality_.valid_fraction = n_points > 0 ? std::min(1.0, static_cast<double>(matches_.size()) / n_points) : 0.0;
   quality_.score = n_points > 0 ? std::min(1.0, static_cast<double>(n_inliers) / n_points) : 0.0;
+  quality_.abstained = n_points < params_.min_keyframe_points;
+  quality_.sigma = sigma(last_corr_iter_);
 }
 
 }  // namespace icgp

@@ -100,13 +100,16 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
     BodyResult r;
     r.body = s->body->name;
     double score_sum = 0.0;
+    int n_scored = 0;
     for (auto& m : s->modalities) {
       m->finish(frame);
       r.modalities.push_back(m->quality());
+      if (r.modalities.back().abstained) continue;
       score_sum += r.modalities.back().score;
+      ++n_scored;
     }
     r.reference_T_body = s->body->reference_T_body;
-    r.quality = s->modalities.empty() ? 0.0 : score_sum / s->modalities.size();
+    r.quality = n_scored > 0 ? score_sum / n_scored : 0.0;
     r.tracked = r.quality >= params_.quality_threshold;
     results.push_back(std::move(r));
   }

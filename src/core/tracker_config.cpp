@@ -175,6 +175,13 @@ const Fields<ViewpointModelParams> kModelFields = {
     field("seed", &ViewpointModelParams::seed, Rule<std::uint64_t>{"a non-negative integer", any<std::uint64_t>}),
 };
 
+const Fields<NoiseParams> kNoiseFields = {
+    field("estimate", &NoiseParams::estimate, kBool),
+    field("floor", &NoiseParams::floor, kNonNegative),
+    field("min_residuals", &NoiseParams::min_residuals, kPositiveInt),
+    field("tukey_constant", &NoiseParams::tukey_constant, kPositive),
+};
+
 const Fields<RegionParams> kRegionFields = {
     field("color_camera", &RegionParams::color_camera, kName),
     field("depth_camera", &RegionParams::depth_camera, kString),
@@ -189,6 +196,7 @@ const Fields<RegionParams> kRegionFields = {
     field("n_global_iterations", &RegionParams::n_global_iterations, kNonNegativeInt),
     field("scales", &RegionParams::scales, kPositiveInts),
     field("standard_deviations", &RegionParams::standard_deviations, kPositives),
+    section("noise", &RegionParams::noise, kNoiseFields),
     field("n_histogram_bins", &RegionParams::n_histogram_bins,
           Rule<int>{"one of 2, 4, 8, 16, 32, 64", [](const int& v) { return v >= 2 && v <= 64 && (v & (v - 1)) == 0; }}),
     field("learning_rate_f", &RegionParams::learning_rate_f, kFraction),
@@ -208,6 +216,7 @@ const Fields<DepthParams> kDepthFields = {
     field("stride_length", &DepthParams::stride_length, kPositive),
     field("considered_distances", &DepthParams::considered_distances, kPositives),
     field("standard_deviations", &DepthParams::standard_deviations, kPositives),
+    section("noise", &DepthParams::noise, kNoiseFields),
     field("measure_occlusions", &DepthParams::measure_occlusions, kBool),
     field("occlusion_radius", &DepthParams::occlusion_radius, kNonNegative),
     field("occlusion_threshold", &DepthParams::occlusion_threshold, kNonNegative),
@@ -237,8 +246,10 @@ const Fields<TextureParams> kTextureFields = {
           Rule<double>{"a number in (0, 1]", [](const double& v) { return v > 0.0 && v <= 1.0; }}),
     field("keyframe_orientation_threshold_deg", &TextureParams::keyframe_orientation_threshold_deg, kPositive),
     field("keyframe_max_age", &TextureParams::keyframe_max_age, kNonNegativeInt),
+    field("min_keyframe_points", &TextureParams::min_keyframe_points, kNonNegativeInt),
     field("tukey_norm_constant", &TextureParams::tukey_norm_constant, kPositive),
     field("standard_deviations", &TextureParams::standard_deviations, kPositives),
+    section("noise", &TextureParams::noise, kNoiseFields),
     field("occlusion_radius", &TextureParams::occlusion_radius, kNonNegative),
     field("occlusion_threshold", &TextureParams::occlusion_threshold, kNonNegative),
 };
@@ -250,7 +261,22 @@ bool valid_modalities(const std::vector<std::string>& names) {
          std::includes(known.begin(), known.end(), distinct.begin(), distinct.end());
 }
 
+bool known_preset(const std::string& name) {
+  const std::vector<std::string>& names = tracker_config_presets();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+std::string preset_list() {
+  std::string list;
+  for (const std::string& name : tracker_config_presets()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+/// `preset` is read before every other key (load_tracker_config), so here it is only
+/// checked and written.
 const Fields<TrackerConfig> kConfigFields = {
+    {"preset", [](const YAML::Node&, TrackerConfig&, const Location&) {},
+     [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.preset); }},
     section("tracker", &TrackerConfig::tracker, kTrackerFields),
     field("modalities", &TrackerConfig::modalities,
           Rule<std::vector<std::string>>{"a non-empty list of distinct names from region, depth, texture",
@@ -271,6 +297,21 @@ const Fields<TrackerConfig> kConfigFields = {
 
 }  // namespace
 
+const std::vector<std::string>& tracker_config_presets() {
+  static const std::vector<std::string> names = {"default", "icg_reference"};
+  return names;
+}
+
+TrackerConfig tracker_config_preset(const std::string& name) {
+  if (!known_preset(name))
+    throw std::invalid_argument("unknown tracker configuration preset '" + name + "' (known: " + preset_list() + ")");
+  TrackerConfig config;
+  config.preset = name;
+  if (name == "icg_reference")
+    for (NoiseParams* noise : {&config.region.noise, &config.depth.noise, &config.texture.noise}) noise->estimate = false;
+  return config;
+}
+
 TrackerConfig load_tracker_config(const std::string& path) {
   const Location document{path, ""};
   std::error_code error;
@@ -287,6 +328,12 @@ TrackerConfig load_tracker_config(const std::string& path) {
                   ": YAML syntax error: " + e.msg);
   }
   TrackerConfig config;
+  if (root.IsMap() && root["preset"]) {
+    const Location at = document.child("preset");
+    const std::string name = decode(root["preset"], kName, at);
+    if (!known_preset(name)) at.fail("expected one of " + preset_list() + " (got '" + name + "')");
+    config = tracker_config_preset(name);
+  }
   read_map(root, kConfigFields, config, document);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   for (std::string& region : config.regions)

@@ -27,7 +27,7 @@ Scenario small_scenario(const std::string& law, const std::string& tracker) {
                          "start: {t: [0.03, -0.02, 0.45], r_deg: [131.29, 38.07, -12.74]}\n"
                          "desired: {t: [0, 0, 0.35], r_deg: [131.2, 26.8, -37.57]}\n"
                          "tracker: {type: " << tracker << ", modalities: [region, depth], config: "
-                      << ICGP_TEST_DATA_DIR "/../configs/servo_exact_depth.yaml}\n"
+                      << ICGP_TEST_DATA_DIR "/../configs/coarse_models.yaml}\n"
                          "control:\n"
                          "  law: " << law << "\n"
                          "  gain: {at_zero: 1.5, at_infinity: 0.6, slope_at_zero: 30}\n"

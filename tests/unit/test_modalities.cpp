@@ -83,10 +83,7 @@ Pose check_convergence(const Frame& frame) {
   Tracker tracker;
   Body& body = tracker.add_body({"box", f.mesh, f.truth});
   tracker.add_modality(std::make_unique<RegionModality>(body, f.region_model, RegionParams{}));
-  // Rendered depth is exact: trust it as docs/accuracy.md explains for exact-depth data.
-  DepthParams exact_depth;
-  exact_depth.standard_deviations = {0.05, 0.03, 0.001};
-  tracker.add_modality(std::make_unique<DepthModality>(body, f.depth_model, exact_depth));
+  tracker.add_modality(std::make_unique<DepthModality>(body, f.depth_model, DepthParams{}));
   tracker.start(frame);
   body.reference_T_body = perturbed(f.truth, 5.0, 5.0);
   std::vector<BodyResult> results;
@@ -268,5 +265,92 @@ TEST_CASE("build_tracker: one region modality per region of a multi-region objec
   INFO("error " << t_mm << " mm, " << r_deg << " deg, quality " << results[0].quality);
   CHECK(t_mm < 1.0);
   CHECK(r_deg < 0.5);
+  CHECK(results[0].tracked);
+}
+
+namespace {
+
+/// Region + depth with the defaults, started at the truth of `frame`.
+struct FusedTracker {
+  Tracker tracker;
+  Body* body;
+  explicit FusedTracker(const Frame& frame) {
+    Fixture& f = Fixture::instance();
+    body = &tracker.add_body({"box", f.mesh, f.truth});
+    tracker.add_modality(std::make_unique<RegionModality>(*body, f.region_model, RegionParams{}));
+    tracker.add_modality(std::make_unique<DepthModality>(*body, f.depth_model, DepthParams{}));
+    tracker.start(frame);
+  }
+  double t_mm() const { return 1e3 * (body->reference_T_body.translation() - Fixture::instance().truth.translation()).norm(); }
+  double r_deg() const {
+    return rotation_angle_between(body->reference_T_body.rotation(), Fixture::instance().truth.rotation()) * 180 / M_PI;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("tracker: without depth measurements the depth cue abstains and region keeps the pose") {
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
+  Frame frame = scene.render(f.truth);
+  FusedTracker fused(frame);
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), 0.f, -1.f, std::numeric_limits<float>::infinity()}) {
+    INFO("depth " << bad);
+    frame.depths[0].depth.setTo(bad);
+    fused.body->reference_T_body = perturbed(f.truth, 2.0, 1.0);
+    std::vector<BodyResult> results;
+    for (int i = 0; i < 3; ++i) results = fused.tracker.track(frame);
+    INFO("error " << fused.t_mm() << " mm, " << fused.r_deg() << " deg, quality " << results[0].quality);
+    CHECK(results[0].modalities[1].abstained);  // says the depth had nothing to measure
+    CHECK_FALSE(results[0].modalities[0].abstained);
+    CHECK(results[0].tracked);  // the region cue alone vouches for the pose
+    CHECK(fused.t_mm() < 3.0);
+    CHECK(fused.r_deg() < 1.0);
+  }
+}
+
+TEST_CASE("tracker: an object that left the image is reported lost, not tracked into the background") {
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
+  FusedTracker fused(scene.render(f.truth));
+  const Pose away(f.truth.rotation(), f.truth.translation() + Eigen::Vector3d(0.6, 0.0, 0.0));
+  const auto results = fused.tracker.track(scene.render(away));
+  INFO("quality " << results[0].quality);
+  CHECK_FALSE(results[0].tracked);
+}
+
+TEST_CASE("tracker: a glint in the depth on a quarter of the object leaves the pose to the good data") {
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
+  Frame frame = scene.render(f.truth);
+  // A patch of the object's depth reads 1.5 cm too close: less than the occlusion threshold,
+  // so only the robust weights can tell it from the object.
+  cv::Mat& depth = frame.depths[0].depth;
+  const double background = f.truth.translation().z() + 0.2;
+  std::vector<cv::Point> object;
+  for (int row = 0; row < depth.rows; ++row)
+    for (int col = 0; col < depth.cols; ++col)
+      if (depth.at<float>(row, col) > 0.f && depth.at<float>(row, col) < background) object.emplace_back(col, row);
+  REQUIRE(object.size() > 1000);
+  const cv::Rect box = cv::boundingRect(object);
+  const cv::Rect glint(box.x, box.y, box.width / 2, box.height / 2);
+  int n_glint = 0;
+  for (int row = glint.y; row < glint.y + glint.height; ++row)
+    for (int col = glint.x; col < glint.x + glint.width; ++col) {
+      float& z = depth.at<float>(row, col);
+      if (z > 0.f && z < background) {
+        z -= 0.015f;
+        ++n_glint;
+      }
+    }
+  INFO("glint on " << n_glint << " of " << object.size() << " object pixels");
+  REQUIRE(n_glint > static_cast<int>(object.size() / 8));
+  FusedTracker fused(frame);
+  fused.body->reference_T_body = perturbed(f.truth, 3.0, 2.0);
+  std::vector<BodyResult> results;
+  for (int i = 0; i < 3; ++i) results = fused.tracker.track(frame);
+  INFO("error " << fused.t_mm() << " mm, " << fused.r_deg() << " deg");
+  CHECK(fused.t_mm() < 1.0);
+  CHECK(fused.r_deg() < 0.5);
   CHECK(results[0].tracked);
 }

@@ -90,18 +90,19 @@ TEST_CASE("teabox-blender: layout, calibration, ground truth and depth of all fr
   const Intrinsics& c = seq.color_intrinsics();
   CHECK(c.fu == 700.0);
   CHECK(c.fv == 700.0);
-  CHECK(c.pu == 319.5);
-  CHECK(c.pv == 239.5);
+  CHECK(c.pu == 320.0);  // exactly as teabox.xml writes it
+  CHECK(c.pv == 240.0);
   CHECK(c.width == 640);
   CHECK(c.height == 480);
   const Intrinsics& d = seq.depth_intrinsics();
   CHECK(d.fu == 600.0);
   CHECK(d.fv == 600.0);
-  CHECK(d.pu == 319.5);
-  CHECK(d.pv == 239.5);
-  SequenceOptions as_written;
-  as_written.blender_principal_point = false;
-  CHECK(Sequence::open(kBlender.string(), as_written).color_intrinsics().pu == 320.0);
+  CHECK(d.pu == 320.0);
+  CHECK(d.pv == 240.0);
+  SequenceOptions corrected;
+  corrected.blender_principal_point = true;
+  CHECK(Sequence::open(kBlender.string(), corrected).color_intrinsics().pu == 319.5);
+  CHECK(Sequence::open(kBlender.string(), corrected).depth_intrinsics().pv == 239.5);
   CHECK(seq.depth_T_color().translation().isApprox(Eigen::Vector3d(-0.1, 0.0, 0.0)));
   CHECK(seq.depth_T_color().rotation().isIdentity());
 

@@ -14,6 +14,7 @@
 #include "icgp/tracker/tracker.h"
 #include "icgp/tracker/tracker_config.h"
 #include "test_gradients.h"
+#include "test_meshes.h"
 #include "test_scene.h"
 
 using namespace icgp;
@@ -179,4 +180,21 @@ TEST_CASE("texture modality: descriptors by name, built by the tracker from a co
   CHECK(config.texture.orb_n_features == 300);
   const auto tracker = build_tracker(config, load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj"), "box");
   REQUIRE(tracker->bodies().size() == 1);
+}
+
+TEST_CASE("texture modality: on an object without texture it abstains and leaves the quality to the others") {
+  Scene s;
+  const Mesh plain = test::make_box(0.08f, 0.16f, 0.06f);  // no texture: one flat colour
+  test::SceneRenderer renderer(plain, s.color_k, s.depth_k, s.depth_T_color);
+  const Frame frame = renderer.render(s.truth);
+  Tracker tracker;
+  Body& body = tracker.add_body({"box", plain, s.truth});
+  auto texture = std::make_unique<TextureModality>(body, TextureParams{});
+  const TextureModality& modality = *texture;
+  tracker.add_modality(std::move(texture));
+  tracker.start(frame);
+  const auto results = tracker.track(frame);
+  INFO("keyframe points " << modality.keyframe().body_points.size());
+  CHECK(results[0].modalities[0].abstained);
+  CHECK(results[0].quality == 0.0);  // alone it cannot vouch for anything
 }

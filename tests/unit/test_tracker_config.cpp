@@ -45,7 +45,8 @@ std::map<std::string, std::string> flatten(const YAML::Node& node, const std::st
 std::map<std::string, std::string> flatten_yaml(const std::string& text) { return flatten(YAML::Load(text)); }
 
 /// Every key, none with its default value (written the way to_yaml writes values).
-const char* const kEveryKey = R"(tracker:
+const char* const kEveryKey = R"(preset: icg_reference
+tracker:
   n_corr_iterations: 4
   n_update_iterations: 3
   tikhonov_rotation: 500.0
@@ -87,6 +88,11 @@ region:
   n_global_iterations: 0
   scales: [5, 3, 1]
   standard_deviations: [20.0, 2.0]
+  noise:
+    estimate: true
+    floor: 0.2
+    min_residuals: 30
+    tukey_constant: 3.0
   n_histogram_bins: 32
   learning_rate_f: 0.1
   learning_rate_b: 1.0
@@ -103,6 +109,11 @@ depth:
   stride_length: 0.01
   considered_distances: [0.1, 0.03]
   standard_deviations: [0.04]
+  noise:
+    estimate: false
+    floor: 0.001
+    min_residuals: 10
+    tukey_constant: 6.0
   measure_occlusions: false
   occlusion_radius: 0.005
   occlusion_threshold: 0.04
@@ -123,8 +134,14 @@ texture:
   ratio_test: 0.8
   keyframe_orientation_threshold_deg: 15.0
   keyframe_max_age: 0
+  min_keyframe_points: 5
   tukey_norm_constant: 30.0
   standard_deviations: [10.0, 10.0, 3.0]
+  noise:
+    estimate: false
+    floor: 1.0
+    min_residuals: 8
+    tukey_constant: 2.0
   occlusion_radius: 0.02
   occlusion_threshold: 0.05
 regions: [/models/a/body.obj, /models/a/lid.obj]
@@ -175,6 +192,40 @@ TEST_CASE("tracker config: defaults are the reference values of ALGORITHMS.md") 
   CHECK(c.depth.occlusion_radius == 0.01);
   CHECK(c.depth.occlusion_threshold == 0.03);
   CHECK(c.cache_dir.empty());
+}
+
+TEST_CASE("tracker config: presets") {
+  const TrackerConfig defaults;
+  CHECK(defaults.preset == "default");
+  CHECK(to_yaml(icgp::tracker_config_preset("default")) == to_yaml(defaults));
+  CHECK(defaults.depth.noise.estimate);
+  CHECK(defaults.texture.noise.estimate);
+  CHECK_FALSE(defaults.region.noise.estimate);
+
+  // icg_reference: the same parameters with the fixed schedules of the papers.
+  const TrackerConfig reference = icgp::tracker_config_preset("icg_reference");
+  CHECK_FALSE(reference.region.noise.estimate);
+  CHECK_FALSE(reference.depth.noise.estimate);
+  CHECK_FALSE(reference.texture.noise.estimate);
+  auto expected = flatten_yaml(to_yaml(defaults));
+  expected["preset"] = "icg_reference";
+  expected["depth.noise.estimate"] = expected["texture.noise.estimate"] = "false";
+  CHECK(flatten_yaml(to_yaml(reference)) == expected);
+
+  TempDir dir("icgp-config");
+  SECTION("a file's other keys are read over its preset, in any order") {
+    const TrackerConfig c = load_tracker_config(
+        dir.write("over.yaml", "depth:\n  noise: {floor: 0.002}\npreset: icg_reference\n"));
+    CHECK(c.preset == "icg_reference");
+    CHECK_FALSE(c.depth.noise.estimate);
+    CHECK(c.depth.noise.floor == 0.002);
+    CHECK(to_yaml(load_tracker_config(dir.write("back.yaml", to_yaml(c)))) == to_yaml(c));
+  }
+  SECTION("an unknown preset names the file, the key and the known ones") {
+    CHECK_THROWS_WITH(load_tracker_config(dir.write("bad.yaml", "preset: icg\n")),
+                      Contains("bad.yaml: preset: expected one of default, icg_reference (got 'icg')"));
+    CHECK_THROWS_WITH(icgp::tracker_config_preset("fast"), Contains("'fast'") && Contains("icg_reference"));
+  }
 }
 
 TEST_CASE("tracker config: empty files and empty sections give the defaults") {
@@ -239,7 +290,7 @@ TEST_CASE("tracker config: to_yaml writes every key and round-trips exactly") {
 TEST_CASE("tracker config: docs/configuration.md lists every key with its default") {
   std::ifstream in(ICGP_DOCS_DIR "/configuration.md");
   REQUIRE(in);
-  const std::regex section_name("`(\\w+)`"), row(R"(^\| `(\w+)` \| `([^`]*)` \|)");
+  const std::regex section_name("`([\\w.]+)`"), row(R"(^\| `(\w+)` \| `([^`]*)` \|)");
   std::vector<std::string> prefixes;  // of the keys in the current section's table
   std::map<std::string, std::string> documented;
   for (std::string line; std::getline(in, line);) {
@@ -272,11 +323,11 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
     const char* message;  ///< after "<file>: "
   };
   const Case cases[] = {
-      {"regoin: {}", "regoin: unknown key (valid keys: tracker, modalities, region_model, depth_model, region, depth, "
+      {"regoin: {}", "regoin: unknown key (valid keys: preset, tracker, modalities, region_model, depth_model, region, depth, "
                      "texture, regions, cache_dir)"},
       {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
       {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
-      {"- tracker\n- region\n", "expected a map with the keys tracker, modalities,"},
+      {"- tracker\n- region\n", "expected a map with the keys preset, tracker, modalities,"},
       {"region: 3", "region: expected a map with the keys color_camera,"},
       {"tracker: {n_corr_iterations: 2.5}", "tracker.n_corr_iterations: expected a positive integer"},
       {"tracker: {n_corr_iterations: 0}", "tracker.n_corr_iterations: expected a positive integer"},

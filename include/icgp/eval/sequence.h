@@ -20,9 +20,11 @@ struct SequenceOptions {
   /// Depth beyond this (metres) is treated as no measurement, like NaN and inf: Blender
   /// writes a huge Z on the background and real sensors report far outliers.
   double max_depth = 10.0;
-  /// For "visp-blender" sequences: the XML gives the principal point as Blender defines it
-  /// (pixel-edge coordinates), so subtract 0.5 px to get ViSP's pixel-centre convention.
-  bool blender_principal_point = true;
+  /// For "visp-blender" sequences: read the XML's principal point as Blender defines it
+  /// (pixel-edge coordinates) and subtract 0.5 px to get ViSP's pixel-centre convention.
+  /// Off by default: intrinsics are read exactly as the data's files write them, as ViSP
+  /// reads them; benchmarks that turn it on give the corrected cameras to every tracker.
+  bool blender_principal_point = false;
   /// Frames per second for layouts that do not record it (the ViSP ones).
   double frame_rate = 30.0;
 };

@@ -7,6 +7,7 @@
 #include "icgp/modality/measured_occlusion.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
+#include "icgp/modality/residual_noise.h"
 #include "icgp/modality/view_selector.h"
 #include "icgp/model/viewpoint_model.h"
 
@@ -14,6 +15,10 @@ namespace icgp {
 
 /// Point-to-plane alignment of sparse model surface points with the closest measured
 /// points of a depth camera (ICG's depth modality, ALGORITHMS.md §5, §7).
+///
+/// Noise: a point's standard deviation is σ·Z (σ in metres at 1 m). σ is estimated in every
+/// correspondence iteration from the point-to-plane residuals divided by Z, clamped between
+/// the noise floor and the iteration's `standard_deviations` entry (ResidualNoise).
 class DepthModality : public Modality {
  public:
   DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params);
@@ -44,9 +49,14 @@ class DepthModality : public Modality {
     bool projected_pixel;       ///< also try the pixel the point projects to
   };
   Search search_of_pass(const DepthImage& depth, const Posef& depth_T_body, int corr_iter) const;
+  /// The searched measurement closest to `point` within the considered distance; sets
+  /// `saw_depth` when any searched pixel held a valid depth.
   bool find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point, const Search& search,
-                                Eigen::Vector3f& closest) const;
+                                Eigen::Vector3f& closest, bool& saw_depth) const;
   Posef depth_T_body() const;
+  /// The standard deviation at 1 m for correspondence iteration `corr_iter`.
+  double sigma(int corr_iter) const;
+  void estimate_noise();
   void update_quality();
 
   std::shared_ptr<const ViewpointModel> model_;
@@ -56,8 +66,12 @@ class DepthModality : public Modality {
   Posef depth_T_reference_;
   ViewSelector view_selector_;
   std::vector<Correspondence> correspondences_;
+  ResidualNoise noise_;
+  std::vector<float> normalised_residuals_;  ///< scratch of estimate_noise()
   ViewOcclusions occlusions_;
   int n_considered_ = 0;
+  int last_corr_iter_ = 0;
+  bool saw_depth_ = false;  ///< any valid depth where the last correspondences searched
   int frames_since_start_ = 0;
   ModalityQuality quality_;
 };

@@ -6,9 +6,22 @@
 #include <vector>
 
 #include "icgp/modality/modality.h"
+#include "icgp/modality/residual_noise.h"
 #include "icgp/model/viewpoint_model.h"
 
 namespace icgp {
+
+/// Noise estimation per cue (ResidualNoise; docs/accuracy.md has the measurements).
+/// Region: off. Its residuals share a common contour offset (antialiased or blurred edges
+/// dilate the silhouette), so their scatter is small while their error is not; trusting
+/// that scatter made the region's bias decide the pose. Its schedule stays in charge.
+inline constexpr NoiseParams kRegionNoise{false, 1.5};
+/// Depth: floor 0.1 mm at 1 m. Exact synthetic depth fits the model to micrometres; the
+/// floor keeps the depth Hessian within float range of the others, so directions depth
+/// cannot see (sliding along a face) are still decided by the other cues.
+inline constexpr NoiseParams kDepthNoise{true, 1e-4};
+/// Texture: floor 0.5 px, about the keypoint localisation of the 200 px detection crop.
+inline constexpr NoiseParams kTextureNoise{true, 0.5};
 
 /// Parameters of the region modality (ALGORITHMS.md §4, §7) with the reference defaults.
 /// Iteration-indexed lists use entry corr_iter, and their last entry afterwards.
@@ -24,7 +37,8 @@ struct RegionParams {
   double learning_rate = 1.3;
   int n_global_iterations = 1;
   std::vector<int> scales = {6, 4, 2, 1};
-  std::vector<double> standard_deviations = {15.0, 5.0, 3.5, 1.5};  ///< pixels
+  std::vector<double> standard_deviations = {15.0, 5.0, 3.5, 1.5};  ///< pixels; the noise estimate's ceiling
+  NoiseParams noise = kRegionNoise;
   int n_histogram_bins = 16;
   double learning_rate_f = 0.2;
   double learning_rate_b = 0.2;
@@ -43,7 +57,8 @@ struct DepthParams {
   int n_points_max = 200;
   double stride_length = 0.005;  ///< metres between window samples
   std::vector<double> considered_distances = {0.05, 0.02, 0.01};  ///< metres
-  std::vector<double> standard_deviations = {0.05, 0.03, 0.02};   ///< metres
+  std::vector<double> standard_deviations = {0.05, 0.03, 0.02};   ///< metres at 1 m; the noise estimate's ceiling
+  NoiseParams noise = kDepthNoise;
   bool measure_occlusions = true;
   double occlusion_radius = 0.01;
   double occlusion_threshold = 0.03;
@@ -70,8 +85,12 @@ struct TextureParams {
   /// Frames after which a keyframe is renewed even without rotation (refreshes appearance
   /// after lighting or scale changes); 0: only the orientation criterion of the paper.
   int keyframe_max_age = 100;
+  /// A keyframe with fewer points than this shows corners of the silhouette, not texture:
+  /// the cue then abstains from the body's quality (ModalityQuality::abstained).
+  int min_keyframe_points = 20;
   double tukey_norm_constant = 20.0;                 ///< c, pixels
-  std::vector<double> standard_deviations = {15.0, 5.0};  ///< σ_t, pixels
+  std::vector<double> standard_deviations = {15.0, 5.0};  ///< σ_t, pixels; the noise estimate's ceiling
+  NoiseParams noise = kTextureNoise;
   double occlusion_radius = 0.01;     ///< metres
   double occlusion_threshold = 0.03;  ///< metres
 };

@@ -9,6 +9,7 @@
 #include "icgp/modality/measured_occlusion.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
+#include "icgp/modality/residual_noise.h"
 #include "icgp/modality/view_selector.h"
 #include "icgp/model/viewpoint_model.h"
 
@@ -22,6 +23,11 @@ namespace icgp {
 /// and the offset Δr between the projected contour point and the centre of the sampled
 /// pixels (measured along the normal) is carried into every later residual, so no
 /// rounding ever shifts the estimated contour.
+///
+/// Noise: a line's pixel residual (projected minus most likely contour location) has the
+/// variance σ_r²·σ_d²/σ_min²; σ_r is estimated in every correspondence iteration from the
+/// residuals scaled by σ_min/σ_d, clamped between the noise floor and the iteration's
+/// `standard_deviations` entry (ResidualNoise).
 class RegionModality : public Modality {
  public:
   RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params);
@@ -66,6 +72,9 @@ class RegionModality : public Modality {
   void compute_distribution(Line& line, float* distribution) const;
   float line_position(const Line& line, const Posef& camera_T_body, const Intrinsics& k) const;
   void update_quality(const Frame& frame);
+  /// σ_r, pixels, for correspondence iteration `corr_iter`.
+  double sigma(int corr_iter) const;
+  void estimate_noise(const Posef& camera_T_body);
   Posef camera_T_body(const ColorImage& image) const;
 
   std::shared_ptr<const ViewpointModel> model_;
@@ -83,10 +92,13 @@ class RegionModality : public Modality {
   Posef camera_T_reference_;
   ViewSelector view_selector_;
   std::vector<Line> lines_;
+  ResidualNoise noise_;
+  std::vector<float> normalised_residuals_;  ///< scratch of estimate_noise()
   ViewOcclusions occlusions_;
   std::vector<float> distributions_;      ///< distribution_length per line
   std::vector<float> segment_f_;          ///< scratch: segment foreground posteriors
   int n_considered_ = 0;
+  int last_corr_iter_ = 0;
   int frames_since_start_ = 0;
   ModalityQuality quality_;
 };

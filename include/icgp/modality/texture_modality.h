@@ -10,6 +10,7 @@
 #include "icgp/modality/measured_occlusion.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
+#include "icgp/modality/residual_noise.h"
 #include "icgp/render/renderer.h"
 
 namespace icgp {
@@ -90,6 +91,10 @@ class KeyframeLifter {
 /// Quality: score is the share of keyframe points matched with a reprojection error below
 /// c/2 after the frame converged (0 with fewer than 4 such inliers, too few to support a
 /// pose); valid_fraction the share matched at all.
+///
+/// Noise: σ_t is estimated in every correspondence iteration from the u and v reprojection
+/// errors of all matches, clamped between the noise floor and the iteration's
+/// `standard_deviations` entry (ResidualNoise).
 class TextureModality : public Modality {
  public:
   /// A matched pair: a keyframe point and where the current frame sees it.
@@ -123,6 +128,9 @@ class TextureModality : public Modality {
   void match();
   void update_weights();
   void update_quality();
+  /// σ_t, pixels, for correspondence iteration `corr_iter`.
+  double sigma(int corr_iter) const;
+  void estimate_noise();
 
   TextureParams params_;
   FeatureExtractor extractor_;
@@ -138,6 +146,9 @@ class TextureModality : public Modality {
   std::vector<TwoNearest> nearest_;
   Keyframe keyframe_;
   std::vector<Match> matches_;
+  ResidualNoise noise_;
+  std::vector<float> residual_components_;  ///< scratch of estimate_noise()
+  int last_corr_iter_ = 0;
   ModalityQuality quality_;
 };
 

@@ -15,8 +15,8 @@ struct TrackerParams {
   int n_update_iterations = 2;
   double tikhonov_rotation = 1000.0;      ///< λ_r
   double tikhonov_translation = 30000.0;  ///< λ_t
-  /// A body whose combined quality (the mean of its modalities' scores) is below this is
-  /// reported lost.
+  /// A body whose combined quality (the mean of the scores of its modalities that had
+  /// something to measure, ModalityQuality::abstained) is below this is reported lost.
   double quality_threshold = 0.5;
 };
 

@@ -15,6 +15,7 @@ namespace icgp {
 /// Everything that configures a tracker, with the reference defaults; a YAML file sets any
 /// subset of it (see docs/configuration.md).
 struct TrackerConfig {
+  std::string preset = "default";  ///< the preset the configuration started from
   TrackerParams tracker;
   std::vector<std::string> modalities = {"region", "depth"};
   ViewpointModelParams region_model;
@@ -29,6 +30,17 @@ struct TrackerConfig {
   std::vector<std::string> regions;
   std::string cache_dir;  ///< empty: $ICGP_CACHE_DIR, else $XDG_CACHE_HOME/icgp, else ~/.cache/icgp
 };
+
+/// Named starting points of a configuration; a YAML file's `preset:` key picks one and its
+/// other keys are read over it.
+///  * "default": icgp's defaults, the reference parameters of ALGORITHMS.md with every
+///    cue's noise estimated online from its residuals (the `noise` keys).
+///  * "icg_reference": the reference parameters with fixed noise schedules, the ICG/ICG+
+///    papers' behaviour.
+/// Throws std::invalid_argument naming an unknown preset and the known ones.
+TrackerConfig tracker_config_preset(const std::string& name);
+/// The preset names tracker_config_preset() knows, "default" first.
+const std::vector<std::string>& tracker_config_presets();
 
 /// Reads a YAML configuration over the defaults. Unknown keys and values of the wrong type
 /// or range throw std::runtime_error naming the file and the key.

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <vector>
+
+namespace icgp {
+
+/// How a cue estimates its own noise from its residuals (docs/accuracy.md, "Weighing the
+/// cues by their noise"). Standard deviations are in the cue's own units: pixels for the
+/// region and texture modalities, metres at 1 m of depth for the depth modality.
+struct NoiseParams {
+  /// false: the fixed `standard_deviations` schedule alone, as the ICG papers do.
+  bool estimate = true;
+  /// The smallest standard deviation ever used: what the cue's model itself cannot resolve
+  /// (the viewpoint model's sampling, the pixel grid), however well the data fits.
+  double floor = 0.0;
+  /// Below this many residuals an estimate is not trusted: the schedule's value is used.
+  int min_residuals = 20;
+  /// Tukey's constant c, in standard deviations, of the robust weights of cues that use
+  /// them (depth): a residual beyond c·σ gets weight 0. With σ estimated, trust grows as the
+  /// residuals shrink, and a few wrong correspondences would otherwise grow with it.
+  /// 4.685 gives 95 % of least squares' efficiency on Gaussian residuals.
+  double tukey_constant = 4.685;
+};
+
+/// A cue's noise level in one correspondence iteration, estimated from its residuals at the
+/// current pose as a robust scale about zero, 1.4826·median|u| (the normal distribution's
+/// standard deviation for the median absolute value; outliers up to half the residuals do
+/// not move it, and a systematic offset counts as noise, as it should when cues disagree).
+///
+/// The standard deviation used is that estimate, clamped to [floor, scheduled]: the
+/// reference schedule is the prior and upper bound, so early iterations far from the
+/// optimum, whose residuals are mostly pose error, keep the schedule's robustness, and a
+/// cue is trusted more than the schedule says only when its residuals show it is precise.
+class ResidualNoise {
+ public:
+  explicit ResidualNoise(NoiseParams params = {}) : params_(params) {}
+
+  /// Estimates the scale of `residuals` (each already divided by its own nominal relative
+  /// standard deviation). Reorders them. Too few residuals leave no estimate.
+  void estimate(std::vector<float>& residuals);
+  /// Forgets the estimate: sigma() gives the schedule's values again.
+  void reset() { estimate_ = -1.0; }
+
+  /// The standard deviation to use where the schedule gives `scheduled`.
+  double sigma(double scheduled) const;
+  /// Tukey's weight (1 − (u/cσ)²)² of a normalised residual `u` for the standard deviation
+  /// `sigma`; 1 when estimation is off (the reference behaviour).
+  float weight(float u, double sigma) const {
+    if (!params_.estimate) return 1.f;
+    const float x = u / static_cast<float>(params_.tukey_constant * sigma);
+    const float t = 1.f - x * x;
+    return t > 0.f ? t * t : 0.f;
+  }
+  /// The loss whose derivative weight() gives, of a residual in standard deviations `x`:
+  /// Tukey's ρ(x) = c²/6·(1 − (1 − (x/c)²)³), c²/6 beyond c; x²/2 when estimation is off.
+  double loss(double x) const {
+    if (!params_.estimate) return 0.5 * x * x;
+    const double c2 = params_.tukey_constant * params_.tukey_constant;
+    const double t = 1.0 - x * x / c2;
+    return t > 0.0 ? c2 / 6.0 * (1.0 - t * t * t) : c2 / 6.0;
+  }
+  /// The last estimate, or a negative number when there is none.
+  double estimated() const { return estimate_; }
+  const NoiseParams& params() const { return params_; }
+
+ private:
+  NoiseParams params_;
+  double estimate_ = -1.0;
+};
+
+}  // namespace icgp

@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/modality/residual_noise.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace icgp {
+
+void ResidualNoise::estimate(std::vector<float>& residuals) {
+  estimate_ = -1.0;
+  if (!params_.estimate || static_cast<int>(residuals.size()) < std::max(1, params_.min_residuals)) return;
+  for (float& r : residuals) r = std::abs(r);
+  const auto middle = residuals.begin() + static_cast<std::ptrdiff_t>(residuals.size() / 2);
+  std::nth_element(residuals.begin(), middle, residuals.end());
+  // 1.4826 = 1 / Φ⁻¹(3/4): the median of |u| for u ~ N(0, σ²) is σ / 1.4826.
+  if (std::isfinite(*middle)) estimate_ = 1.4826 * static_cast<double>(*middle);
+}
+
+double ResidualNoise::sigma(double scheduled) const {
+  if (estimate_ < 0.0) return scheduled;
+  return std::min(scheduled, std::max(params_.floor, estimate_));
+}
+
+}  // namespace icgp
