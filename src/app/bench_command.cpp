@@ -31,6 +31,7 @@ struct BenchOptions {
   bool ablation = false;
   bool sweep = false;
   SweepOptions sweep_options;
+  SequenceOptions sequence_options;
 };
 
 struct BenchRow {
@@ -53,7 +54,7 @@ void print_table(const std::vector<BenchRow>& rows, double reference_ms) {
 }
 
 void run_bench(const BenchOptions& o) {
-  const Sequence sequence = Sequence::open(o.sequence);
+  const Sequence sequence = Sequence::open(o.sequence, o.sequence_options);
   if (!sequence.has_ground_truth() || sequence.objects().size() != 1 || sequence.objects().front().mesh_path.empty())
     throw std::runtime_error("bench needs a sequence with ground truth for one object with a ViSP model: " +
                              o.sequence);
@@ -145,7 +146,8 @@ void register_bench_command(CLI::App& app) {
   cmd->add_option("--sequence", o->sequence, "Sequence with ground truth and a ViSP model (.cao + .xml files)")
       ->check(CLI::ExistingDirectory)
       ->capture_default_str();
-  cmd->add_option("--config", o->config, "icgp tracker configuration (YAML) for the ICG rows; default: the sequence folder's icgp.yaml, else the reference parameters")->check(CLI::ExistingFile);
+  cmd->add_option("--config", o->config, "icgp tracker configuration (YAML) for the ICG rows; default: the sequence folder's icgp.yaml, else icgp's defaults")->check(CLI::ExistingFile);
+  cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
   cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...]}");
   cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all; --sweep: frames per cell, default 60)")->check(CLI::PositiveNumber);
   cmd->add_flag("--ablation", o->ablation,

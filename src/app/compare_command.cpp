@@ -209,7 +209,7 @@ void register_compare_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--config", o->config,
                   "icgp tracker configuration (YAML) for vpMbIcgTracker; default: the sequence folder's icgp.yaml, "
-                  "else the reference parameters")
+                  "else icgp's defaults")
       ->check(CLI::ExistingFile);
   cmd->add_option("--modalities", o->modalities,
                   "vpMbIcgTracker's modalities, e.g. region,depth (overrides the configuration)")

@@ -168,7 +168,7 @@ void register_track_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--model", o->model, "Mesh or ViSP .cao (default: the sequence's own model)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--config", o->config, "Tracker configuration (YAML); default: the sequence folder's icgp.yaml, else the reference parameters")
+  cmd->add_option("--config", o->config, "Tracker configuration (YAML); default: the sequence folder's icgp.yaml, else icgp's defaults")
       ->check(CLI::ExistingFile);
   cmd->add_option("--modalities", o->modalities, "Modalities to use, e.g. region,depth (overrides the configuration)")
       ->delimiter(',');
