@@ -26,8 +26,13 @@ TrackingEvaluation evaluate_configuration(const std::vector<Frame>& frames, cons
 
 TrackingSummary run_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
                          const TrackerConfig& config) {
+  return evaluate_icgp(frames, body, mesh, config).summary();
+}
+
+TrackingEvaluation evaluate_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                                 const TrackerConfig& config) {
   TimedIcgTracker tracker(config, mesh, body);
-  return run_configuration(
+  return evaluate_configuration(
       frames, body, mesh, [&](const Frame& f, const Pose& pose) { tracker.start(f, pose); },
       [&](const Frame& f, double* ms) {
         const BodyResult r = tracker.track(f, ms);

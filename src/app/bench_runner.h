@@ -30,5 +30,8 @@ TrackingEvaluation evaluate_configuration(const std::vector<Frame>& frames, cons
 /// run_configuration for icgp's tracker built from `config`.
 TrackingSummary run_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
                          const TrackerConfig& config);
+/// evaluate_configuration for icgp's tracker built from `config`.
+TrackingEvaluation evaluate_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                                 const TrackerConfig& config);
 
 }  // namespace icgp::app

@@ -273,13 +273,7 @@ class CellTrackers {
 
   static Job icgp_job(const std::string& name, const TrackerConfig& config) {
     return {name, [config](const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh) {
-              TimedIcgTracker tracker(config, mesh, body);
-              return evaluate_configuration(
-                  frames, body, mesh, [&](const Frame& f, const Pose& pose) { tracker.start(f, pose); },
-                  [&](const Frame& f, double* ms) {
-                    const BodyResult r = tracker.track(f, ms);
-                    return TrackedPose{r.reference_T_body, r.tracked};
-                  });
+              return evaluate_icgp(frames, body, mesh, config);
             }};
   }
 

@@ -135,11 +135,11 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
 }
 
 void DepthModality::estimate_noise() {
-  const Posef body_T_depth = depth_T_body().inverse();
-  normalised_residuals_.clear();
-  for (const Correspondence& c : correspondences_)
-    normalised_residuals_.push_back(c.body_normal.dot(c.body_point - body_T_depth * c.measured) / c.measured.z());
-  noise_.estimate(normalised_residuals_);
+  noise_.estimate([&](auto add) {
+    const Posef body_T_depth = depth_T_body().inverse();
+    for (const Correspondence& c : correspondences_)
+      add(c.body_normal.dot(c.body_point - body_T_depth * c.measured) / c.measured.z());
+  });
 }
 
 double DepthModality::sigma(int corr_iter) const {

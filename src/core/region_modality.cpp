@@ -234,12 +234,12 @@ void RegionModality::correspondences(const Frame& frame, int corr_iter) {
 }
 
 void RegionModality::estimate_noise(const Posef& camera_T_body) {
-  normalised_residuals_.clear();
-  for (const Line& line : lines_) {
-    const float pixels = (line_position(line, camera_T_body, intrinsics_) - line.mean) / line.normal_factor;
-    normalised_residuals_.push_back(pixels * std::sqrt(min_variance_ / line.variance));
-  }
-  noise_.estimate(normalised_residuals_);
+  noise_.estimate([&](auto add) {
+    for (const Line& line : lines_) {
+      const float pixels = (line_position(line, camera_T_body, intrinsics_) - line.mean) / line.normal_factor;
+      add(pixels * std::sqrt(min_variance_ / line.variance));
+    }
+  });
 }
 
 double RegionModality::sigma(int corr_iter) const {

@@ -6,12 +6,12 @@
 
 namespace icgp {
 
-void ResidualNoise::estimate(std::vector<float>& residuals) {
+void ResidualNoise::estimate_from_residuals() {
   estimate_ = -1.0;
-  if (!params_.estimate || static_cast<int>(residuals.size()) < std::max(1, params_.min_residuals)) return;
-  for (float& r : residuals) r = std::abs(r);
-  const auto middle = residuals.begin() + static_cast<std::ptrdiff_t>(residuals.size() / 2);
-  std::nth_element(residuals.begin(), middle, residuals.end());
+  if (!params_.estimate || static_cast<int>(residuals_.size()) < std::max(1, params_.min_residuals)) return;
+  for (float& r : residuals_) r = std::abs(r);
+  const auto middle = residuals_.begin() + static_cast<std::ptrdiff_t>(residuals_.size() / 2);
+  std::nth_element(residuals_.begin(), middle, residuals_.end());
   // 1.4826 = 1 / Φ⁻¹(3/4): the median of |u| for u ~ N(0, σ²) is σ / 1.4826.
   if (std::isfinite(*middle)) estimate_ = 1.4826 * static_cast<double>(*middle);
 }

@@ -287,15 +287,16 @@ void TextureModality::correspondences(const Frame& frame, int corr_iter) {
 }
 
 void TextureModality::estimate_noise() {
-  const Posef T = camera_T_body().cast<float>();
-  residual_components_.clear();
-  for (const Match& m : matches_) {
-    const Eigen::Vector3f X = T * m.body_point;
-    if (X.z() <= 0.f) continue;
-    const Eigen::Vector2f e = intrinsics_.project<float>(X) - m.image_point;
-    residual_components_.insert(residual_components_.end(), {e.x(), e.y()});
-  }
-  noise_.estimate(residual_components_);
+  noise_.estimate([&](auto add) {
+    const Posef T = camera_T_body().cast<float>();
+    for (const Match& m : matches_) {
+      const Eigen::Vector3f X = T * m.body_point;
+      if (X.z() <= 0.f) continue;
+      const Eigen::Vector2f e = intrinsics_.project<float>(X) - m.image_point;
+      add(e.x());
+      add(e.y());
+    }
+  });
 }
 
 double TextureModality::sigma(int corr_iter) const {

@@ -20,13 +20,20 @@ std::vector<float> gaussian(int n, double sigma, unsigned seed) {
   return v;
 }
 
+/// Hands `residuals` to ResidualNoise::estimate.
+void estimate(ResidualNoise& noise, const std::vector<float>& residuals) {
+  noise.estimate([&](auto add) {
+    for (float r : residuals) add(r);
+  });
+}
+
 }  // namespace
 
 TEST_CASE("residual noise: the scale of Gaussian residuals is their standard deviation") {
   ResidualNoise noise;
   for (double sigma : {1e-4, 0.7, 12.0}) {
     std::vector<float> r = gaussian(4000, sigma, 1);
-    noise.estimate(r);
+    estimate(noise, r);
     INFO("sigma " << sigma << " estimate " << noise.estimated());
     CHECK(std::abs(noise.estimated() / sigma - 1.0) < 0.05);
   }
@@ -38,7 +45,7 @@ TEST_CASE("residual noise: a tenth of wild residuals moves the scale little, a c
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> wild(-200.f, 200.f);
   for (int i = 0; i < 400; ++i) r.push_back(wild(rng));
-  noise.estimate(r);
+  estimate(noise, r);
   // The median of |u| then sits at the 0.5/0.9 quantile of the inliers' |u|: 1.13 sigma.
   CHECK(noise.estimated() == Approx(0.5 * 1.13).epsilon(0.06));
 
@@ -46,7 +53,7 @@ TEST_CASE("residual noise: a tenth of wild residuals moves the scale little, a c
   // every residual is 2 px off must not be trusted to 0.01 px.
   std::vector<float> offset = gaussian(1000, 0.01, 4);
   for (float& x : offset) x += 2.f;
-  noise.estimate(offset);
+  estimate(noise, offset);
   CHECK(noise.estimated() == Approx(1.4826 * 2.0).epsilon(0.02));
 }
 
@@ -58,19 +65,19 @@ TEST_CASE("residual noise: the standard deviation used is the estimate within [f
   CHECK(noise.sigma(1.5) == 1.5);  // no estimate yet: the schedule
 
   std::vector<float> r = gaussian(1000, 0.8, 5);
-  noise.estimate(r);
+  estimate(noise, r);
   CHECK(noise.sigma(1.5) == Approx(noise.estimated()));
   CHECK(noise.sigma(0.5) == 0.5);  // the schedule is the upper bound
   std::vector<float> tiny = gaussian(1000, 1e-3, 6);
-  noise.estimate(tiny);
+  estimate(noise, tiny);
   CHECK(noise.sigma(1.5) == 0.3);  // the floor
 
   std::vector<float> few = gaussian(9, 0.8, 7);
-  noise.estimate(few);
+  estimate(noise, few);
   CHECK(noise.estimated() < 0.0);
   CHECK(noise.sigma(1.5) == 1.5);
 
-  noise.estimate(tiny);
+  estimate(noise, tiny);
   noise.reset();
   CHECK(noise.sigma(1.5) == 1.5);
 }
@@ -80,7 +87,7 @@ TEST_CASE("residual noise: switched off, the schedule and plain least squares") 
   params.estimate = false;
   ResidualNoise noise(params);
   std::vector<float> r = gaussian(1000, 0.1, 8);
-  noise.estimate(r);
+  estimate(noise, r);
   CHECK(noise.sigma(2.0) == 2.0);
   CHECK(noise.weight(50.f, 2.0) == 1.f);
   CHECK(noise.loss(3.0) == Approx(4.5));

@@ -67,7 +67,6 @@ class DepthModality : public Modality {
   ViewSelector view_selector_;
   std::vector<Correspondence> correspondences_;
   ResidualNoise noise_;
-  std::vector<float> normalised_residuals_;  ///< scratch of estimate_noise()
   ViewOcclusions occlusions_;
   int n_considered_ = 0;
   int last_corr_iter_ = 0;

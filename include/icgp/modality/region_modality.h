@@ -93,7 +93,6 @@ class RegionModality : public Modality {
   ViewSelector view_selector_;
   std::vector<Line> lines_;
   ResidualNoise noise_;
-  std::vector<float> normalised_residuals_;  ///< scratch of estimate_noise()
   ViewOcclusions occlusions_;
   std::vector<float> distributions_;      ///< distribution_length per line
   std::vector<float> segment_f_;          ///< scratch: segment foreground posteriors

@@ -36,9 +36,16 @@ class ResidualNoise {
  public:
   explicit ResidualNoise(NoiseParams params = {}) : params_(params) {}
 
-  /// Estimates the scale of `residuals` (each already divided by its own nominal relative
-  /// standard deviation). Reorders them. Too few residuals leave no estimate.
-  void estimate(std::vector<float>& residuals);
+  /// Estimates the scale of the residuals `collect` hands to the function it is given, each
+  /// already divided by its own nominal relative standard deviation. With estimation off
+  /// `collect` is not called, so a cue that keeps its schedule computes no residuals. Too
+  /// few residuals leave no estimate.
+  template <typename Collect>
+  void estimate(Collect&& collect) {
+    residuals_.clear();
+    if (params_.estimate) collect([this](float u) { residuals_.push_back(u); });
+    estimate_from_residuals();
+  }
   /// Forgets the estimate: sigma() gives the schedule's values again.
   void reset() { estimate_ = -1.0; }
 
@@ -65,8 +72,11 @@ class ResidualNoise {
   const NoiseParams& params() const { return params_; }
 
  private:
+  void estimate_from_residuals();
+
   NoiseParams params_;
   double estimate_ = -1.0;
+  std::vector<float> residuals_;  ///< scratch of estimate(), kept to reuse its memory
 };
 
 }  // namespace icgp

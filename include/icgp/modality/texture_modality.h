@@ -147,7 +147,6 @@ class TextureModality : public Modality {
   Keyframe keyframe_;
   std::vector<Match> matches_;
   ResidualNoise noise_;
-  std::vector<float> residual_components_;  ///< scratch of estimate_noise()
   int last_corr_iter_ = 0;
   ModalityQuality quality_;
 };
