@@ -18,8 +18,13 @@ ColorHistograms::ColorHistograms(int n_bins, int channels) : n_bins_(n_bins), ch
   // A grey histogram gets as many bins as a colour one would have, up to one per grey
   // level: 16 grey bins cannot tell an object from a background of similar brightness.
   if (channels == 1) n_bins_ = std::min(256, n_bins * n_bins * n_bins);
-  shift_ = 0;
-  while ((256 >> shift_) > n_bins_) ++shift_;
+  int shift = 0;
+  while ((256 >> shift) > n_bins_) ++shift;
+  // Bin index ((c0 · n) + c1) · n + c2 of the channels' bins c0, c1, c2 (BGR), or c0 (grey).
+  for (int c = 0; c < channels; ++c) {
+    const int weight = channels == 1 ? 1 : (c == 0 ? n_bins_ * n_bins_ : c == 1 ? n_bins_ : 1);
+    for (int v = 0; v < 256; ++v) channel_bins_[c][v] = static_cast<std::uint32_t>((v >> shift) * weight);
+  }
   const std::size_t size = channels == 1 ? n_bins_ : n_bins_ * n_bins_ * n_bins_;
   hist_f_.assign(size, 0.f);
   hist_b_.assign(size, 0.f);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "icgp/geometry/rounding.h"
+#include "icgp/modality/contour_posterior.h"
 #include "icgp/modality/iteration_value.h"
 
 namespace icgp {
@@ -31,6 +32,7 @@ RegionModality::RegionModality(Body& body, std::shared_ptr<const ViewpointModel>
 
   lines_.reserve(params_.n_lines_max);
   distributions_.resize(static_cast<std::size_t>(params_.n_lines_max) * params_.distribution_length);
+  log_distributions_.resize(distributions_.size());
   segment_f_.resize(n_segments_);
 }
 
@@ -153,37 +155,55 @@ bool RegionModality::sample_segments(const cv::Mat& image, const ProjectedPoint&
       round_to_int(std::min(other_first, other_last)) < 0 || round_to_int(std::max(other_first, other_last)) >= other_limit)
     return false;
 
+  // Pixel addresses: the dominant axis is the column (along_u) or the row. The other
+  // coordinate advances in 16.16 fixed point, so a pixel's row (or column) is a shift of
+  // it rather than a float rounding (the step's rounding error stays below 0.002 px over
+  // the longest line).
+  PixelWalk walk;
+  const std::ptrdiff_t pixel_size = image.channels(), row_size = static_cast<std::ptrdiff_t>(image.step);
+  const std::ptrdiff_t dom_stride = along_u ? pixel_size : row_size;
+  walk.other_stride = along_u ? row_size : pixel_size;
+  walk.pixel = image.data + first * dom_stride;
+  walk.dom_step = sign * dom_stride;
+  walk.other = static_cast<std::int32_t>(std::floor((other_first + 0.5f) * kFixedOne));
+  walk.other_step = static_cast<std::int32_t>(std::lround(sign * slope * kFixedOne));
+  if (image.channels() == 3)
+    segment_posteriors<3>(walk, scale);
+  else
+    segment_posteriors<1>(walk, scale);
+  return true;
+}
+
+template <int kChannels>
+void RegionModality::segment_posteriors(PixelWalk walk, int scale) {
   // A segment's foreground probability is the normalised product of its pixels'
   // posteriors, Π P_f / (Π P_f + Π P_b). Posteriors are at least 1e-3, so products of the
   // (at most a few) pixels of a segment stay far from float underflow.
-  // Pixel addresses: the dominant axis is the column (along_u) or the row.
-  const std::ptrdiff_t pixel_size = image.channels(), row_size = static_cast<std::ptrdiff_t>(image.step);
-  const std::ptrdiff_t dom_stride = along_u ? pixel_size : row_size, other_stride = along_u ? row_size : pixel_size;
-  float other = c_other + (first - c_dom) * slope;
-  const float other_step = sign * slope;
-  const std::uint8_t* dom_pixel = image.data + first * dom_stride;
-  const std::ptrdiff_t dom_step = sign * dom_stride;
   for (int s = 0; s < n_segments_; ++s) {
     float pf = 1.f, pb = 1.f;
-    for (int i = 0; i < scale; ++i, dom_pixel += dom_step, other += other_step) {
-      const float posterior = histograms_->foreground_posterior(dom_pixel + round_to_int(other) * other_stride);
+    for (int i = 0; i < scale; ++i, walk.pixel += walk.dom_step, walk.other += walk.other_step) {
+      const float posterior =
+          histograms_->foreground_posterior<kChannels>(walk.pixel + (walk.other >> kFixedBits) * walk.other_stride);
       pf *= posterior;
       pb *= 1.f - posterior;
     }
     segment_f_[s] = pf / (pf + pb);
   }
-  return true;
 }
 
-void RegionModality::compute_distribution(Line& line, float* distribution) const {
+void RegionModality::compute_distribution(Line& line, float* distribution, float* log_distribution) const {
   const int n_dist = params_.distribution_length;
-  float sum = 0.f;
-  for (int d = 0; d < n_dist; ++d) {
-    float product = 1.f;
-    for (int i = 0; i < params_.function_length; ++i) product *= step_b_[i] + step_difference_[i] * segment_f_[d + i];
-    distribution[d] = product;
-    sum += product;
+  // Position d's product over the function's segments i, with i outermost so that the
+  // inner loop runs over contiguous positions (vectorised); each product still multiplies
+  // its factors in the order of i.
+  std::fill(distribution, distribution + n_dist, 1.f);
+  for (int i = 0; i < params_.function_length; ++i) {
+    const float b = step_b_[i], difference = step_difference_[i];
+    const float* f = segment_f_.data() + i;
+    for (int d = 0; d < n_dist; ++d) distribution[d] *= b + difference * f[d];
   }
+  float sum = 0.f;
+  for (int d = 0; d < n_dist; ++d) sum += distribution[d];
   const float centre = (n_dist - 1) / 2.f;
   float mean = 0.f;
   for (int d = 0; d < n_dist; ++d) {
@@ -194,6 +214,8 @@ void RegionModality::compute_distribution(Line& line, float* distribution) const
   for (int d = 0; d < n_dist; ++d) variance += distribution[d] * (d - centre - mean) * (d - centre - mean);
   line.mean = mean;
   line.variance = std::max(variance, min_variance_);
+  if (log_distribution)
+    for (int d = 0; d < n_dist; ++d) log_distribution[d] = std::log(distribution[d]);
 }
 
 void RegionModality::correspondences(const Frame& frame, int corr_iter) {
@@ -213,17 +235,22 @@ void RegionModality::correspondences(const Frame& frame, int corr_iter) {
                      [&](int i) { return hidden(frame, points[i].position, model_->depth_offsets(view, i)); });
   auto collect = [&](bool test_occlusions) {
     lines_.clear();
+    n_measurable_ = 0;
     ProjectedPoint p;
     for (int i = 0; i < n_considered_; ++i) {
       if (!project(points[i], pose, intrinsics_, p)) continue;
       if (std::min(p.foreground_px, p.background_px) / scale < params_.min_continuous_distance) continue;
+      ++n_measurable_;
       if (test_occlusions && occlusions_.occluded(i)) continue;
       Line line;
       line.body_point = points[i].position;
       line.centre = p.centre;
       line.normal = p.normal;
       if (!sample_segments(image.image, p, scale, line)) continue;
-      compute_distribution(line, distributions_.data() + lines_.size() * params_.distribution_length);
+      // The global iterations read only the distribution's mean and variance.
+      const std::size_t offset = lines_.size() * params_.distribution_length;
+      compute_distribution(line, distributions_.data() + offset,
+                           corr_iter < params_.n_global_iterations ? nullptr : log_distributions_.data() + offset);
       lines_.push_back(line);
     }
   };
@@ -273,11 +300,10 @@ void RegionModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H)
     if (gaussian) {
       dloglikelihood = (line.mean - delta) / line.variance;
     } else {
-      const float* distribution = distributions_.data() + l * n_dist;
-      const int lower = static_cast<int>(std::floor(delta + centre));
-      if (lower < 0 || lower + 1 >= n_dist) continue;
-      dloglikelihood = learning_rate * (std::log(distribution[lower + 1]) - std::log(distribution[lower])) /
-                       line.variance;
+      const float x = delta + centre;
+      if (x < 0.f || x >= n_dist - 1) continue;
+      const ContourPosterior posterior(log_distributions_.data() + l * n_dist, n_dist, params_.subpixel_posterior);
+      dloglikelihood = learning_rate * posterior.slope(x) / line.variance;
     }
 
     // J = n̄ nᵀ ∂π/∂X R [−[X_M]×, I]: with v = Rᵀ (n̄ ∂π/∂Xᵀ n), J = [X_M × v; v].
@@ -296,7 +322,7 @@ void RegionModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H)
 
 double RegionModality::log_likelihood(int corr_iter) const {
   // The integral of the derivative add_gradient_hessian uses: a Gaussian around μ in the
-  // global iterations, afterwards the linear interpolation of ln p(d) (scaled alike).
+  // global iterations, afterwards ln p(d) between its positions (ContourPosterior, scaled alike).
   const Pose pose = camera_T_reference_.cast<double>() * body().reference_T_body;
   const double sigma_r = sigma(corr_iter);
   const int n_dist = params_.distribution_length;
@@ -311,11 +337,10 @@ double RegionModality::log_likelihood(int corr_iter) const {
       sum -= weight * 0.5 * (delta - line.mean) * (delta - line.mean) / line.variance;
       continue;
     }
-    const float* distribution = distributions_.data() + l * n_dist;
-    const int lower = static_cast<int>(std::floor(delta + centre));
-    if (lower < 0 || lower + 1 >= n_dist) continue;
-    const double fraction = delta + centre - lower;
-    const double log_p = (1.0 - fraction) * std::log(distribution[lower]) + fraction * std::log(distribution[lower + 1]);
+    const double position = delta + centre;
+    if (position < 0.0 || position >= n_dist - 1) continue;
+    const double log_p =
+        ContourPosterior(log_distributions_.data() + l * n_dist, n_dist, params_.subpixel_posterior).log(position);
     sum += weight * params_.learning_rate * log_p / line.variance;
   }
   return sum;
@@ -342,8 +367,10 @@ void RegionModality::finish(const Frame& frame) {
 
 void RegionModality::update_quality(const Frame&) {
   // A line agrees with the pose when its contour-location distribution holds its mass
-  // within ±1.5 segments of where the model's contour now projects. Lines that could not
-  // be used count as disagreeing, so leaving the image or being hidden lowers the score.
+  // within ±1.5 segments of where the model's contour now projects. Lines the data could
+  // not give count as disagreeing, so leaving the image or being hidden lowers the score;
+  // lines the model's own geometry rules out at this pose (a region too thin to measure)
+  // do not count, and a region with none left has nothing to say: it abstains.
   const Posef pose = camera_T_reference_ * body().reference_T_body.cast<float>();
   const int n_dist = params_.distribution_length;
   const float centre = (n_dist - 1) / 2.f;
@@ -355,8 +382,9 @@ void RegionModality::update_quality(const Frame&) {
       if (std::abs(d - centre - delta) <= 1.5f) agreement += distribution[d];
   }
   quality_.n_valid = static_cast<int>(lines_.size());
-  quality_.valid_fraction = n_considered_ > 0 ? static_cast<double>(lines_.size()) / n_considered_ : 0.0;
-  quality_.score = n_considered_ > 0 ? agreement / n_considered_ : 0.0;
+  quality_.valid_fraction = n_measurable_ > 0 ? static_cast<double>(lines_.size()) / n_measurable_ : 0.0;
+  quality_.score = n_measurable_ > 0 ? agreement / n_measurable_ : 0.0;
+  quality_.abstained = n_measurable_ == 0;
   quality_.sigma = sigma(last_corr_iter_);
 }
 

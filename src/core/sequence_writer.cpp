@@ -15,6 +15,7 @@
 
 #include "icgp/render/renderer.h"
 #include "icgp/render/sensor_effects.h"
+#include "splitmix64.h"
 
 namespace icgp {
 
@@ -25,26 +26,16 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
-/// splitmix64: a tiny generator whose output is fully specified, unlike the standard
-/// library's distributions, so a seed gives the same sequence with every compiler.
-class Random {
+/// SplitMix64 with the distributions sequences draw from.
+class Random : public SplitMix64 {
  public:
-  explicit Random(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next() >> 11) * 0x1.0p-53; }  ///< [0, 1)
+  using SplitMix64::SplitMix64;
+  using SplitMix64::uniform;
   double uniform(double low, double high) { return low + (high - low) * uniform(); }
   double normal() {  // Box-Muller; 1 - uniform() is in (0, 1] so the log is finite
     const double radius = std::sqrt(-2.0 * std::log(1.0 - uniform()));
     return radius * std::cos(2.0 * kPi * uniform());
   }
-
- private:
-  std::uint64_t state_;
 };
 
 /// Separate generator streams per purpose (and per frame for noise): changing the noise

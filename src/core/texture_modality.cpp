@@ -11,6 +11,7 @@
 
 #include "icgp/features/daisy.h"
 #include "icgp/features/freak.h"
+#include "icgp/features/oriented_brief.h"
 #include "icgp/geometry/rounding.h"
 #include "icgp/modality/iteration_value.h"
 
@@ -91,7 +92,9 @@ cv::Ptr<cv::Feature2D> make_descriptor(const std::string& name, const TexturePar
     return cv::SIFT::create(0, p.sift_n_octave_layers, p.sift_contrast_threshold, p.sift_edge_threshold, p.sift_sigma);
   if (name == "freak") return Freak::create();
   if (name == "daisy") return Daisy::create();
-  throw std::invalid_argument("unknown texture descriptor '" + name + "' (known: orb, brisk, sift, akaze, freak, daisy)");
+  if (name == "oriented_brief") return OrientedBrief::create(p.orb_n_features);
+  throw std::invalid_argument("unknown texture descriptor '" + name +
+                              "' (known: orb, brisk, sift, akaze, freak, daisy, oriented_brief)");
 }
 
 FeatureExtractor::FeatureExtractor(const TextureParams& params)
@@ -107,26 +110,31 @@ void FeatureExtractor::extract(const cv::Mat& image, const ImageSquare& square, 
   const bool overlaps = square.size > 0.0 && square.u_min < image.cols && square.v_min < image.rows &&
                         square.u_min + square.size > 0.0 && square.v_min + square.size > 0.0;
   if (!overlaps) return;
-  // A square snapped to whole pixels that lies inside the image is cut out and resized
-  // (cv::resize is SIMD and 2.4x faster than a general warp); otherwise the exact square is
-  // warped with replicated borders (a constant border would add corners where the crop
-  // leaves the image). Both follow the pixel-centre convention of CropMap.
+  // A square snapped to whole pixels that lies inside the image is cut out, made grey and
+  // resized (cv::resize is SIMD and 2.4x faster than a general warp, and one channel costs
+  // half of three); otherwise the exact square is warped with replicated borders (a
+  // constant border would add corners where the crop leaves the image). Both follow the
+  // pixel-centre convention of CropMap.
   const cv::Rect snapped(cvRound(square.u_min), cvRound(square.v_min), std::max(1, cvRound(square.size)),
                          std::max(1, cvRound(square.size)));
   CropMap map{0.0, 0.0, 0.0};
   if ((snapped & cv::Rect(0, 0, image.cols, image.rows)) == snapped) {
     map = {static_cast<double>(size_) / snapped.width, static_cast<double>(snapped.x), static_cast<double>(snapped.y)};
-    cv::resize(image(snapped), crop_, cv::Size(size_, size_), 0.0, 0.0, cv::INTER_LINEAR);
+    cv::Mat cut = image(snapped);
+    if (cut.channels() == 3) {
+      cv::cvtColor(cut, crop_, cv::COLOR_BGR2GRAY);
+      cut = crop_;
+    }
+    cv::resize(cut, grey_, cv::Size(size_, size_), 0.0, 0.0, cv::INTER_LINEAR);
   } else {
     map = {size_ / square.size, square.u_min, square.v_min};
     const cv::Matx23d to_crop(map.scale, 0.0, map.scale * (0.5 - map.u_min) - 0.5,  //
                               0.0, map.scale, map.scale * (0.5 - map.v_min) - 0.5);
-    cv::warpAffine(image, crop_, to_crop, cv::Size(size_, size_), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    const bool colour = image.channels() == 3;
+    cv::warpAffine(image, colour ? crop_ : grey_, to_crop, cv::Size(size_, size_), cv::INTER_LINEAR,
+                   cv::BORDER_REPLICATE);
+    if (colour) cv::cvtColor(crop_, grey_, cv::COLOR_BGR2GRAY);
   }
-  if (crop_.channels() == 3)
-    cv::cvtColor(crop_, grey_, cv::COLOR_BGR2GRAY);
-  else
-    grey_ = crop_;
   if (detector_ == descriptor_) {
     descriptor_->detectAndCompute(grey_, cv::noArray(), keypoints_, descriptors);
   } else {
@@ -231,12 +239,10 @@ void TextureModality::make_keyframe(const Frame& frame) {
     keyframe_ = Keyframe{};
     return;
   }
-  const DepthImage* depth = nullptr;
-  if (!params_.depth_camera.empty()) {
-    depth = frame.find_depth(params_.depth_camera);
-    if (!depth)
-      throw std::invalid_argument("texture modality of '" + body().name + "': the frame has no depth camera '" +
-                                  params_.depth_camera + "'");
+  // Measured occlusions need depth; a frame without it (a colour-only camera) keeps every
+  // keypoint on the rendered silhouette, as the region modality keeps its lines.
+  const DepthImage* depth = params_.depth_camera.empty() ? nullptr : frame.find_depth(params_.depth_camera);
+  if (depth) {
     if (depth->depth.type() != CV_32FC1)
       throw std::invalid_argument("texture modality of '" + body().name + "': camera '" + params_.depth_camera +
                                   "' must give a CV_32FC1 depth image");

@@ -194,6 +194,7 @@ const Fields<RegionParams> kRegionFields = {
     field("function_slope", &RegionParams::function_slope, kNonNegative),
     field("learning_rate", &RegionParams::learning_rate, kPositive),
     field("n_global_iterations", &RegionParams::n_global_iterations, kNonNegativeInt),
+    field("subpixel_posterior", &RegionParams::subpixel_posterior, kBool),
     field("scales", &RegionParams::scales, kPositiveInts),
     field("standard_deviations", &RegionParams::standard_deviations, kPositives),
     section("noise", &RegionParams::noise, kNoiseFields),
@@ -228,8 +229,9 @@ const Fields<TextureParams> kTextureFields = {
     field("color_camera", &TextureParams::color_camera, kName),
     field("depth_camera", &TextureParams::depth_camera, kString),
     field("descriptor", &TextureParams::descriptor,
-          Rule<std::string>{"one of orb, brisk, sift, akaze, freak, daisy", [](const std::string& v) {
-                              static const std::set<std::string> known = {"orb", "brisk", "sift", "akaze", "freak", "daisy"};
+          Rule<std::string>{"one of orb, brisk, sift, akaze, freak, daisy, oriented_brief", [](const std::string& v) {
+                              static const std::set<std::string> known = {"orb",   "brisk", "sift",          "akaze",
+                                                                          "freak", "daisy", "oriented_brief"};
                               return known.count(v) > 0;
                             }}),
     field("focused_image_size", &TextureParams::focused_image_size,
@@ -307,8 +309,11 @@ TrackerConfig tracker_config_preset(const std::string& name) {
     throw std::invalid_argument("unknown tracker configuration preset '" + name + "' (known: " + preset_list() + ")");
   TrackerConfig config;
   config.preset = name;
-  if (name == "icg_reference")
+  if (name == "icg_reference") {
     for (NoiseParams* noise : {&config.region.noise, &config.depth.noise, &config.texture.noise}) noise->estimate = false;
+    config.region.subpixel_posterior = false;
+    config.texture.descriptor = "orb";
+  }
   return config;
 }
 

@@ -8,32 +8,20 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "splitmix64.h"
+
 namespace icgp {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr int kAreaSamplesAcross = 500;  ///< visible surface area: samples per image row and column
 
-/// splitmix64 seeded from (seed, view): each view draws its own stream, so the points of a
+/// SplitMix64 seeded from (seed, view): each view draws its own stream, so the points of a
 /// view do not depend on which thread renders it or in which order.
-class ViewRandom {
+class ViewRandom : public SplitMix64 {
  public:
   ViewRandom(std::uint64_t seed, int view)
-      : state_(seed ^ (0x9e3779b97f4a7c15ull * (static_cast<std::uint64_t>(view) + 1))) {}
-
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  /// Uniform in [0, n) (multiply-shift; the bias of 2^-64 per value is far below anything seen).
-  int below(int n) {
-    return static_cast<int>((static_cast<unsigned __int128>(next()) * static_cast<unsigned>(n)) >> 64);
-  }
-
- private:
-  std::uint64_t state_;
+      : SplitMix64(seed ^ (0x9e3779b97f4a7c15ull * (static_cast<std::uint64_t>(view) + 1))) {}
 };
 
 /// n distinct indices of [0, population) drawn uniformly, in random order: Floyd's algorithm,

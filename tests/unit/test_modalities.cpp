@@ -113,11 +113,17 @@ TEST_CASE("region modality: gradient is the derivative of its log-likelihood") {
   Fixture& f = Fixture::instance();
   test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
   const Frame frame = scene.render(f.truth);
-  Body body{"box", f.mesh, perturbed(f.truth, 3.0, 2.0)};
-  RegionModality region(body, f.region_model, {});
-  region.start(frame);
-  // Iteration 0 uses the Gaussian approximation, later ones the discrete distribution.
-  for (int corr_iter : {0, 3}) check_gradient(region, frame, corr_iter);
+  // Iteration 0 uses the Gaussian approximation, later ones the discrete distribution,
+  // read between its positions in either form (ContourPosterior).
+  for (const bool subpixel : {true, false}) {
+    INFO((subpixel ? "sub-pixel posterior" : "discrete posterior"));
+    Body body{"box", f.mesh, perturbed(f.truth, 3.0, 2.0)};
+    RegionParams params;
+    params.subpixel_posterior = subpixel;
+    RegionModality region(body, f.region_model, params);
+    region.start(frame);
+    for (int corr_iter : {0, 3}) check_gradient(region, frame, corr_iter);
+  }
 }
 
 TEST_CASE("tracker: region + depth converge from 5 mm / 5 deg to the rendered pose") {
@@ -244,6 +250,7 @@ TEST_CASE("tracker: depth converted on read tracks exactly as the dense image, r
 
 TEST_CASE("build_tracker: one region modality per region of a multi-region object") {
   TrackerConfig config;
+  config.modalities = {"region", "depth"};
   config.region_model = config.depth_model = coarse_model_params();
   config.regions = {ICGP_MODELS_DIR "/two_region/region_body.obj", ICGP_MODELS_DIR "/two_region/region_lid.obj"};
   config.cache_dir = (std::filesystem::temp_directory_path() / "icgp-test-multi-region-cache").string();

@@ -169,7 +169,7 @@ TEST_CASE("texture modality: frames without the object give quality 0") {
 }
 
 TEST_CASE("texture modality: descriptors by name, built by the tracker from a configuration") {
-  for (const char* name : {"orb", "brisk", "sift", "akaze", "freak", "daisy"}) CHECK(make_descriptor(name));
+  for (const char* name : {"oriented_brief", "orb", "brisk", "sift", "akaze", "freak", "daisy"}) CHECK(make_descriptor(name));
   CHECK_THROWS_WITH(make_descriptor("surf"), Catch::Contains("surf"));
   const std::string yaml = "/tmp/icgp-texture-config-" + std::to_string(::getpid()) + ".yaml";
   std::ofstream(yaml) << "modalities: [texture]\ntexture: {descriptor: brisk, standard_deviations: [5.0, 1.0]}\n";

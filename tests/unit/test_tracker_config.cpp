@@ -86,6 +86,7 @@ region:
   function_slope: 0.0
   learning_rate: 1.1
   n_global_iterations: 0
+  subpixel_posterior: false
   scales: [5, 3, 1]
   standard_deviations: [20.0, 2.0]
   noise:
@@ -156,7 +157,7 @@ TEST_CASE("tracker config: defaults are the reference values of ALGORITHMS.md") 
   CHECK(c.tracker.tikhonov_translation == 30000.0);
   CHECK(c.tracker.n_corr_iterations == 5);
   CHECK(c.tracker.n_update_iterations == 2);
-  CHECK(c.modalities == std::vector<std::string>{"region", "depth"});
+  CHECK(c.modalities == std::vector<std::string>{"region", "depth", "texture"});
   for (const icgp::ViewpointModelParams& m : {c.region_model, c.depth_model}) {
     CHECK(m.n_divides == 4);
     CHECK(m.sphere_radius == 0.8);
@@ -201,15 +202,22 @@ TEST_CASE("tracker config: presets") {
   CHECK(defaults.depth.noise.estimate);
   CHECK(defaults.texture.noise.estimate);
   CHECK_FALSE(defaults.region.noise.estimate);
+  CHECK(defaults.region.subpixel_posterior);
+  CHECK(defaults.texture.descriptor == "oriented_brief");
 
-  // icg_reference: the same parameters with the fixed schedules of the papers.
+  // icg_reference: the same cues and parameters with the papers' fixed schedules, discrete
+  // contour posterior and ORB.
   const TrackerConfig reference = icgp::tracker_config_preset("icg_reference");
   CHECK_FALSE(reference.region.noise.estimate);
   CHECK_FALSE(reference.depth.noise.estimate);
   CHECK_FALSE(reference.texture.noise.estimate);
+  CHECK_FALSE(reference.region.subpixel_posterior);
+  CHECK(reference.texture.descriptor == "orb");
   auto expected = flatten_yaml(to_yaml(defaults));
   expected["preset"] = "icg_reference";
   expected["depth.noise.estimate"] = expected["texture.noise.estimate"] = "false";
+  expected["region.subpixel_posterior"] = "false";
+  expected["texture.descriptor"] = "orb";
   CHECK(flatten_yaml(to_yaml(reference)) == expected);
 
   TempDir dir("icgp-config");

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <vector>
@@ -32,20 +33,26 @@ class ColorHistograms {
   float foreground_posterior(const cv::Mat& image, int row, int col) const {
     return posterior_f_[bin(image, row, col)];
   }
-  /// The same for a pixel given by its address in an image of channels() channels.
-  float foreground_posterior(const std::uint8_t* pixel) const { return posterior_f_[bin(pixel)]; }
+  /// The same for a pixel given by its address in an image of kChannels == channels()
+  /// channels: the form for per-pixel loops, with the channel count known at compile time.
+  template <int kChannels>
+  float foreground_posterior(const std::uint8_t* pixel) const {
+    if constexpr (kChannels == 1) return posterior_f_[channel_bins_[0][pixel[0]]];
+    return posterior_f_[channel_bins_[0][pixel[0]] + channel_bins_[1][pixel[1]] + channel_bins_[2][pixel[2]]];
+  }
 
  private:
-  int bin(const cv::Mat& image, int row, int col) const { return bin(image.ptr<std::uint8_t>(row) + channels_ * col); }
-  int bin(const std::uint8_t* p) const {
-    if (channels_ == 1) return p[0] >> shift_;
-    return ((p[0] >> shift_) * n_bins_ + (p[1] >> shift_)) * n_bins_ + (p[2] >> shift_);
+  int bin(const cv::Mat& image, int row, int col) const {
+    const std::uint8_t* p = image.ptr<std::uint8_t>(row) + channels_ * col;
+    return channels_ == 1 ? channel_bins_[0][p[0]] : channel_bins_[0][p[0]] + channel_bins_[1][p[1]] + channel_bins_[2][p[2]];
   }
   void update_posteriors();
 
   int n_bins_;
   int channels_;
-  int shift_;
+  /// Each channel value's contribution to the bin index: the bin of a pixel is the sum over
+  /// its channels, a few table reads instead of shifts and multiplies per pixel.
+  std::array<std::array<std::uint32_t, 256>, 3> channel_bins_{};
   std::vector<float> hist_f_, hist_b_, posterior_f_;
   std::vector<std::uint32_t> count_f_, count_b_;
 };

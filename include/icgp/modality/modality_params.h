@@ -36,6 +36,11 @@ struct RegionParams {
   double function_slope = 0.5;       ///< s_h; 0 = hard step
   double learning_rate = 1.3;
   int n_global_iterations = 1;
+  /// After the global iterations, follow the contour posterior between its discrete
+  /// positions with a smooth (C¹) interpolation of its log, so lines keep the sub-pixel
+  /// location of their contour; false: the papers' finite difference of the two
+  /// neighbouring positions, which snaps a straight edge to whole pixels.
+  bool subpixel_posterior = true;
   std::vector<int> scales = {6, 4, 2, 1};
   std::vector<double> standard_deviations = {15.0, 5.0, 3.5, 1.5};  ///< pixels; the noise estimate's ceiling
   NoiseParams noise = kRegionNoise;
@@ -71,9 +76,11 @@ struct DepthParams {
 struct TextureParams {
   std::string color_camera = "Camera1";
   std::string depth_camera = "Camera2";  ///< measured occlusions at keyframes; empty: none
-  std::string descriptor = "orb";        ///< orb, brisk, sift, akaze, freak, daisy
+  /// oriented_brief (icgp's own ORB-style extractor, a third of cv::ORB's time), orb,
+  /// brisk, sift, akaze, freak, daisy (docs/configuration.md).
+  std::string descriptor = "oriented_brief";
   int focused_image_size = 200;          ///< side of the rescaled detection crop, pixels
-  int orb_n_features = 300;              ///< also the detector of freak and daisy
+  int orb_n_features = 300;              ///< also oriented_brief's, and the detector of freak and daisy
   int orb_n_levels = 3;
   double orb_scale_factor = 1.2;
   int sift_n_octave_layers = 3;

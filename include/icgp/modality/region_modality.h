@@ -69,7 +69,22 @@ class RegionModality : public Modality {
   void count_line_pixels(const Frame& frame);
   /// Samples the line in scale space and fills its segment posteriors; false if it leaves the image.
   bool sample_segments(const cv::Mat& image, const ProjectedPoint& p, int scale, Line& line);
-  void compute_distribution(Line& line, float* distribution) const;
+  /// A line's pixels: whole steps along the dominant axis, the other coordinate in 16.16
+  /// fixed point (its integer part is the pixel's row or column).
+  static constexpr int kFixedBits = 16;
+  static constexpr float kFixedOne = 1 << kFixedBits;
+  struct PixelWalk {
+    const std::uint8_t* pixel;  ///< on the other axis' row or column 0
+    std::ptrdiff_t dom_step;
+    std::ptrdiff_t other_stride;
+    std::int32_t other, other_step;
+  };
+  /// segment_f_ of the n_segments_ · scale pixels of `walk`, for images of kChannels channels.
+  template <int kChannels>
+  void segment_posteriors(PixelWalk walk, int scale);
+  /// The line's contour posterior, its mean and variance, and its log when
+  /// `log_distribution` is not null.
+  void compute_distribution(Line& line, float* distribution, float* log_distribution) const;
   float line_position(const Line& line, const Posef& camera_T_body, const Intrinsics& k) const;
   void update_quality(const Frame& frame);
   /// σ_r, pixels, for correspondence iteration `corr_iter`.
@@ -95,8 +110,13 @@ class RegionModality : public Modality {
   ResidualNoise noise_;
   ViewOcclusions occlusions_;
   std::vector<float> distributions_;      ///< distribution_length per line
+  std::vector<float> log_distributions_;  ///< their logs, after the global iterations
   std::vector<float> segment_f_;          ///< scratch: segment foreground posteriors
   int n_considered_ = 0;
+  /// Of those, the lines the model's geometry allows at the current pose (projected in
+  /// front of the camera, foreground and background runs long enough): what the data may
+  /// confirm or contradict.
+  int n_measurable_ = 0;
   int last_corr_iter_ = 0;
   int frames_since_start_ = 0;
   ModalityQuality quality_;

@@ -15,9 +15,11 @@
 
 namespace icgp {
 
-/// The descriptor extractor called `name` (orb, brisk, sift, akaze, freak, daisy) set up
-/// with `params` (FREAK and DAISY are icgp::Freak / icgp::Daisy, which describe given
-/// keypoints only). Throws std::invalid_argument for an unknown name.
+/// The descriptor extractor called `name` (orb, brisk, sift, akaze, freak, daisy,
+/// oriented_brief) set up with `params` (FREAK and DAISY are icgp::Freak / icgp::Daisy,
+/// which describe given keypoints only; oriented_brief is icgp::OrientedBrief, which
+/// detects its own, orb_n_features of them). Throws std::invalid_argument for an unknown
+/// name.
 cv::Ptr<cv::Feature2D> make_descriptor(const std::string& name, const TextureParams& params = {});
 
 /// Detects keypoints and computes their descriptors in the focused crop of a colour image
@@ -38,7 +40,8 @@ class FeatureExtractor {
  private:
   cv::Ptr<cv::Feature2D> detector_, descriptor_;
   int size_;
-  cv::Mat crop_, grey_;
+  cv::Mat crop_;  ///< the colour cut-out or warp, before grey conversion
+  cv::Mat grey_;  ///< the focused grey image the detector reads (never shares crop_'s buffer)
   std::vector<cv::KeyPoint> keypoints_;
 };
 

@@ -17,7 +17,9 @@ namespace icgp {
 struct TrackerConfig {
   std::string preset = "default";  ///< the preset the configuration started from
   TrackerParams tracker;
-  std::vector<std::string> modalities = {"region", "depth"};
+  /// ICG+'s three cues. Texture abstains on objects without texture (too few keyframe
+  /// points, ModalityQuality::abstained) and depth where no depth is measured.
+  std::vector<std::string> modalities = {"region", "depth", "texture"};
   ViewpointModelParams region_model;
   ViewpointModelParams depth_model;
   RegionParams region;
@@ -35,8 +37,8 @@ struct TrackerConfig {
 /// other keys are read over it.
 ///  * "default": icgp's defaults, the reference parameters of ALGORITHMS.md with every
 ///    cue's noise estimated online from its residuals (the `noise` keys).
-///  * "icg_reference": the reference parameters with fixed noise schedules, the ICG/ICG+
-///    papers' behaviour.
+///  * "icg_reference": the reference parameters with fixed noise schedules, the discrete
+///    contour posterior and OpenCV's ORB: the ICG/ICG+ papers' behaviour.
 /// Throws std::invalid_argument naming an unknown preset and the known ones.
 TrackerConfig tracker_config_preset(const std::string& name);
 /// The preset names tracker_config_preset() knows, "default" first.
