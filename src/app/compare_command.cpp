@@ -43,13 +43,15 @@ struct CompareOptions {
   std::vector<std::string> modalities;
   std::string summary;
   int frames = 0;
+  int rounds = 3;
   SequenceOptions sequence_options;
 };
 
 struct CompareRow {
   std::string tracker;
   std::string config;
-  TrackingSummary summary;
+  TrackingSummary summary;       ///< errors of the first round; times over all rounds
+  std::vector<double> round_ms;  ///< each round's median time
 };
 
 std::string joined(const std::vector<std::string>& names) {
@@ -70,21 +72,34 @@ TrackingSummary summarise(const std::vector<Frame>& frames, const std::string& b
   return evaluation.summary();
 }
 
-void print_table(const std::vector<CompareRow>& rows, double reference_ms) {
+/// How many times faster a row is than the reference row, as the median over rounds of the
+/// ratio of their medians in the same round: a round's trackers run within seconds of each
+/// other, so they meet the same load from elsewhere on the machine.
+double speed_vs(const CompareRow& reference, const CompareRow& row) {
+  std::vector<double> ratios;
+  for (std::size_t r = 0; r < std::min(reference.round_ms.size(), row.round_ms.size()); ++r)
+    ratios.push_back(reference.round_ms[r] / row.round_ms[r]);
+  return ratios.empty() ? std::numeric_limits<double>::quiet_NaN() : median(ratios);
+}
+
+void print_table(const std::vector<CompareRow>& rows, const CompareRow* reference, int rounds) {
   std::printf("\n%-20s %-26s %8s %8s %9s %9s %10s %8s %14s\n", "tracker", "configuration", "mean mm", "max mm",
               "mean deg", "max deg", "median ms", "Hz", "speed vs ViSP");
   for (const CompareRow& row : rows) {
     const TrackingSummary& s = row.summary;
+    const double speed = reference ? speed_vs(*reference, row) : std::numeric_limits<double>::quiet_NaN();
     std::printf("%-20s %-26s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", row.tracker.c_str(), row.config.c_str(),
-                s.mean_t_mm, s.max_t_mm, s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, reference_ms / s.median_ms);
+                s.mean_t_mm, s.max_t_mm, s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, speed);
   }
   std::printf(
       "\n%s and %s run through the same ViSP-API code (grey image + organised point cloud);\n"
       "%s is icgp's tracker on the grey or colour image and the depth image, without the ViSP layer.\n"
-      "speed vs ViSP: median ms of %s '%s' / median ms of the row (> 1: faster).\n"
-      "Times are of the track() call alone, single thread (OpenMP and OpenCV limited to one);\n"
-      "compare them as ratios within one run: absolute values vary with the machine's load.\n",
-      kVispTracker.c_str(), kIcgTracker.c_str(), kCoreTracker.c_str(), kVispTracker.c_str(), kReferenceConfig.c_str());
+      "Times are of the track() call alone, single thread (OpenMP and OpenCV limited to one). Every tracker\n"
+      "ran %d rounds, in alternating order; median ms is the median over rounds of each round's median, and\n"
+      "speed vs ViSP the median over rounds of %s '%s''s median / the row's median in the same\n"
+      "round (> 1: faster). Absolute times vary with the machine's load; compare ratios.\n",
+      kVispTracker.c_str(), kIcgTracker.c_str(), kCoreTracker.c_str(), rounds, kVispTracker.c_str(),
+      kReferenceConfig.c_str());
 }
 
 void run_compare(const CompareOptions& o) {
@@ -141,46 +156,74 @@ void run_compare(const CompareOptions& o) {
 
   std::cerr << "vpMbIcgTracker generates its viewpoint models on first use (10-30 s on 2 cores); later runs read them "
                "from the cache\n";
-  std::vector<CompareRow> rows;
+  // Every tracker runs once per round, in reverse order every other round: load from
+  // elsewhere on the machine comes and goes over seconds, and is shared out between the
+  // trackers of a round. The poses are the same every round (the trackers are deterministic).
+  std::vector<std::optional<CompareRow>> results(jobs.size());
+  std::vector<std::vector<double>> icg_overheads;  // per round: vpMbIcgTracker's and the core's median
+  std::vector<bool> failed(jobs.size(), false);
   std::vector<std::string> failures;
   const SingleThreadScope single_thread;
-  for (std::size_t j = 0; j < jobs.size(); ++j) {
-    const std::string name = jobs[j].tracker + " " + jobs[j].config;
-    std::cerr << "[" << j + 1 << "/" << jobs.size() << "] " << name << " ..." << std::flush;
-    const auto begin = std::chrono::steady_clock::now();
-    // A tracker that cannot run (no EGL for model generation, say) must not cost the
-    // others' results: it is reported and the command fails at the end.
-    try {
-      rows.push_back({jobs[j].tracker, jobs[j].config, jobs[j].run()});
-    } catch (const std::exception& e) {
-      std::cerr << " failed: " << e.what() << "\n";
-      failures.push_back(name);
-      continue;
+  for (int round = 0; round < o.rounds; ++round) {
+    double icg_ms = std::numeric_limits<double>::quiet_NaN(), core_ms = icg_ms;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      const std::size_t j = round % 2 == 0 ? k : jobs.size() - 1 - k;
+      if (failed[j]) continue;
+      const std::string name = jobs[j].tracker + " " + jobs[j].config;
+      std::cerr << "[round " << round + 1 << "/" << o.rounds << ", " << k + 1 << "/" << jobs.size() << "] " << name
+                << " ..." << std::flush;
+      const auto begin = std::chrono::steady_clock::now();
+      // A tracker that cannot run (no EGL for model generation, say) must not cost the
+      // others' results: it is reported and the command fails at the end.
+      TrackingSummary summary;
+      try {
+        summary = jobs[j].run();
+      } catch (const std::exception& e) {
+        std::cerr << " failed: " << e.what() << "\n";
+        failures.push_back(name);
+        failed[j] = true;
+        continue;
+      }
+      if (!results[j]) results[j] = CompareRow{jobs[j].tracker, jobs[j].config, summary, {}};
+      results[j]->round_ms.push_back(summary.median_ms);
+      if (jobs[j].tracker == kIcgTracker) icg_ms = summary.median_ms;
+      if (jobs[j].tracker == kCoreTracker && jobs[j].config == icgp_name + kGreySuffix) core_ms = summary.median_ms;
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      std::fprintf(stderr, " %d frames in %.1f s (including set-up), median %.2f ms\n", n_frames, seconds,
+                   summary.median_ms);
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-    std::fprintf(stderr, " %d frames in %.1f s (including set-up)\n", n_frames, seconds);
+    if (std::isfinite(icg_ms) && std::isfinite(core_ms)) icg_overheads.push_back({icg_ms, core_ms});
   }
-
-  double reference_ms = std::numeric_limits<double>::quiet_NaN();
-  double core_ms = std::numeric_limits<double>::quiet_NaN();
-  for (const CompareRow& row : rows) {
-    if (row.tracker == kVispTracker && row.config == kReferenceConfig) reference_ms = row.summary.median_ms;
-    if (row.tracker == kCoreTracker && row.config == icgp_name + kGreySuffix) core_ms = row.summary.median_ms;
+  std::vector<CompareRow> rows;
+  const CompareRow* reference = nullptr;
+  for (std::optional<CompareRow>& row : results) {
+    if (!row) continue;
+    row->summary.median_ms = median(row->round_ms);
+    row->summary.hz = 1000.0 / row->summary.median_ms;
+    rows.push_back(std::move(*row));
   }
-  print_table(rows, reference_ms);
+  for (const CompareRow& row : rows)
+    if (row.tracker == kVispTracker && row.config == kReferenceConfig) reference = &row;
+  print_table(rows, reference, o.rounds);
 
   // The ViSP layer's cost: what vpMbIcgTracker::track() takes (reading ViSP's grey image and
-  // point cloud included) beyond icgp's Tracker::track on the same grey and depth images.
-  // Building the cloud is the caller's, the same for vpMbGenericTracker, and not counted.
-  // NaN (null in the summary) when either run failed.
-  const double track_ms = median(icg_run.track_ms);
-  const double overhead_percent = (track_ms - core_ms) / track_ms * 100.0;
+  // point cloud included) beyond icgp's Tracker::track on the same grey and depth images, in
+  // the same round. Building the cloud is the caller's, the same for vpMbGenericTracker,
+  // and not counted. NaN (null in the summary) when either run failed.
+  std::vector<double> overheads, icg_ms, core_ms;
+  for (const std::vector<double>& round : icg_overheads) {
+    overheads.push_back((round[0] - round[1]) / round[0] * 100.0);
+    icg_ms.push_back(round[0]);
+    core_ms.push_back(round[1]);
+  }
+  const double overhead_percent = overheads.empty() ? std::numeric_limits<double>::quiet_NaN() : median(overheads);
   if (std::isfinite(overhead_percent))
     std::printf(
         "\nViSP-layer overhead of vpMbIcgTracker: track() %.3f ms (point cloud read included) vs\n"
-        "icgp::Tracker::track %.3f ms on the same grey and depth images: %.1f%% of the frame time.\n"
-        "(Building the grey image and point cloud, the caller's work for either tracker: %.2f ms.)\n",
-        track_ms, core_ms, overhead_percent, median(icg_run.convert_ms));
+        "icgp::Tracker::track %.3f ms on the same grey and depth images: %.1f%% of the frame time\n"
+        "(median over rounds). Building the grey image and point cloud, the caller's work for either\n"
+        "tracker: %.2f ms.\n",
+        median(icg_ms), median(core_ms), overhead_percent, median(icg_run.convert_ms));
 
   if (!o.summary.empty()) {
     std::vector<JsonObject> json_rows;
@@ -217,6 +260,10 @@ void register_compare_command(CLI::App& app) {
   cmd->add_option("--summary", o->summary,
                   "Write the table as JSON: {\"rows\": [...], \"visp_layer_overhead_percent\": x}");
   cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
+  cmd->add_option("--rounds", o->rounds,
+                  "Run every tracker this many times, alternating the order, and time each by its fastest round")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
   cmd->callback([o] { run_compare(*o); });
 }

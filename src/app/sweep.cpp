@@ -13,7 +13,6 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
-#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <sstream>
 #include <visp3/core/vpException.h>
@@ -40,7 +39,7 @@ constexpr double kLostRotationDeg = 30.0;
 constexpr int kSequenceVersion = 1;
 
 const std::string kIcgpDefaults = "icgp defaults";
-const std::string kIcgpDefaultsTexture = "icgp defaults + texture";
+const std::string kIcgpRegionDepth = "icgp defaults, region + depth";
 const std::string kIcgReference = "icg_reference";
 const std::string kVispRgbd = "ViSP edge + KLT + dense depth";
 
@@ -48,7 +47,6 @@ struct SweepModel {
   std::string name;
   std::string mesh_path;
   std::vector<std::string> regions;  ///< colour-region meshes (multi-region tracking); empty: one region
-  bool textured = false;             ///< worth an extra row with the texture modality
 };
 
 struct DepthCondition {
@@ -91,16 +89,12 @@ struct SceneSettings {
 
 std::vector<SweepModel> sweep_models() {
   const std::string m = models_dir();
-  return {{"textured_box", m + "/textured_box/textured_box.obj", {}, true},
-          {"two_region",
-           m + "/two_region/object.obj",
-           {m + "/two_region/region_body.obj", m + "/two_region/region_lid.obj"},
-           false},
+  return {{"textured_box", m + "/textured_box/textured_box.obj", {}},
+          {"two_region", m + "/two_region/object.obj", {m + "/two_region/region_body.obj", m + "/two_region/region_lid.obj"}},
           {"labelled_can",
            m + "/labelled_can/object.obj",
-           {m + "/labelled_can/region_label.obj", m + "/labelled_can/region_caps.obj"},
-           true},
-          {"textureless_mug", m + "/textureless_mug/textureless_mug.obj", {}, false}};
+           {m + "/labelled_can/region_label.obj", m + "/labelled_can/region_caps.obj"}},
+          {"textureless_mug", m + "/textureless_mug/textureless_mug.obj", {}}};
 }
 
 std::vector<DepthCondition> depth_conditions() {
@@ -198,23 +192,13 @@ class SequenceCache {
   SceneSettings scene_;
 };
 
-std::vector<Frame> load_frames(const std::string& dir) {
-  const Sequence sequence = Sequence::open(dir);
+std::vector<Frame> load_frames(const std::string& dir, bool grey_without_depth) {
+  SequenceOptions options;
+  options.grey_without_depth = grey_without_depth;
+  const Sequence sequence = Sequence::open(dir, options);
   std::vector<Frame> frames;
   for (int i = 0; i < sequence.size(); ++i) frames.push_back(sequence.load(i));
   return frames;
-}
-
-/// The frames as a grey camera without depth gives them.
-void make_grey_without_depth(std::vector<Frame>& frames) {
-  for (Frame& frame : frames) {
-    for (ColorImage& color : frame.colors) {
-      cv::Mat grey;
-      cv::cvtColor(color.image, grey, cv::COLOR_BGR2GRAY);
-      color.image = grey;
-    }
-    frame.depths.clear();
-  }
 }
 
 int lost_frames(const TrackingEvaluation& evaluation) {
@@ -239,18 +223,16 @@ class CellTrackers {
     const SweepModel& m = *cell.model;
     std::vector<Job> jobs;
     if (cell.grey) {
-      jobs.push_back(icgp_job(kIcgpDefaults + " (region)", icgp_config("default", m, {"region"})));
-      jobs.push_back(icgp_job(kIcgReference + " (region)", icgp_config("icg_reference", m, {"region"})));
+      // Without a depth camera, the presets' colour cues.
+      jobs.push_back(icgp_job(kIcgpDefaults + " (region + texture)", icgp_config("default", m, {"region", "texture"})));
+      jobs.push_back(
+          icgp_job(kIcgReference + " (region + texture)", icgp_config("icg_reference", m, {"region", "texture"})));
       jobs.push_back(visp_job("ViSP edge", {"edge (no depth)", true, false, false}, m));
       jobs.push_back(visp_job("ViSP edge + KLT", visp_reference_configuration("edge + KLT (no depth)"), m));
       return jobs;
     }
     jobs.push_back(icgp_job(kIcgpDefaults, icgp_config("default", m, {})));
-    if (m.textured) {
-      TrackerConfig with_texture = icgp_config("default", m, {});
-      with_texture.modalities.push_back("texture");
-      jobs.push_back(icgp_job(kIcgpDefaultsTexture, with_texture));
-    }
+    jobs.push_back(icgp_job(kIcgpRegionDepth, icgp_config("default", m, {"region", "depth"})));
     jobs.push_back(icgp_job(kIcgReference, icgp_config("icg_reference", m, {})));
     jobs.push_back(visp_job(kVispRgbd, visp_reference_configuration("edge + KLT + dense depth"), m));
     return jobs;
@@ -378,12 +360,11 @@ std::string shell_quote(const std::string& text) {
 }
 
 /// Mean translation error over all frames of the models, against the depth condition: one
-/// panel per image condition, one line per RGB-D tracker (the texture row is left out: it
-/// exists for the textured models only, so its mean would be over other objects).
+/// panel per image condition, one line per RGB-D tracker.
 void plot_sweep(const std::vector<SweepRow>& rows, const fs::path& script, const std::string& png) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     throw std::runtime_error("gnuplot is not installed: cannot draw " + png);
-  const std::vector<std::string> trackers = {kIcgpDefaults, kIcgReference, kVispRgbd};
+  const std::vector<std::string> trackers = {kIcgpDefaults, kIcgpRegionDepth, kIcgReference, kVispRgbd};
   const std::vector<DepthCondition> depths = depth_conditions();
   std::vector<std::string> images;
   for (const ImageCondition& image : image_conditions())
@@ -463,8 +444,7 @@ void run_sweep(const SweepOptions& options) {
   SweepProgress progress(cells.size());
   std::vector<SweepRow> rows;
   for (const SweepCell& cell : cells) {
-    std::vector<Frame> frames = load_frames(cache.folder(cell));
-    if (cell.grey) make_grey_without_depth(frames);
+    const std::vector<Frame> frames = load_frames(cache.folder(cell), cell.grey);
     const Mesh mesh = load_any_mesh(cell.model->mesh_path);
     for (const CellTrackers::Job& job : trackers.jobs(cell)) {
       const SingleThreadScope single_thread;

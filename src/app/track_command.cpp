@@ -2,6 +2,7 @@
 // `icgp track`: runs the tracker over an RGB-D sequence from a known first pose, prints
 // per-frame errors, quality and time, and writes the summary, a per-frame CSV and an
 // overlay video on request.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -62,15 +63,16 @@ std::string frame_line(const FrameEvaluation& e) {
   return line;
 }
 
-/// The standard deviation each cue was weighed with in the frame's last iteration.
-std::string noise_columns(const BodyResult& result) {
+/// Each cue's score and the standard deviation it was weighed with in the frame's last
+/// iteration, "score/sigma", or "no-data" for a cue that abstained.
+std::string cue_columns(const BodyResult& result) {
   std::string text;
-  char value[32];
+  char value[48];
   for (const ModalityQuality& q : result.modalities) {
     if (q.abstained)
       std::snprintf(value, sizeof value, "%sno-data", text.empty() ? "" : " ");
     else
-      std::snprintf(value, sizeof value, "%s%.3g", text.empty() ? "" : " ", q.sigma);
+      std::snprintf(value, sizeof value, "%s%.2f/%.3g", text.empty() ? "" : " ", q.score, q.sigma);
     text += value;
   }
   return text;
@@ -107,6 +109,13 @@ void run_track(const TrackOptions& o) {
 
   TrackerConfig config = sequence_tracker_config(o.config, o.sequence);
   if (!o.modalities.empty()) config.modalities = o.modalities;
+  if (o.sequence_options.grey_without_depth) {
+    // Without a depth camera the depth cue has nothing to read: the other cues track.
+    config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), "depth"),
+                            config.modalities.end());
+    if (config.modalities.empty())
+      throw std::runtime_error("--grey-without-depth leaves no modality: the configuration has only depth");
+  }
 
   const Frame first = sequence.load(0);
   Pose initial_pose;
@@ -131,7 +140,7 @@ void run_track(const TrackOptions& o) {
   if (!o.video.empty()) video.emplace(o.video, mesh, sequence.frame_rate());
 
   if (!o.quiet)
-    std::printf("\nframe      t mm    r deg  quality  tracked       ms  cue sigma (px; depth: m at 1 m)\n");
+    std::printf("\nframe      t mm    r deg  quality  tracked       ms  cue score/sigma (px; depth: m at 1 m)\n");
   const SingleThreadScope single_thread;
   tracker.start(first, initial_pose);
   for (int i = 0; i < sequence.size(); ++i) {
@@ -141,7 +150,7 @@ void run_track(const TrackOptions& o) {
     const std::optional<Pose> truth = truth_of(frame, body);
     const FrameEvaluation& e =
         evaluation.add(frame.index, result.reference_T_body, truth, result.tracked, ms, result.quality);
-    if (!o.quiet) std::cout << frame_line(e) << "  " << noise_columns(result) << "\n";
+    if (!o.quiet) std::cout << frame_line(e) << "  " << cue_columns(result) << "\n";
     if (video) video->write(frame.colors.at(0), result.reference_T_body, truth ? &*truth : nullptr, caption(e));
   }
 
@@ -184,6 +193,9 @@ void register_track_command(CLI::App& app) {
                   "ViSP XML with the depth camera (default: <colour>_depth.xml)")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
+  cmd->add_flag("--grey-without-depth", o->sequence_options.grey_without_depth,
+                "Track as a monocular grey camera: colour frames converted to grey, no depth (the depth modality is "
+                "left out)");
   cmd->add_flag("--quiet", o->quiet, "Print only the summary");
   cmd->callback([o] { run_track(*o); });
 }

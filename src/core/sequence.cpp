@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -595,6 +596,7 @@ Sequence Sequence::open(const std::string& dir_name, const SequenceOptions& opti
   s.frame_count_ = d.frame_count;
   s.frame_rate_ = d.frame_rate;
   s.max_depth_ = options.max_depth;
+  s.grey_without_depth_ = options.grey_without_depth;
   s.color_intrinsics_ = d.color_intrinsics;
   s.depth_intrinsics_ = d.depth_intrinsics;
   s.depth_T_color_ = d.depth_T_color;
@@ -617,7 +619,10 @@ Frame Sequence::load(int index) const {
   color.intrinsics = color_intrinsics_;
   color.image = read_color_image(files_->color_file(index));
   check_size(color.image, color_intrinsics_, files_->color_file(index), "colour image", files_->size_origin());
+  if (grey_without_depth_) cv::cvtColor(color.image, color.image, cv::COLOR_BGR2GRAY);
   frame.colors.push_back(std::move(color));
+  frame.ground_truth = files_->read_ground_truth(index);
+  if (grey_without_depth_) return frame;
 
   DepthImage depth;
   depth.camera = "Camera2";
@@ -627,8 +632,6 @@ Frame Sequence::load(int index) const {
   check_size(depth.depth, depth_intrinsics_, files_->depth_file(index), "depth image", files_->size_origin());
   clear_invalid_depth(depth.depth, max_depth_);
   frame.depths.push_back(std::move(depth));
-
-  frame.ground_truth = files_->read_ground_truth(index);
   return frame;
 }
 

@@ -30,7 +30,7 @@ endforeach()
 
 file(READ "${OUT}/summary.json" json)
 string(JSON rows LENGTH "${json}" rows)
-# Quick cells: exact/sharp and kinect/motion-blurred (icgp defaults, + texture,
+# Quick cells: exact/sharp and kinect/motion-blurred (icgp defaults, its region + depth,
 # icg_reference, ViSP) and the grey cell (two icgp and two ViSP rows).
 if(NOT rows EQUAL 12)
   message(FATAL_ERROR "expected 12 rows, got ${rows}:\n${json}")

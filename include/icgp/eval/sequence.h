@@ -27,6 +27,9 @@ struct SequenceOptions {
   bool blender_principal_point = false;
   /// Frames per second for layouts that do not record it (the ViSP ones).
   double frame_rate = 30.0;
+  /// Load frames as a monocular grey camera gives them: the colour image converted to grey
+  /// and no depth camera (ViSP's classic model-based set-up, without depth).
+  bool grey_without_depth = false;
 };
 
 /// An object of a sequence: the name its ground truth is stored under and, when known,
@@ -90,6 +93,7 @@ class Sequence {
   int frame_count_ = 0;
   double frame_rate_ = 0.0;
   double max_depth_ = 0.0;
+  bool grey_without_depth_ = false;
   Intrinsics color_intrinsics_;
   Intrinsics depth_intrinsics_;
   Pose depth_T_color_;
