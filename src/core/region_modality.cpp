@@ -256,17 +256,24 @@ void RegionModality::correspondences(const Frame& frame, int corr_iter) {
   };
   collect(true);
   if (static_cast<int>(lines_.size()) < params_.min_n_unoccluded_lines) collect(false);
-  estimate_noise(pose);
+  weigh_lines(pose, corr_iter);
   last_corr_iter_ = corr_iter;
 }
 
-void RegionModality::estimate_noise(const Posef& camera_T_body) {
+float RegionModality::normalised_residual(const Line& line, const Posef& camera_T_body) const {
+  const float pixels = (line_position(line, camera_T_body, intrinsics_) - line.mean) / line.normal_factor;
+  return pixels * std::sqrt(min_variance_ / line.variance);
+}
+
+void RegionModality::weigh_lines(const Posef& camera_T_body, int corr_iter) {
   noise_.estimate([&](auto add) {
-    for (const Line& line : lines_) {
-      const float pixels = (line_position(line, camera_T_body, intrinsics_) - line.mean) / line.normal_factor;
-      add(pixels * std::sqrt(min_variance_ / line.variance));
-    }
+    for (const Line& line : lines_) add(normalised_residual(line, camera_T_body));
   });
+  // Robust weights, fixed for this pass's updates (iteratively reweighted): a line whose
+  // contour lies far beyond the others' scatter, such as a background of the object's
+  // colour, must not pull the pose.
+  const double scale = noise_.scale(iteration_value(params_.standard_deviations, corr_iter));
+  for (Line& line : lines_) line.weight = noise_.weight(normalised_residual(line, camera_T_body), scale);
 }
 
 double RegionModality::sigma(int corr_iter) const {
@@ -312,7 +319,7 @@ void RegionModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H)
     const Eigen::Vector3f v = R_t * a;
     Eigen::Matrix<float, 6, 1> J;
     J << line.body_point.cross(v), v;
-    const float weight = min_variance_ / (line.normal_factor * line.normal_factor * sigma_r * sigma_r);
+    const float weight = line.weight * min_variance_ / (line.normal_factor * line.normal_factor * sigma_r * sigma_r);
     g_sum += (weight * dloglikelihood) * J;
     H_sum.noalias() -= (weight / line.variance) * J * J.transpose();
   }
@@ -332,7 +339,7 @@ double RegionModality::log_likelihood(int corr_iter) const {
     const Line& line = lines_[l];
     const Eigen::Vector2d x = intrinsics_.project<double>(pose * line.body_point.cast<double>());
     const double delta = line.normal_factor * (line.normal.cast<double>().dot(x - line.centre.cast<double>()) - line.delta_r);
-    const double weight = min_variance_ / (line.normal_factor * line.normal_factor * sigma_r * sigma_r);
+    const double weight = line.weight * min_variance_ / (line.normal_factor * line.normal_factor * sigma_r * sigma_r);
     if (corr_iter < params_.n_global_iterations) {
       sum -= weight * 0.5 * (delta - line.mean) * (delta - line.mean) / line.variance;
       continue;
@@ -348,13 +355,13 @@ double RegionModality::log_likelihood(int corr_iter) const {
 
 void RegionModality::append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const {
   // Distance of the projected contour from the most likely contour location along the
-  // line, in pixels; the weight is the line's confidence σ_min² / σ_d².
+  // line, in pixels; the weight is the line's confidence σ_min² / σ_d² times its robust weight.
   const Pose pose = camera_T_reference_.cast<double>() * body().reference_T_body;
   for (const Line& line : lines_) {
     const Eigen::Vector2d x = intrinsics_.project<double>(pose * line.body_point.cast<double>());
     const double delta = line.normal_factor * (line.normal.cast<double>().dot(x - line.centre.cast<double>()) - line.delta_r);
     residuals.push_back((delta - line.mean) / line.normal_factor);
-    weights.push_back(min_variance_ / line.variance);
+    weights.push_back(line.weight * min_variance_ / line.variance);
   }
 }
 

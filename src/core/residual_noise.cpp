@@ -8,7 +8,8 @@ namespace icgp {
 
 void ResidualNoise::estimate_from_residuals() {
   estimate_ = -1.0;
-  if (!params_.estimate || static_cast<int>(residuals_.size()) < std::max(1, params_.min_residuals)) return;
+  if (!(params_.estimate || params_.robust) || static_cast<int>(residuals_.size()) < std::max(1, params_.min_residuals))
+    return;
   for (float& r : residuals_) r = std::abs(r);
   const auto middle = residuals_.begin() + static_cast<std::ptrdiff_t>(residuals_.size() / 2);
   std::nth_element(residuals_.begin(), middle, residuals_.end());
@@ -16,7 +17,9 @@ void ResidualNoise::estimate_from_residuals() {
   if (std::isfinite(*middle)) estimate_ = 1.4826 * static_cast<double>(*middle);
 }
 
-double ResidualNoise::sigma(double scheduled) const {
+double ResidualNoise::sigma(double scheduled) const { return params_.estimate ? scale(scheduled) : scheduled; }
+
+double ResidualNoise::scale(double scheduled) const {
   if (estimate_ < 0.0) return scheduled;
   return std::min(scheduled, std::max(params_.floor, estimate_));
 }

@@ -177,6 +177,7 @@ const Fields<ViewpointModelParams> kModelFields = {
 
 const Fields<NoiseParams> kNoiseFields = {
     field("estimate", &NoiseParams::estimate, kBool),
+    field("robust", &NoiseParams::robust, kBool),
     field("floor", &NoiseParams::floor, kNonNegative),
     field("min_residuals", &NoiseParams::min_residuals, kPositiveInt),
     field("tukey_constant", &NoiseParams::tukey_constant, kPositive),
@@ -310,7 +311,8 @@ TrackerConfig tracker_config_preset(const std::string& name) {
   TrackerConfig config;
   config.preset = name;
   if (name == "icg_reference") {
-    for (NoiseParams* noise : {&config.region.noise, &config.depth.noise, &config.texture.noise}) noise->estimate = false;
+    for (NoiseParams* noise : {&config.region.noise, &config.depth.noise, &config.texture.noise})
+      noise->estimate = noise->robust = false;
     config.region.subpixel_posterior = false;
     config.texture.descriptor = "orb";
   }

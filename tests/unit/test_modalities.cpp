@@ -361,3 +361,70 @@ TEST_CASE("tracker: a glint in the depth on a quarter of the object leaves the p
   CHECK(fused.r_deg() < 0.5);
   CHECK(results[0].tracked);
 }
+
+TEST_CASE("region modality: clutter of the object's colours beside part of its contour leaves the pose to the rest") {
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
+  const Frame clean = scene.render(f.truth);
+  // The object's silhouette in the colour camera (the clutter plane is 0.3 m behind it).
+  const cv::Mat depth = scene.renderer().render(f.color_k, Pose(), kRenderDepth).depth;
+  const cv::Mat object = (depth > 0.f) & (depth < f.truth.translation().z() + 0.2);
+  // Beside a stretch of the silhouette's left side, 6 px of background take the object's
+  // colours, mirrored across its edge: there the contour seems 6 px further out.
+  const cv::Rect box = cv::boundingRect(object);
+  Frame cluttered = clean;
+  cluttered.colors[0].image = clean.colors[0].image.clone();
+  cv::Mat& image = cluttered.colors[0].image;
+  int n_clutter = 0;
+  for (int row = box.y + box.height / 4; row < box.y + box.height / 2; ++row)
+    for (int col = std::max(0, box.x - 6); col < box.x + box.width / 2; ++col) {
+      if (object.at<std::uint8_t>(row, col)) break;  // the edge: only the 6 px before it
+      const int edge = col + 6 < image.cols && object.at<std::uint8_t>(row, col + 6) ? col + 6 : -1;
+      for (int e = col + 1; e <= col + 6 && edge < 0 && e < image.cols; ++e)
+        if (object.at<std::uint8_t>(row, e)) {
+          image.at<cv::Vec3b>(row, col) = image.at<cv::Vec3b>(row, std::min(image.cols - 1, 2 * e - col));
+          ++n_clutter;
+          break;
+        }
+      if (edge >= 0) {
+        image.at<cv::Vec3b>(row, col) = image.at<cv::Vec3b>(row, std::min(image.cols - 1, 2 * edge - col));
+        ++n_clutter;
+      }
+    }
+  REQUIRE(n_clutter > 100);
+
+  // At the true pose, in the last (one-pixel) correspondence pass: the lines that see the
+  // contour beside the clutter are far beyond the others' scatter, and get no weight.
+  auto lines_at_truth = [&](bool robust, std::vector<double>& residuals, std::vector<double>& weights) {
+    Body body{"box", f.mesh, f.truth};
+    RegionParams params;
+    params.noise.robust = robust;
+    RegionModality region(body, f.region_model, params);
+    region.start(clean);
+    region.correspondences(cluttered, 3);
+    region.append_residuals(residuals, weights);
+  };
+  std::vector<double> residuals, weights, plain_residuals, plain_weights;
+  lines_at_truth(true, residuals, weights);
+  lines_at_truth(false, plain_residuals, plain_weights);
+  REQUIRE(residuals == plain_residuals);
+  int n_far = 0, n_near = 0;
+  double far_weight = 0.0, plain_far_weight = 0.0, near_weight = 0.0, plain_near_weight = 0.0;
+  for (std::size_t i = 0; i < residuals.size(); ++i) {
+    if (std::abs(residuals[i]) > 4.0) {
+      ++n_far;
+      far_weight += weights[i];
+      plain_far_weight += plain_weights[i];
+    } else if (std::abs(residuals[i]) < 1.0) {
+      ++n_near;
+      near_weight += weights[i];
+      plain_near_weight += plain_weights[i];
+    }
+  }
+  INFO(n_far << " lines beyond 4 px: weight " << far_weight << " (without robust weights " << plain_far_weight << "); "
+             << n_near << " within 1 px: " << near_weight << " (" << plain_near_weight << ")");
+  CHECK(n_far >= 5);
+  CHECK(n_near > 5 * n_far);
+  CHECK(far_weight < 0.02 * plain_far_weight);
+  CHECK(near_weight > 0.5 * plain_near_weight);
+}

@@ -84,13 +84,33 @@ TEST_CASE("residual noise: the standard deviation used is the estimate within [f
 
 TEST_CASE("residual noise: switched off, the schedule and plain least squares") {
   NoiseParams params;
-  params.estimate = false;
+  params.estimate = params.robust = false;
   ResidualNoise noise(params);
   std::vector<float> r = gaussian(1000, 0.1, 8);
   estimate(noise, r);
+  CHECK(noise.estimated() < 0.0);  // nothing asked for an estimate
   CHECK(noise.sigma(2.0) == 2.0);
   CHECK(noise.weight(50.f, 2.0) == 1.f);
   CHECK(noise.loss(3.0) == Approx(4.5));
+}
+
+TEST_CASE("residual noise: robust weights on the measured scale while the schedule weighs the cue") {
+  NoiseParams params;
+  params.estimate = false;
+  params.floor = 0.05;
+  params.min_residuals = 10;
+  ResidualNoise noise(params);
+  std::vector<float> r = gaussian(1000, 0.1, 9);
+  estimate(noise, r);
+  CHECK(noise.sigma(2.0) == 2.0);                          // the schedule weighs the cue
+  CHECK(noise.scale(2.0) == Approx(noise.estimated()));    // the residuals' own scatter
+  CHECK(noise.scale(2.0) == Approx(0.1).epsilon(0.1));
+  const double c = params.tukey_constant, scale = noise.scale(2.0);
+  CHECK(noise.weight(static_cast<float>(0.5 * scale), scale) > 0.9f);
+  CHECK(noise.weight(static_cast<float>(1.01 * c * scale), scale) == 0.f);  // an outlier of the scatter
+  std::vector<float> tiny = gaussian(1000, 1e-3, 10);
+  estimate(noise, tiny);
+  CHECK(noise.scale(2.0) == 0.05);  // the floor
 }
 
 TEST_CASE("residual noise: Tukey's weight is the derivative of its loss over the residual") {

@@ -72,25 +72,38 @@ TEST_CASE("texture modality: keyframe points lie on the box and project onto the
 
 TEST_CASE("texture modality: matches recover a known image-plane shift") {
   Scene s;
-  Body body{"box", s.mesh, s.truth};
-  TextureModality texture(body, {});
-  texture.start(s.renderer.render(s.truth));
-  // 5 px to the right and 3 px down at the object's depth.
-  const double z = s.truth.translation().z();
-  const Eigen::Vector2d shift_px(5.0, 3.0);
-  const Pose shifted(s.truth.rotation(), s.truth.translation() + Eigen::Vector3d(shift_px.x() * z / s.color_k.fu,
-                                                                                  shift_px.y() * z / s.color_k.fv, 0.0));
-  texture.correspondences(s.renderer.render(shifted), 0);
-  REQUIRE(texture.matches().size() >= 30);
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const TextureModality::Match& m : texture.matches()) {
-    const cv::Point2f& before = texture.keyframe().image_points[m.keyframe_index];
-    mean += (m.image_point.cast<double>() - Eigen::Vector2d(before.x, before.y));
+  for (const char* descriptor : {"oriented_brief", "orb"}) {
+    INFO(descriptor);
+    Body body{"box", s.mesh, s.truth};
+    TextureParams params;
+    params.descriptor = descriptor;
+    TextureModality texture(body, params);
+    texture.start(s.renderer.render(s.truth));
+    // 5 px to the right and 3 px down at the object's depth.
+    const double z = s.truth.translation().z();
+    const Eigen::Vector2d shift_px(5.0, 3.0);
+    const Pose shifted(s.truth.rotation(), s.truth.translation() + Eigen::Vector3d(shift_px.x() * z / s.color_k.fu,
+                                                                                    shift_px.y() * z / s.color_k.fv, 0.0));
+    texture.correspondences(s.renderer.render(shifted), 0);
+    REQUIRE(texture.matches().size() >= 30);
+    // The matches that agree with the shift to within 1.5 px (keypoints sit on a 200 px
+    // crop's grid, about 0.7 px here), and their mean displacement. The others pair
+    // look-alike places of the print (stripes, checks); the Tukey norm leaves them out.
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    int n_agree = 0;
+    for (const TextureModality::Match& m : texture.matches()) {
+      const cv::Point2f& before = texture.keyframe().image_points[m.keyframe_index];
+      const Eigen::Vector2d moved = m.image_point.cast<double>() - Eigen::Vector2d(before.x, before.y);
+      if ((moved - shift_px).norm() > 1.5) continue;
+      mean += moved;
+      ++n_agree;
+    }
+    mean /= std::max(1, n_agree);
+    INFO(texture.matches().size() << " matches of " << texture.keyframe().body_points.size() << " keyframe points, "
+                                  << n_agree << " agree with the shift, their mean displacement " << mean.transpose());
+    CHECK(n_agree >= 0.6 * texture.matches().size());
+    CHECK((mean - shift_px).norm() < 0.25);
   }
-  mean /= static_cast<double>(texture.matches().size());
-  INFO(texture.matches().size() << " matches of " << texture.keyframe().body_points.size()
-                                << " keyframe points, mean displacement " << mean.transpose());
-  CHECK((mean - shift_px).norm() < 0.5);
 }
 
 TEST_CASE("texture modality: gradient is the derivative of its log-likelihood") {

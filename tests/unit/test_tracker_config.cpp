@@ -91,6 +91,7 @@ region:
   standard_deviations: [20.0, 2.0]
   noise:
     estimate: true
+    robust: false
     floor: 0.2
     min_residuals: 30
     tukey_constant: 3.0
@@ -112,6 +113,7 @@ depth:
   standard_deviations: [0.04]
   noise:
     estimate: false
+    robust: false
     floor: 0.001
     min_residuals: 10
     tukey_constant: 6.0
@@ -140,6 +142,7 @@ texture:
   standard_deviations: [10.0, 10.0, 3.0]
   noise:
     estimate: false
+    robust: true
     floor: 1.0
     min_residuals: 8
     tukey_constant: 2.0
@@ -202,6 +205,9 @@ TEST_CASE("tracker config: presets") {
   CHECK(defaults.depth.noise.estimate);
   CHECK(defaults.texture.noise.estimate);
   CHECK_FALSE(defaults.region.noise.estimate);
+  CHECK(defaults.region.noise.robust);
+  CHECK(defaults.depth.noise.robust);
+  CHECK_FALSE(defaults.texture.noise.robust);  // the papers' Tukey norm of its own
   CHECK(defaults.region.subpixel_posterior);
   CHECK(defaults.texture.descriptor == "oriented_brief");
 
@@ -211,11 +217,14 @@ TEST_CASE("tracker config: presets") {
   CHECK_FALSE(reference.region.noise.estimate);
   CHECK_FALSE(reference.depth.noise.estimate);
   CHECK_FALSE(reference.texture.noise.estimate);
+  CHECK_FALSE(reference.region.noise.robust);
+  CHECK_FALSE(reference.depth.noise.robust);
   CHECK_FALSE(reference.region.subpixel_posterior);
   CHECK(reference.texture.descriptor == "orb");
   auto expected = flatten_yaml(to_yaml(defaults));
   expected["preset"] = "icg_reference";
   expected["depth.noise.estimate"] = expected["texture.noise.estimate"] = "false";
+  expected["region.noise.robust"] = expected["depth.noise.robust"] = "false";
   expected["region.subpixel_posterior"] = "false";
   expected["texture.descriptor"] = "orb";
   CHECK(flatten_yaml(to_yaml(reference)) == expected);

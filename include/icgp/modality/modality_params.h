@@ -12,16 +12,19 @@
 namespace icgp {
 
 /// Noise estimation per cue (ResidualNoise; docs/accuracy.md has the measurements).
-/// Region: off. Its residuals share a common contour offset (antialiased or blurred edges
-/// dilate the silhouette), so their scatter is small while their error is not; trusting
-/// that scatter made the region's bias decide the pose. Its schedule stays in charge.
-inline constexpr NoiseParams kRegionNoise{false, 1.5};
+/// Region: σ from the schedule. Its residuals share a common contour offset (antialiased or
+/// blurred edges dilate the silhouette), so their scatter is small while their error is
+/// not; trusting that scatter made the region's bias decide the pose. Robust weights on
+/// that scatter, though: a line whose contour lies far beyond the others' (clutter of the
+/// object's colour, colour noise) is wrong, not precise. Floor 0.5 px, the pixel grid's.
+inline constexpr NoiseParams kRegionNoise{false, true, 0.5};
 /// Depth: floor 0.1 mm at 1 m. Exact synthetic depth fits the model to micrometres; the
 /// floor keeps the depth Hessian within float range of the others, so directions depth
 /// cannot see (sliding along a face) are still decided by the other cues.
-inline constexpr NoiseParams kDepthNoise{true, 1e-4};
+inline constexpr NoiseParams kDepthNoise{true, true, 1e-4};
 /// Texture: floor 0.5 px, about the keypoint localisation of the 200 px detection crop.
-inline constexpr NoiseParams kTextureNoise{true, 0.5};
+/// Its robust weights are the papers' Tukey norm (TextureParams::tukey_norm_constant).
+inline constexpr NoiseParams kTextureNoise{true, false, 0.5};
 
 /// Parameters of the region modality (ALGORITHMS.md §4, §7) with the reference defaults.
 /// Iteration-indexed lists use entry corr_iter, and their last entry afterwards.

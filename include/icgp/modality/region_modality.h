@@ -59,6 +59,7 @@ class RegionModality : public Modality {
     float normal_factor;  ///< n̄ = |n_dominant| / scale: pixels along the normal -> segments
     float mean;           ///< μ of the contour-location distribution (segments)
     float variance;       ///< σ_d², clamped below by σ_min²
+    float weight = 1.f;   ///< robust weight of this correspondence pass (ResidualNoise::weight)
   };
 
   const ColorImage& color_image(const Frame& frame) const;
@@ -89,7 +90,12 @@ class RegionModality : public Modality {
   void update_quality(const Frame& frame);
   /// σ_r, pixels, for correspondence iteration `corr_iter`.
   double sigma(int corr_iter) const;
-  void estimate_noise(const Posef& camera_T_body);
+  /// The line's residual (projected contour minus most likely contour location) in pixels,
+  /// scaled by σ_min/σ_d: in units of σ_r for every line.
+  float normalised_residual(const Line& line, const Posef& camera_T_body) const;
+  /// Estimates the lines' noise and sets their robust weights for correspondence iteration
+  /// `corr_iter` (ResidualNoise).
+  void weigh_lines(const Posef& camera_T_body, int corr_iter);
   Posef camera_T_body(const ColorImage& image) const;
 
   std::shared_ptr<const ViewpointModel> model_;

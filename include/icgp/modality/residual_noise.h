@@ -11,15 +11,19 @@ namespace icgp {
 struct NoiseParams {
   /// false: the fixed `standard_deviations` schedule alone, as the ICG papers do.
   bool estimate = true;
+  /// Tukey weights on the residuals, in units of their robust scale (the estimate clamped
+  /// like the standard deviation, whether or not `estimate` lets it weigh the cue): a few
+  /// wrong correspondences then cannot pull the pose, however far off they are.
+  bool robust = true;
   /// The smallest standard deviation ever used: what the cue's model itself cannot resolve
   /// (the viewpoint model's sampling, the pixel grid), however well the data fits.
   double floor = 0.0;
   /// Below this many residuals an estimate is not trusted: the schedule's value is used.
   int min_residuals = 20;
-  /// Tukey's constant c, in standard deviations, of the robust weights of cues that use
-  /// them (depth): a residual beyond c·σ gets weight 0. With σ estimated, trust grows as the
-  /// residuals shrink, and a few wrong correspondences would otherwise grow with it.
-  /// 4.685 gives 95 % of least squares' efficiency on Gaussian residuals.
+  /// Tukey's constant c of the robust weights: a residual beyond c times the scale gets
+  /// weight 0. With σ estimated, trust grows as the residuals shrink, and a few wrong
+  /// correspondences would otherwise grow with it. 4.685 gives 95 % of least squares'
+  /// efficiency on Gaussian residuals.
   double tukey_constant = 4.685;
 };
 
@@ -37,32 +41,36 @@ class ResidualNoise {
   explicit ResidualNoise(NoiseParams params = {}) : params_(params) {}
 
   /// Estimates the scale of the residuals `collect` hands to the function it is given, each
-  /// already divided by its own nominal relative standard deviation. With estimation off
-  /// `collect` is not called, so a cue that keeps its schedule computes no residuals. Too
-  /// few residuals leave no estimate.
+  /// already divided by its own nominal relative standard deviation. With neither
+  /// estimation nor robust weights `collect` is not called, so a cue that keeps its
+  /// schedule computes no residuals. Too few residuals leave no estimate.
   template <typename Collect>
   void estimate(Collect&& collect) {
     residuals_.clear();
-    if (params_.estimate) collect([this](float u) { residuals_.push_back(u); });
+    if (params_.estimate || params_.robust) collect([this](float u) { residuals_.push_back(u); });
     estimate_from_residuals();
   }
   /// Forgets the estimate: sigma() gives the schedule's values again.
   void reset() { estimate_ = -1.0; }
 
-  /// The standard deviation to use where the schedule gives `scheduled`.
+  /// The standard deviation to use where the schedule gives `scheduled`: the schedule's
+  /// without estimation.
   double sigma(double scheduled) const;
-  /// Tukey's weight (1 − (u/cσ)²)² of a normalised residual `u` for the standard deviation
-  /// `sigma`; 1 when estimation is off (the reference behaviour).
-  float weight(float u, double sigma) const {
-    if (!params_.estimate) return 1.f;
-    const float x = u / static_cast<float>(params_.tukey_constant * sigma);
+  /// The residuals' robust scale where the schedule gives `scheduled`: the estimate clamped
+  /// to [floor, scheduled], or `scheduled` without an estimate.
+  double scale(double scheduled) const;
+  /// Tukey's weight (1 − (u/(c·scale))²)² of a normalised residual `u`; 1 without robust
+  /// weights (the reference behaviour).
+  float weight(float u, double scale) const {
+    if (!params_.robust) return 1.f;
+    const float x = u / static_cast<float>(params_.tukey_constant * scale);
     const float t = 1.f - x * x;
     return t > 0.f ? t * t : 0.f;
   }
-  /// The loss whose derivative weight() gives, of a residual in standard deviations `x`:
-  /// Tukey's ρ(x) = c²/6·(1 − (1 − (x/c)²)³), c²/6 beyond c; x²/2 when estimation is off.
+  /// The loss whose derivative weight() gives, of a residual in units of the scale `x`:
+  /// Tukey's ρ(x) = c²/6·(1 − (1 − (x/c)²)³), c²/6 beyond c; x²/2 without robust weights.
   double loss(double x) const {
-    if (!params_.estimate) return 0.5 * x * x;
+    if (!params_.robust) return 0.5 * x * x;
     const double c2 = params_.tukey_constant * params_.tukey_constant;
     const double t = 1.0 - x * x / c2;
     return t > 0.0 ? c2 / 6.0 * (1.0 - t * t * t) : c2 / 6.0;
