@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // `icgp servo SCENARIO`: the closed loop tracker -> ViSP control law -> simulated robot, one
 // run with its log and plots, batch trials, or trackers compared on identical trials.
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -87,7 +88,25 @@ class RunViewer {
   Intrinsics intrinsics_;
 };
 
-std::vector<ServoResult> run_trials(const Scenario& scenario, const ServoOptions& o) {
+/// Trials run of all a command runs, the time elapsed and an estimate of the time left.
+class BatchProgress {
+ public:
+  explicit BatchProgress(int total) : total_(total), begin_(std::chrono::steady_clock::now()) {}
+  std::string trial_done() {
+    ++done_;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
+    const double left = elapsed / done_ * (total_ - done_);
+    char text[96];
+    std::snprintf(text, sizeof text, "[%d/%d, elapsed %.0f s, ETA %.0f s]", done_, total_, elapsed, left);
+    return text;
+  }
+
+ private:
+  int total_, done_ = 0;
+  std::chrono::steady_clock::time_point begin_;
+};
+
+std::vector<ServoResult> run_trials(const Scenario& scenario, const ServoOptions& o, BatchProgress& progress) {
   std::vector<ServoResult> results;
   for (int i = 0; i < o.trials; ++i) {
     servo::ServoRunOptions run;
@@ -96,10 +115,11 @@ std::vector<ServoResult> run_trials(const Scenario& scenario, const ServoOptions
     run.progress = false;  // one line per trial instead
     results.push_back(servo::run_servo(scenario, run));
     const ServoResult& r = results.back();
-    std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s\n", i + 1, o.trials,
+    std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s %s\n", i + 1, o.trials,
                  r.tracker.c_str(), servo::succeeded(r, scenario.stop) ? "success" : r.converged ? "settled off target" : "not converged",
                  1e3 * r.final_t, r.final_r / servo::kDegree, 1e3 * r.max_track_t,
-                 r.safety_stops > 0 ? (", " + std::to_string(r.safety_stops) + " safety stop(s)").c_str() : "");
+                 r.safety_stops > 0 ? (", " + std::to_string(r.safety_stops) + " safety stop(s)").c_str() : "",
+                 progress.trial_done().c_str());
   }
   return results;
 }
@@ -117,10 +137,11 @@ void run_command(const ServoOptions& o) {
     const std::vector<TrackerKind> kinds =
         o.compare ? std::vector<TrackerKind>{TrackerKind::kOracle, TrackerKind::kVisp, TrackerKind::kIcgp}
                   : std::vector<TrackerKind>{scenario.tracker.kind};
+    BatchProgress progress(o.trials * static_cast<int>(kinds.size()));
     for (const TrackerKind kind : kinds) {
       Scenario s = scenario;
       s.tracker.kind = kind;
-      summaries.push_back(servo::summarise(run_trials(s, o), s.stop));
+      summaries.push_back(servo::summarise(run_trials(s, o, progress), s.stop));
     }
     servo::print_summaries(std::cout, summaries);
   } else {

@@ -258,6 +258,7 @@ void TextureModality::start(const Frame& frame) {
   matches_.clear();
   noise_.reset();
   quality_ = {};
+  frames_since_start_ = 0;
 }
 
 void TextureModality::match() {
@@ -370,6 +371,7 @@ void TextureModality::append_residuals(std::vector<double>& residuals, std::vect
 
 void TextureModality::finish(const Frame& frame) {
   update_quality();
+  ++frames_since_start_;
   ++keyframe_.age;
   const double angle = rotation_angle_between(keyframe_.camera_R_body, camera_T_body().rotation()) * 180.0 / M_PI;
   const bool old = params_.keyframe_max_age > 0 && keyframe_.age >= params_.keyframe_max_age;
@@ -391,7 +393,11 @@ void TextureModality::update_quality() {
   quality_.n_valid = static_cast<int>(matches_.size());
   quality_.valid_fraction = n_points > 0 ? std::min(1.0, static_cast<double>(matches_.size()) / n_points) : 0.0;
   quality_.score = n_points > 0 ? std::min(1.0, static_cast<double>(n_inliers) / n_points) : 0.0;
-  quality_.abstained = n_points < params_.min_keyframe_points;
+  // The first frame after a (re)start is matched to the keyframe lifted at the start pose,
+  // which nothing has confirmed: a wrong start pose would match itself perfectly. Texture
+  // tells how the object moved since its keyframe, not where it is, so it only vouches once
+  // the other cues have had a frame to confirm that pose.
+  quality_.abstained = n_points < params_.min_keyframe_points || frames_since_start_ == 0;
   quality_.sigma = sigma(last_corr_iter_);
 }
 

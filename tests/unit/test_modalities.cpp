@@ -13,6 +13,7 @@
 #include "icgp/model/viewpoint_model_generator.h"
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
+#include "icgp/modality/texture_modality.h"
 #include "icgp/tracker/tracker.h"
 #include "icgp/tracker/tracker_config.h"
 #include "test_gradients.h"
@@ -427,4 +428,28 @@ TEST_CASE("region modality: clutter of the object's colours beside part of its c
   CHECK(n_near > 5 * n_far);
   CHECK(far_weight < 0.02 * plain_far_weight);
   CHECK(near_weight > 0.5 * plain_near_weight);
+}
+
+TEST_CASE("tracker: started beside the object, ICG+ reports lost from the first frame") {
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
+  const Frame frame = scene.render(f.truth);
+  // 5 cm to the side: the texture cue's first keyframe is lifted at this wrong pose, so it
+  // would match itself perfectly on the first frame; it must not vouch for the pose.
+  const Pose beside(f.truth.rotation(), f.truth.translation() + Eigen::Vector3d(0.05, 0.0, 0.0));
+  Tracker tracker;
+  Body& body = tracker.add_body({"box", f.mesh, beside});
+  tracker.add_modality(std::make_unique<RegionModality>(body, f.region_model, RegionParams{}));
+  tracker.add_modality(std::make_unique<DepthModality>(body, f.depth_model, DepthParams{}));
+  tracker.add_modality(std::make_unique<TextureModality>(body, TextureParams{}));
+  tracker.start(frame);
+  for (int i = 0; i < 3; ++i) {
+    const std::vector<BodyResult> results = tracker.track(frame);
+    const double t_mm = 1e3 * (body.reference_T_body.translation() - f.truth.translation()).norm();
+    INFO("frame " << i << ": " << t_mm << " mm from the truth, quality " << results[0].quality << " (texture "
+                  << results[0].modalities[2].score << (results[0].modalities[2].abstained ? ", abstained" : "")
+                  << ")");
+    CHECK(results[0].modalities[2].abstained == (i == 0));
+    if (t_mm > 10.0) CHECK_FALSE(results[0].tracked);
+  }
 }

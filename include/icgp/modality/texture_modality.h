@@ -151,6 +151,7 @@ class TextureModality : public Modality {
   std::vector<Match> matches_;
   ResidualNoise noise_;
   int last_corr_iter_ = 0;
+  int frames_since_start_ = 0;
   ModalityQuality quality_;
 };
 
