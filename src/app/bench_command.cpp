@@ -1,12 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // `icgp bench`: icgp's tracker and ViSP's vpMbGenericTracker on the same frames, in one
 // process and one thread, so accuracy and speed compare directly.
-#include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <functional>
 #include <iostream>
-#include <optional>
+#include <limits>
 
 #include "commands.h"
 #include "icgp/eval/metrics.h"
@@ -15,6 +12,7 @@
 #include "icgp/visp/visp_baseline.h"
 #include "single_thread_scope.h"
 #include "bench_runner.h"
+#include "timing_rounds.h"
 #include "sweep.h"
 
 namespace icgp::app {
@@ -28,29 +26,28 @@ struct BenchOptions {
   std::string config;
   std::string summary;
   int frames = 0;
+  int rounds = 3;
   bool ablation = false;
   bool sweep = false;
   SweepOptions sweep_options;
   SequenceOptions sequence_options;
 };
 
-struct BenchRow {
-  std::string config;
-  TrackingSummary summary;
-};
-
-void print_table(const std::vector<BenchRow>& rows, double reference_ms) {
+void print_table(const std::vector<TimedRow>& rows, int rounds) {
+  const TimedRow* reference = find_row(rows, kReferenceRow);
   std::printf("\n%-34s %8s %8s %9s %9s %10s %8s %14s\n", "configuration", "mean mm", "max mm", "mean deg", "max deg",
               "median ms", "Hz", "speed vs ViSP");
-  for (const BenchRow& row : rows) {
+  for (const TimedRow& row : rows) {
     const TrackingSummary& s = row.summary;
-    std::printf("%-34s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", row.config.c_str(), s.mean_t_mm, s.max_t_mm,
-                s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, reference_ms / s.median_ms);
+    const double speed = reference ? speed_ratio(*reference, row) : std::numeric_limits<double>::quiet_NaN();
+    std::printf("%-34s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", row.name.c_str(), s.mean_t_mm, s.max_t_mm,
+                s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, speed);
   }
-  std::printf("\nspeed vs ViSP: median ms of '%s' / median ms of the row (> 1: faster).\n"
-              "Times are of the tracking call alone, single thread (OpenMP and OpenCV limited to one);\n"
-              "compare them as ratios within one run: absolute values vary with the machine's load.\n",
-              kReferenceRow.c_str());
+  std::printf("\nTimes are of the tracking call alone, single thread (OpenMP and OpenCV limited to one). Every\n"
+              "configuration ran %d rounds, in alternating order; median ms is the median over rounds of each\n"
+              "round's median, and speed vs ViSP the median over rounds of '%s''s median / the row's\n"
+              "median in the same round (> 1: faster). Absolute times vary with the machine's load.\n",
+              rounds, kReferenceRow.c_str());
 }
 
 void run_bench(const BenchOptions& o) {
@@ -69,14 +66,10 @@ void run_bench(const BenchOptions& o) {
   std::vector<Frame> frames;
   for (int i = 0; i < n_frames; ++i) frames.push_back(sequence.load(i));
 
-  struct Job {
-    std::string name;
-    std::function<TrackingSummary()> run;
-  };
-  std::vector<Job> jobs;
+  std::vector<TimedJob> jobs;
   for (const std::vector<std::string>& modalities :
        std::vector<std::vector<std::string>>{{"region", "depth", "texture"}, {"region", "depth"}, {"region"}, {"depth"}}) {
-    // With texture it is ICG+ (with the configured descriptor, ORB by default).
+    // With texture it is ICG+ (with the configured descriptor, oriented_brief by default).
     std::string name = modalities.size() == 3 ? "ICG+" : "ICG";
     for (std::size_t i = 0; i < modalities.size(); ++i) name += (i ? " + " : " ") + modalities[i];
     jobs.push_back({name, [&, modalities] {
@@ -96,37 +89,20 @@ void run_bench(const BenchOptions& o) {
   }
 
   std::cerr << "ICG rows generate their viewpoint models on first use (10-30 s on 2 cores); later runs read them from the cache\n";
-  std::vector<BenchRow> rows;
   std::vector<std::string> failures;
   const SingleThreadScope single_thread;
-  for (std::size_t j = 0; j < jobs.size(); ++j) {
-    std::cerr << "[" << j + 1 << "/" << jobs.size() << "] " << jobs[j].name << " ..." << std::flush;
-    const auto begin = std::chrono::steady_clock::now();
-    // A configuration that cannot run (no EGL for model generation, say) must not cost
-    // the others' results: it is reported and the bench fails at the end.
-    try {
-      rows.push_back({jobs[j].name, jobs[j].run()});
-    } catch (const std::exception& e) {
-      std::cerr << " failed: " << e.what() << "\n";
-      failures.push_back(jobs[j].name);
-      continue;
-    }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-    std::fprintf(stderr, " %d frames in %.1f s (including set-up)\n", n_frames, seconds);
-  }
-
-  double reference_ms = std::numeric_limits<double>::quiet_NaN();
-  for (const BenchRow& row : rows)
-    if (row.config == kReferenceRow) reference_ms = row.summary.median_ms;
-  print_table(rows, reference_ms);
+  const std::vector<TimedRow> rows = run_rounds(jobs, o.rounds, n_frames, failures);
+  print_table(rows, o.rounds);
+  const TimedRow* reference = find_row(rows, kReferenceRow);
 
   if (!o.summary.empty()) {
     std::vector<JsonObject> json_rows;
-    for (const BenchRow& row : rows)
+    for (const TimedRow& row : rows)
       json_rows.push_back(JsonObject()
-                              .add("config", row.config)
+                              .add("config", row.name)
                               .add_fields(row.summary.to_json())
-                              .add("speed_ratio", reference_ms / row.summary.median_ms));
+                              .add("speed_ratio", reference ? speed_ratio(*reference, row)
+                                                            : std::numeric_limits<double>::quiet_NaN()));
     JsonObject().add("rows", json_rows).write(o.summary);
     std::cout << "wrote " << o.summary << "\n";
   }
@@ -153,11 +129,18 @@ void register_bench_command(CLI::App& app) {
   cmd->add_flag("--ablation", o->ablation,
                  "Instead: ICG+ with each descriptor and without each cue (the paper's Tables III/IV) on "
                  "teabox-blender and rendered ambiguous-geometry sequences");
+  CLI::Option* rounds =
+      cmd->add_option("--rounds", o->rounds,
+                      "Run every configuration this many times, alternating the order, and take speed ratios within "
+                      "a round")
+          ->check(CLI::Range(1, 100))
+          ->capture_default_str();
   CLI::Option* sweep =
       cmd->add_flag("--sweep", o->sweep,
                     "Instead: icgp's defaults, the reference parameters (icg_reference) and ViSP over 4 models x "
                     "3 depth sensors x 3 image conditions plus grey cells without depth, rendered with ground truth");
   sweep->excludes("--ablation");
+  rounds->excludes(sweep)->excludes("--ablation");
   cmd->add_option("--out", o->sweep_options.out, "--sweep: folder of the cached sequences, ViSP models and plot script")
       ->capture_default_str()
       ->needs(sweep);

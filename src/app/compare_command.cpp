@@ -2,7 +2,6 @@
 // `icgp compare`: ViSP's vpMbGenericTracker and icgp's vpMbIcgTracker run through the same
 // ViSP-API code (icgp::track_rgbd_sequence) on the same frames, single-threaded, side by
 // side; plus what the ViSP layer costs vpMbIcgTracker over icgp's core tracker.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -22,6 +21,7 @@
 #include "icgp/visp/visp_baseline.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 #include "single_thread_scope.h"
+#include "timing_rounds.h"
 
 namespace icgp::app {
 namespace {
@@ -47,11 +47,11 @@ struct CompareOptions {
   SequenceOptions sequence_options;
 };
 
-struct CompareRow {
-  std::string tracker;
-  std::string config;
-  TrackingSummary summary;       ///< errors of the first round; times over all rounds
-  std::vector<double> round_ms;  ///< each round's median time
+/// A row's tracker and configuration, the two columns of the table: its TimedJob name is
+/// "tracker configuration".
+struct RowName {
+  std::string tracker, config;
+  std::string name() const { return tracker + " " + config; }
 };
 
 std::string joined(const std::vector<std::string>& names) {
@@ -72,23 +72,16 @@ TrackingSummary summarise(const std::vector<Frame>& frames, const std::string& b
   return evaluation.summary();
 }
 
-/// How many times faster a row is than the reference row, as the median over rounds of the
-/// ratio of their medians in the same round: a round's trackers run within seconds of each
-/// other, so they meet the same load from elsewhere on the machine.
-double speed_vs(const CompareRow& reference, const CompareRow& row) {
-  std::vector<double> ratios;
-  for (std::size_t r = 0; r < std::min(reference.round_ms.size(), row.round_ms.size()); ++r)
-    ratios.push_back(reference.round_ms[r] / row.round_ms[r]);
-  return ratios.empty() ? std::numeric_limits<double>::quiet_NaN() : median(ratios);
-}
-
-void print_table(const std::vector<CompareRow>& rows, const CompareRow* reference, int rounds) {
+void print_table(const std::vector<TimedRow>& rows, const std::vector<RowName>& names, int rounds) {
+  const TimedRow* reference = find_row(rows, RowName{kVispTracker, kReferenceConfig}.name());
   std::printf("\n%-20s %-26s %8s %8s %9s %9s %10s %8s %14s\n", "tracker", "configuration", "mean mm", "max mm",
               "mean deg", "max deg", "median ms", "Hz", "speed vs ViSP");
-  for (const CompareRow& row : rows) {
-    const TrackingSummary& s = row.summary;
-    const double speed = reference ? speed_vs(*reference, row) : std::numeric_limits<double>::quiet_NaN();
-    std::printf("%-20s %-26s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", row.tracker.c_str(), row.config.c_str(),
+  for (const RowName& name : names) {
+    const TimedRow* row = find_row(rows, name.name());
+    if (!row) continue;
+    const TrackingSummary& s = row->summary;
+    const double speed = reference ? speed_ratio(*reference, *row) : std::numeric_limits<double>::quiet_NaN();
+    std::printf("%-20s %-26s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", name.tracker.c_str(), name.config.c_str(),
                 s.mean_t_mm, s.max_t_mm, s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, speed);
   }
   std::printf(
@@ -123,25 +116,26 @@ void run_compare(const CompareOptions& o) {
 
   // Each job gives its row; the vpMbIcgTracker job also keeps its run for the overhead line.
   RgbdRun icg_run;
-  struct Job {
-    std::string tracker, config;
-    std::function<TrackingSummary()> run;
+  std::vector<RowName> names;
+  std::vector<TimedJob> jobs;
+  auto add_job = [&](RowName name, std::function<TrackingSummary()> run) {
+    jobs.push_back({name.name(), std::move(run)});
+    names.push_back(std::move(name));
   };
-  std::vector<Job> jobs;
   for (const std::string& name : kVispConfigs) {
-    jobs.push_back({kVispTracker, name, [&, name] {
+    add_job({kVispTracker, name}, [&, name] {
                       const std::unique_ptr<vpMbGenericTracker> tracker =
                           make_visp_tracker(visp_reference_configuration(name), visp_files);
                       return summarise(frames, object.name, mesh,
                                        track_rgbd_sequence(*tracker, frames, visp_files, cMo0));
-                    }});
+    });
   }
-  jobs.push_back({kIcgTracker, icgp_name, [&] {
-                    vpMbIcgTracker tracker;
-                    tracker.setTrackerConfig(icgp_config);
-                    icg_run = track_rgbd_sequence(tracker, frames, visp_files, cMo0);
-                    return summarise(frames, object.name, mesh, icg_run);
-                  }});
+  add_job({kIcgTracker, icgp_name}, [&] {
+    vpMbIcgTracker tracker;
+    tracker.setTrackerConfig(icgp_config);
+    icg_run = track_rgbd_sequence(tracker, frames, visp_files, cMo0);
+    return summarise(frames, object.name, mesh, icg_run);
+  });
   // icgp's own Tracker, timed as `icgp bench` does: on the grey image the ViSP-API code
   // gives vpMbIcgTracker (the baseline of the layer's overhead), and on the colour image.
   std::vector<Frame> grey_frames = frames;
@@ -149,87 +143,43 @@ void run_compare(const CompareOptions& o) {
     cv::Mat& image = frame.colors.front().image;
     if (image.channels() == 3) cv::cvtColor(image, image, cv::COLOR_BGR2GRAY);
   }
-  jobs.push_back({kCoreTracker, icgp_name + kGreySuffix,
-                  [&] { return run_icgp(grey_frames, object.name, mesh, icgp_config); }});
-  jobs.push_back({kCoreTracker, icgp_name + kColourSuffix,
-                  [&] { return run_icgp(frames, object.name, mesh, icgp_config); }});
+  add_job({kCoreTracker, icgp_name + kGreySuffix}, [&] { return run_icgp(grey_frames, object.name, mesh, icgp_config); });
+  add_job({kCoreTracker, icgp_name + kColourSuffix}, [&] { return run_icgp(frames, object.name, mesh, icgp_config); });
 
   std::cerr << "vpMbIcgTracker generates its viewpoint models on first use (10-30 s on 2 cores); later runs read them "
                "from the cache\n";
-  // Every tracker runs once per round, in reverse order every other round: load from
-  // elsewhere on the machine comes and goes over seconds, and is shared out between the
-  // trackers of a round. The poses are the same every round (the trackers are deterministic).
-  std::vector<std::optional<CompareRow>> results(jobs.size());
-  std::vector<std::vector<double>> icg_overheads;  // per round: vpMbIcgTracker's and the core's median
-  std::vector<bool> failed(jobs.size(), false);
   std::vector<std::string> failures;
   const SingleThreadScope single_thread;
-  for (int round = 0; round < o.rounds; ++round) {
-    double icg_ms = std::numeric_limits<double>::quiet_NaN(), core_ms = icg_ms;
-    for (std::size_t k = 0; k < jobs.size(); ++k) {
-      const std::size_t j = round % 2 == 0 ? k : jobs.size() - 1 - k;
-      if (failed[j]) continue;
-      const std::string name = jobs[j].tracker + " " + jobs[j].config;
-      std::cerr << "[round " << round + 1 << "/" << o.rounds << ", " << k + 1 << "/" << jobs.size() << "] " << name
-                << " ..." << std::flush;
-      const auto begin = std::chrono::steady_clock::now();
-      // A tracker that cannot run (no EGL for model generation, say) must not cost the
-      // others' results: it is reported and the command fails at the end.
-      TrackingSummary summary;
-      try {
-        summary = jobs[j].run();
-      } catch (const std::exception& e) {
-        std::cerr << " failed: " << e.what() << "\n";
-        failures.push_back(name);
-        failed[j] = true;
-        continue;
-      }
-      if (!results[j]) results[j] = CompareRow{jobs[j].tracker, jobs[j].config, summary, {}};
-      results[j]->round_ms.push_back(summary.median_ms);
-      if (jobs[j].tracker == kIcgTracker) icg_ms = summary.median_ms;
-      if (jobs[j].tracker == kCoreTracker && jobs[j].config == icgp_name + kGreySuffix) core_ms = summary.median_ms;
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-      std::fprintf(stderr, " %d frames in %.1f s (including set-up), median %.2f ms\n", n_frames, seconds,
-                   summary.median_ms);
-    }
-    if (std::isfinite(icg_ms) && std::isfinite(core_ms)) icg_overheads.push_back({icg_ms, core_ms});
-  }
-  std::vector<CompareRow> rows;
-  const CompareRow* reference = nullptr;
-  for (std::optional<CompareRow>& row : results) {
-    if (!row) continue;
-    row->summary.median_ms = median(row->round_ms);
-    row->summary.hz = 1000.0 / row->summary.median_ms;
-    rows.push_back(std::move(*row));
-  }
-  for (const CompareRow& row : rows)
-    if (row.tracker == kVispTracker && row.config == kReferenceConfig) reference = &row;
-  print_table(rows, reference, o.rounds);
+  const std::vector<TimedRow> rows = run_rounds(jobs, o.rounds, n_frames, failures);
+  print_table(rows, names, o.rounds);
 
   // The ViSP layer's cost: what vpMbIcgTracker::track() takes (reading ViSP's grey image and
-  // point cloud included) beyond icgp's Tracker::track on the same grey and depth images, in
-  // the same round. Building the cloud is the caller's, the same for vpMbGenericTracker,
+  // point cloud included) beyond icgp's Tracker::track on the same grey and depth images,
+  // in the same round. Building the cloud is the caller's, the same for vpMbGenericTracker,
   // and not counted. NaN (null in the summary) when either run failed.
-  std::vector<double> overheads, icg_ms, core_ms;
-  for (const std::vector<double>& round : icg_overheads) {
-    overheads.push_back((round[0] - round[1]) / round[0] * 100.0);
-    icg_ms.push_back(round[0]);
-    core_ms.push_back(round[1]);
+  const TimedRow* icg = find_row(rows, RowName{kIcgTracker, icgp_name}.name());
+  const TimedRow* core = find_row(rows, RowName{kCoreTracker, icgp_name + kGreySuffix}.name());
+  double overhead_percent = std::numeric_limits<double>::quiet_NaN();
+  if (icg && core) {
+    std::vector<double> overheads;
+    for (std::size_t r = 0; r < std::min(icg->round_ms.size(), core->round_ms.size()); ++r)
+      overheads.push_back((icg->round_ms[r] - core->round_ms[r]) / icg->round_ms[r] * 100.0);
+    if (!overheads.empty()) overhead_percent = median(overheads);
   }
-  const double overhead_percent = overheads.empty() ? std::numeric_limits<double>::quiet_NaN() : median(overheads);
   if (std::isfinite(overhead_percent))
     std::printf(
         "\nViSP-layer overhead of vpMbIcgTracker: track() %.3f ms (point cloud read included) vs\n"
         "icgp::Tracker::track %.3f ms on the same grey and depth images: %.1f%% of the frame time\n"
         "(median over rounds). Building the grey image and point cloud, the caller's work for either\n"
         "tracker: %.2f ms.\n",
-        median(icg_ms), median(core_ms), overhead_percent, median(icg_run.convert_ms));
+        icg->summary.median_ms, core->summary.median_ms, overhead_percent, median(icg_run.convert_ms));
 
   if (!o.summary.empty()) {
     std::vector<JsonObject> json_rows;
-    for (const CompareRow& row : rows)
-      json_rows.push_back(
-          JsonObject().add("tracker", row.tracker).add("config", row.config).add_fields(row.summary.to_json()));
+    for (const RowName& name : names)
+      if (const TimedRow* row = find_row(rows, name.name()))
+        json_rows.push_back(
+            JsonObject().add("tracker", name.tracker).add("config", name.config).add_fields(row->summary.to_json()));
     JsonObject().add("rows", json_rows).add("visp_layer_overhead_percent", overhead_percent).write(o.summary);
     std::cout << "wrote " << o.summary << "\n";
   }

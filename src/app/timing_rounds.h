@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Timing several trackers on a machine whose speed drifts: rounds in alternating order, and
+// speed ratios taken within a round.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "icgp/eval/metrics.h"
+
+namespace icgp::app {
+
+/// One tracker configuration run over a command's frames.
+struct TimedJob {
+  std::string name;
+  std::function<TrackingSummary()> run;
+};
+
+/// A job's result: the errors of its first round (the trackers are deterministic, so every
+/// round gives the same poses) with median_ms and hz over all rounds, and each round's
+/// median time.
+struct TimedRow {
+  std::string name;
+  TrackingSummary summary;
+  std::vector<double> round_ms;
+};
+
+/// Runs every job `rounds` times, in reverse order every other round, with a progress line
+/// per run on stderr. Load from elsewhere on the machine comes and goes over seconds, so
+/// rounds share it out between the jobs. Rows come in the jobs' order; a job that throws is
+/// named in `failures` and not run again.
+std::vector<TimedRow> run_rounds(const std::vector<TimedJob>& jobs, int rounds, int n_frames,
+                                 std::vector<std::string>& failures);
+
+/// How many times faster `row` is than `reference`: the median over rounds of the ratio of
+/// their medians in the same round. NaN without a common round.
+double speed_ratio(const TimedRow& reference, const TimedRow& row);
+
+/// The row named `name`, or nullptr.
+const TimedRow* find_row(const std::vector<TimedRow>& rows, const std::string& name);
+
+}  // namespace icgp::app
