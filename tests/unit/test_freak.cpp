@@ -9,6 +9,7 @@
 #include <set>
 
 #include "icgp/features/freak.h"
+#include "test_noise.h"
 
 using namespace icgp;
 
@@ -25,14 +26,6 @@ cv::Mat textured_image(int size, std::uint64_t seed) {
   }
   cv::GaussianBlur(image, image, cv::Size(), 1.0);
   return image;
-}
-
-/// Another exposure of the same scene: Gaussian noise of 4 grey levels, seeded.
-cv::Mat with_noise(const cv::Mat& image, std::uint64_t seed) {
-  cv::Mat noise(image.size(), CV_32F), noisy;
-  cv::RNG(seed).fill(noise, cv::RNG::NORMAL, 0.0, 4.0);
-  cv::add(image, noise, noisy, cv::noArray(), CV_8U);
-  return noisy;
 }
 
 /// I = g · (x, y) in float. Box means follow the ramp up to the pixels' staircase, which
@@ -118,7 +111,7 @@ RotatedPair rotated_pair(const cv::Mat& texture, int size, double degrees) {
   cv::Mat turned;
   cv::warpAffine(texture, turned, turn, texture.size(), cv::INTER_LINEAR);
   const cv::Rect crop((texture.cols - size) / 2, (texture.rows - size) / 2, size, size);
-  RotatedPair p{texture(crop).clone(), with_noise(turned(crop), 7), {}, {}};
+  RotatedPair p{texture(crop).clone(), test::with_noise(turned(crop), 4.0, 7), {}, {}};
   p.keypoints_a = orb_keypoints(p.a);
   const cv::Matx23d m = turn;
   for (cv::KeyPoint k : p.keypoints_a) {
@@ -274,7 +267,7 @@ TEST_CASE("FREAK: scale invariance") {
   for (const double factor : {1.5, 0.7}) {
     cv::Mat b;
     cv::resize(a, b, cv::Size(), factor, factor, factor > 1 ? cv::INTER_LINEAR : cv::INTER_AREA);
-    b = with_noise(b, 11);
+    b = test::with_noise(b, 4.0, 11);
     std::vector<cv::KeyPoint> keypoints_b;
     for (cv::KeyPoint k : keypoints_a) {
       // cv::resize maps pixel centres: x' + 0.5 = factor (x + 0.5).

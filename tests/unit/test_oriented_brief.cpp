@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "icgp/features/oriented_brief.h"
+#include "test_noise.h"
 
 using namespace icgp;
 
@@ -32,14 +33,6 @@ cv::Mat textured_image(int size, std::uint64_t seed) {
   }
   cv::GaussianBlur(image, image, cv::Size(), 0.8);
   return image;
-}
-
-/// Another exposure of the same scene: Gaussian noise of 2 grey levels, seeded.
-cv::Mat with_noise(const cv::Mat& image, std::uint64_t seed) {
-  cv::Mat noise(image.size(), CV_32F), noisy;
-  cv::RNG(seed).fill(noise, cv::RNG::NORMAL, 0.0, 2.0);
-  cv::add(image, noise, noisy, cv::noArray(), CV_8U);
-  return noisy;
 }
 
 const cv::Mat& texture() {
@@ -70,7 +63,7 @@ RotatedPair rotated_pair(double degrees) {
   const cv::Vec2d shift = cv::Matx22d(turn(0, 0), turn(0, 1), turn(1, 0), turn(1, 1)) * corner - corner;
   a_to_b(0, 2) += shift[0];
   a_to_b(1, 2) += shift[1];
-  return {t(crop).clone(), with_noise(turned(crop), 7), a_to_b};
+  return {t(crop).clone(), test::with_noise(turned(crop), 2.0, 7), a_to_b};
 }
 
 cv::Point2f apply(const cv::Matx23d& m, const cv::Point2f& p) {
