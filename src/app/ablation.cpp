@@ -81,7 +81,7 @@ std::vector<AblationSequence> ablation_sequences() {
   TrackerConfig two_region, labelled_can;
   two_region.regions = {models + "/two_region/region_body.obj", models + "/two_region/region_lid.obj"};
   labelled_can.regions = {models + "/labelled_can/region_label.obj", models + "/labelled_can/region_caps.obj"};
-  return {{"teabox-blender", teabox, teabox + "/teabox.cao", sequence_tracker_config("", teabox)},
+  return {{"teabox-blender", teabox, teabox + "/teabox.cao", benchmark_tracker_config("")},
           {"labelled_cylinder",
            rendered_sequence("labelled_cylinder", models + "/labelled_cylinder/labelled_cylinder.obj"),
            models + "/labelled_cylinder/labelled_cylinder.obj", TrackerConfig{}},

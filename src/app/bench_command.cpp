@@ -59,7 +59,7 @@ void run_bench(const BenchOptions& o) {
   const SequenceObject& object = sequence.objects().front();
   const VispModelFiles visp_files = VispModelFiles::beside_model(object.mesh_path);
   const Mesh mesh = load_any_mesh(object.mesh_path);
-  const TrackerConfig base_config = sequence_tracker_config(o.config, o.sequence);
+  const TrackerConfig base_config = benchmark_tracker_config(o.config);
 
   const int n_frames = o.frames > 0 ? std::min(o.frames, sequence.size()) : sequence.size();
   std::cerr << "loading " << n_frames << " frames of " << o.sequence << "\n";
@@ -122,7 +122,9 @@ void register_bench_command(CLI::App& app) {
   cmd->add_option("--sequence", o->sequence, "Sequence with ground truth and a ViSP model (.cao + .xml files)")
       ->check(CLI::ExistingDirectory)
       ->capture_default_str();
-  cmd->add_option("--config", o->config, "icgp tracker configuration (YAML) for the ICG rows; default: the sequence folder's icgp.yaml, else icgp's defaults")->check(CLI::ExistingFile);
+  cmd->add_option("--config", o->config,
+                  "icgp tracker configuration (YAML) for the ICG rows; default: icgp's defaults (a sequence "
+                  "folder's icgp.yaml is not read)")->check(CLI::ExistingFile);
   cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
   cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...]}");
   cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all; --sweep: frames per cell, default 60)")->check(CLI::PositiveNumber);

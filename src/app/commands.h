@@ -28,6 +28,10 @@ inline constexpr const char* kBlenderPrincipalPointHelp =
 /// sequence folder's own icgp.yaml (as ViSP data folders carry their tracker XML), else the
 /// icgp defaults (preset "default"). Says on stderr which one it uses.
 TrackerConfig sequence_tracker_config(const std::string& explicit_file, const std::string& sequence_dir);
+/// The icgp configuration a benchmark compares: the explicit file when given, else icgp's
+/// defaults. Benchmarks never read a sequence folder's icgp.yaml: settings fitted to the
+/// data would be compared against ViSP's defaults. Says on stderr which one it uses.
+TrackerConfig benchmark_tracker_config(const std::string& explicit_file);
 
 /// `icgp bench --ablation`: ICG+ rows with each descriptor and without each cue, on
 /// teabox-blender and rendered ambiguous-geometry sequences; JSON rows to summary_path.

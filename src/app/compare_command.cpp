@@ -104,7 +104,7 @@ void run_compare(const CompareOptions& o) {
   const SequenceObject& object = sequence.objects().front();
   const VispModelFiles visp_files = VispModelFiles::beside_model(object.mesh_path);
   const Mesh mesh = load_any_mesh(object.mesh_path);
-  TrackerConfig icgp_config = sequence_tracker_config(o.config, o.sequence);
+  TrackerConfig icgp_config = benchmark_tracker_config(o.config);
   if (!o.modalities.empty()) icgp_config.modalities = o.modalities;
   const std::string icgp_name = joined(icgp_config.modalities);
 
@@ -201,8 +201,8 @@ void register_compare_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory)
       ->capture_default_str();
   cmd->add_option("--config", o->config,
-                  "icgp tracker configuration (YAML) for vpMbIcgTracker; default: the sequence folder's icgp.yaml, "
-                  "else icgp's defaults")
+                  "icgp tracker configuration (YAML) for vpMbIcgTracker; default: icgp's defaults (a sequence "
+                  "folder's icgp.yaml is not read)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--modalities", o->modalities,
                   "vpMbIcgTracker's modalities, e.g. region,depth (overrides the configuration)")

@@ -19,12 +19,15 @@ std::string models_dir() {
   return ICGP_SOURCE_MODELS_DIR;
 }
 
+TrackerConfig benchmark_tracker_config(const std::string& explicit_file) {
+  std::cerr << "tracker configuration: " << (explicit_file.empty() ? "icgp defaults" : explicit_file) << "\n";
+  return explicit_file.empty() ? TrackerConfig{} : load_tracker_config(explicit_file);
+}
+
 TrackerConfig sequence_tracker_config(const std::string& explicit_file, const std::string& sequence_dir) {
-  std::string file = explicit_file;
   const std::filesystem::path own = std::filesystem::path(sequence_dir) / "icgp.yaml";
-  if (file.empty() && std::filesystem::is_regular_file(own)) file = own.string();
-  std::cerr << "tracker configuration: " << (file.empty() ? "icgp defaults" : file) << "\n";
-  return file.empty() ? TrackerConfig{} : load_tracker_config(file);
+  if (explicit_file.empty() && std::filesystem::is_regular_file(own)) return benchmark_tracker_config(own.string());
+  return benchmark_tracker_config(explicit_file);
 }
 
 std::string default_model_path() { return models_dir() + "/textured_box/textured_box.obj"; }
