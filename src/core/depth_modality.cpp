@@ -95,8 +95,32 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   const int row_max = std::min(depth.depth.rows - 1, static_cast<int>(std::floor(centre.y() + half)));
   const int col_min = std::max(0, lattice_ceil(centre.x() - half, step));
   const int col_max = std::min(depth.depth.cols - 1, static_cast<int>(std::floor(centre.x() + half)));
-  for (int row = row_min; row <= row_max; row += step)
-    for (int col = col_min; col <= col_max; col += step) consider(row, col);
+  if (row_min > row_max || col_min > col_max) return found;
+
+  // Any valid sample of the window bounds the winner's squared distance from above; the
+  // sample nearest to the projection is usually close to the winner. The rays of one image
+  // row all lie in a plane through the camera centre, so the point's distance to that plane
+  // bounds the distance of every sample of the row from below (likewise for columns): rows
+  // and columns that cannot hold a sample within the upper bound are not read. The samples
+  // left are visited in the full search's order, so the result is the full search's.
+  float upper = best;
+  const int near_row = std::clamp(round_to_int(centre.y() / step) * step, row_min, row_max - (row_max - row_min) % step);
+  const int near_col = std::clamp(round_to_int(centre.x() / step) * step, col_min, col_max - (col_max - col_min) % step);
+  const float near_z = depth.at(near_row, near_col);
+  if (near_z > 0.f && near_z < std::numeric_limits<float>::infinity())
+    upper = std::min(upper, (Eigen::Vector3f((near_col - pu) * ifu * near_z, (near_row - pv) * ifv * near_z, near_z) -
+                             point).squaredNorm());
+  // The margin covers the rounding of the bounds, which must never exclude a winner.
+  const float limit = upper * 1.001f + 1e-12f;
+  const auto beyond = [&](float gap, float normalised) { return gap * gap > limit * (1.f + normalised * normalised); };
+  for (int row = row_min; row <= row_max; row += step) {
+    const float y = (row - pv) * ifv;
+    if (beyond(point.y() - y * point.z(), y)) continue;
+    for (int col = col_min; col <= col_max; col += step) {
+      const float x = (col - pu) * ifu;
+      if (!beyond(point.x() - x * point.z(), x)) consider(row, col);
+    }
+  }
   return found;
 }
 
