@@ -35,10 +35,14 @@ void require_file(const std::string& path, const std::string& what) {
     throw vpException(vpException::ioError, "vpMbIcgTracker: " + what + " '" + path + "' does not exist");
 }
 
-/// The <camera> block of a ViSP tracker XML file, read by ViSP's own parser.
+/// The <camera> block of a ViSP tracker XML file, read by ViSP's own parser. The parser
+/// reads <camera> only for the cue types: PROJECTION_ERROR_PARSER alone skips it and leaves
+/// ViSP's default camera (600, 600, 192, 144).
 vpCameraParameters camera_of_visp_xml(const std::string& path, bool verbose) {
   require_file(path, "configuration file");
-  vpMbtXmlGenericParser parser(vpMbtXmlGenericParser::PROJECTION_ERROR_PARSER);
+  vpMbtXmlGenericParser parser(static_cast<vpMbtXmlGenericParser::vpParserType>(
+      vpMbtXmlGenericParser::EDGE_PARSER | vpMbtXmlGenericParser::KLT_PARSER |
+      vpMbtXmlGenericParser::DEPTH_NORMAL_PARSER | vpMbtXmlGenericParser::DEPTH_DENSE_PARSER));
   parser.setVerbose(verbose);
   parser.parse(path);
   vpCameraParameters camera;

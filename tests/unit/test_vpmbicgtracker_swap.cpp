@@ -4,6 +4,8 @@
 // class and its parameter file change, and ICG+ must be at least as accurate as ViSP
 // against the ground truth. Plus vpMbIcgTracker driven through a plain vpMbTracker*.
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
 #include "icgp/eval/metrics.h"
@@ -84,4 +86,43 @@ TEST_CASE("vpMbIcgTracker through a vpMbTracker* tracks colour-only teabox-blend
   INFO("largest error over " << frames.size() << " frames: " << max_t_mm << " mm, " << max_r_deg << " deg");
   CHECK(max_t_mm < 1e9);
   CHECK(max_r_deg < 1e9);
+}
+
+TEST_CASE("loadConfigFile reads the <camera> blocks of ViSP tracker XML files, value by value") {
+  // Values no default has, in the layout of ViSP's example files.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "icgp-test-xml-camera";
+  std::filesystem::create_directories(dir);
+  const auto write_xml = [&](const std::string& name, double u0, double v0, double px, double py) {
+    std::ofstream((dir / name).string()) << "<?xml version=\"1.0\"?>\n<conf>\n  <camera>\n    <u0>" << u0
+                                         << "</u0>\n    <v0>" << v0 << "</v0>\n    <px>" << px << "</px>\n    <py>" << py
+                                         << "</py>\n  </camera>\n</conf>\n";
+  };
+  write_xml("colour.xml", 321.25, 238.5, 612.75, 611.5);
+  write_xml("depth.xml", 318.0, 243.75, 575.25, 574.0);
+
+  vpMbIcgTracker tracker;
+  tracker.loadConfigFile((dir / "colour.xml").string(), (dir / "depth.xml").string(), false);
+  vpCameraParameters colour, depth;
+  tracker.getCameraParameters(colour, depth);
+  CHECK(colour.get_u0() == 321.25);
+  CHECK(colour.get_v0() == 238.5);
+  CHECK(colour.get_px() == 612.75);
+  CHECK(colour.get_py() == 611.5);
+  CHECK(depth.get_u0() == 318.0);
+  CHECK(depth.get_v0() == 243.75);
+  CHECK(depth.get_px() == 575.25);
+  CHECK(depth.get_py() == 574.0);
+
+  // The one-file form sets the colour camera; it agrees with vpMbGenericTracker on ViSP's file.
+  vpMbIcgTracker one_file;
+  one_file.loadConfigFile((test::kTeaboxBlender / "teabox.xml").string(), false);
+  vpMbGenericTracker visp(1, vpMbGenericTracker::EDGE_TRACKER);
+  visp.loadConfigFile((test::kTeaboxBlender / "teabox.xml").string(), false);
+  vpCameraParameters ours, theirs;
+  one_file.getCameraParameters(ours);
+  visp.getCameraParameters(theirs);
+  CHECK(ours.get_px() == theirs.get_px());
+  CHECK(ours.get_py() == theirs.get_py());
+  CHECK(ours.get_u0() == theirs.get_u0());
+  CHECK(ours.get_v0() == theirs.get_v0());
 }
