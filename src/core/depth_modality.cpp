@@ -20,11 +20,12 @@ DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> m
   correspondences_.reserve(params_.n_points_max);
 }
 
-const DepthImage& DepthModality::depth_image(const Frame& frame) const {
+const DepthImage* DepthModality::depth_image(const Frame& frame) const {
   const DepthImage* depth = frame.find_depth(params_.depth_camera);
   if (!depth)
     throw std::invalid_argument("depth modality of '" + body().name + "': the frame has no depth camera '" +
                                 params_.depth_camera + "'");
+  if (!depth->delivered()) return nullptr;
   if (depth->depth.type() != CV_32FC1 || depth->depth.cols != depth->intrinsics.width ||
       depth->depth.rows != depth->intrinsics.height)
     throw std::invalid_argument("depth modality of '" + body().name + "': camera '" + params_.depth_camera +
@@ -32,7 +33,7 @@ const DepthImage& DepthModality::depth_image(const Frame& frame) const {
                                 std::to_string(depth->intrinsics.width) + "x" +
                                 std::to_string(depth->intrinsics.height) + " (got " +
                                 std::to_string(depth->depth.cols) + "x" + std::to_string(depth->depth.rows) + ")");
-  return *depth;
+  return depth;
 }
 
 Posef DepthModality::depth_T_body() const { return depth_T_reference_ * body().reference_T_body.cast<float>(); }
@@ -125,7 +126,14 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
 }
 
 void DepthModality::correspondences(const Frame& frame, int corr_iter) {
-  const DepthImage& depth = depth_image(frame);
+  const DepthImage* delivered = depth_image(frame);
+  last_corr_iter_ = corr_iter;
+  if (!delivered) {  // no depth this frame: no data, and the cue abstains
+    correspondences_.clear();
+    saw_depth_ = false;
+    return;
+  }
+  const DepthImage& depth = *delivered;
   depth_T_reference_ = depth.camera_T_reference.cast<float>();
   const Posef depth_T_body_now = depth_T_body();
   const Eigen::Vector3f camera_in_body = depth_T_body_now.inverse().translation();
@@ -155,7 +163,6 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
   collect(test_occlusions);
   if (test_occlusions && static_cast<int>(correspondences_.size()) < params_.min_n_unoccluded_points) collect(false);
   estimate_noise();
-  last_corr_iter_ = corr_iter;
 }
 
 void DepthModality::estimate_noise() {

@@ -80,7 +80,7 @@ bool RegionModality::hidden(const Frame& frame, const Eigen::Vector3f& body_poin
       frames_since_start_ < params_.n_unoccluded_iterations)
     return false;
   const DepthImage* depth = frame.find_depth(params_.depth_camera);
-  if (!depth) return false;
+  if (!depth || !depth->delivered()) return false;
   const Eigen::Vector3f X = (depth->camera_T_reference * body().reference_T_body).cast<float>() * body_point;
   return occlusion_.occluded(*depth, X, depth_offsets[occlusion_offset_index_]);
 }

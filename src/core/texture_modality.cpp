@@ -242,6 +242,7 @@ void TextureModality::make_keyframe(const Frame& frame) {
   // Measured occlusions need depth; a frame without it (a colour-only camera) keeps every
   // keypoint on the rendered silhouette, as the region modality keeps its lines.
   const DepthImage* depth = params_.depth_camera.empty() ? nullptr : frame.find_depth(params_.depth_camera);
+  if (depth && !depth->delivered()) depth = nullptr;
   if (depth) {
     if (depth->depth.type() != CV_32FC1)
       throw std::invalid_argument("texture modality of '" + body().name + "': camera '" + params_.depth_camera +

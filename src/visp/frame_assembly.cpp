@@ -89,6 +89,14 @@ void FrameAssembler::set_depth(const std::string& camera, unsigned int width, un
 
 void FrameAssembler::clear_depth() { frame_.depths.clear(); }
 
+void FrameAssembler::set_no_depth(const std::string& camera) {
+  frame_.depths.resize(1);
+  DepthImage& d = frame_.depths.front();
+  d.camera = camera;
+  d.depth = cv::Mat();
+  d.source.drop_reader();
+}
+
 void FrameAssembler::end_depth_reads() {
   for (DepthImage& d : frame_.depths) d.source.drop_reader();
 }

@@ -39,6 +39,8 @@ class FrameAssembler {
                  const std::optional<vpCameraParameters>& parameters, const vpHomogeneousMatrix& camera_M_color,
                  DepthReader read);
   void clear_depth();
+  /// The depth camera delivered nothing this frame (DepthImage::delivered).
+  void set_no_depth(const std::string& camera);
   /// Drops the reader of set_depth (which usually refers to the caller's cloud): pixels
   /// not read so far read as "no measurement" from now on.
   void end_depth_reads();

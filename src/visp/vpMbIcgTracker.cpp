@@ -323,6 +323,8 @@ const std::vector<vpColVector>& cloud_of_depth_camera(std::map<std::string, cons
     throw vpException(vpException::badValue, "vpMbIcgTracker::track: no width/height of \"Camera2\"'s point cloud");
   width = widths[kDepthCamera];
   height = heights[kDepthCamera];
+  // Width and height 0 is ViSP's "no depth this frame", whatever the cloud holds.
+  if (width == 0 && height == 0) return *cloud;
   if (cloud->size() != static_cast<std::size_t>(width) * height)
     throw vpException(vpException::badValue, "vpMbIcgTracker::track: the point cloud of \"Camera2\" has " +
                                                  std::to_string(cloud->size()) + " points, but width x height is " +
@@ -355,6 +357,10 @@ template void vpMbIcgTracker::track_with_depth(std::map<std::string, const vpIma
 
 void vpMbIcgTracker::set_depth(unsigned int width, unsigned int height, DepthReader read, bool depthFromColorCamera) {
   Impl& d = *impl_;
+  if (width == 0 && height == 0) {  // as in ViSP: no depth this frame; the depth cue sits it out
+    d.assembler.set_no_depth(kDepthCamera);
+    return;
+  }
   const std::optional<vpCameraParameters> camera = depthFromColorCamera ? std::optional(m_cam) : d.depth_camera;
   const vpHomogeneousMatrix M = depthFromColorCamera ? vpHomogeneousMatrix() : d.depth_M_color;
   d.assembler.set_depth(kDepthCamera, width, height, camera, M, std::move(read));

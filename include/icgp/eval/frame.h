@@ -73,6 +73,9 @@ struct DepthImage {
   /// one value its source gives.
   mutable LazyDepthSource source;
 
+  /// False for a frame in which the camera delivered no depth at all (ViSP: a point cloud
+  /// of width and height 0): the cues that read it sit that frame out.
+  bool delivered() const { return !depth.empty(); }
   /// The depth at (row, col), inside the image: metres, 0 where there is no measurement.
   float at(int row, int col) const {
     const float z = depth.ptr<float>(row)[col];

@@ -41,7 +41,8 @@ class DepthModality : public Modality {
     Eigen::Vector3f measured;  ///< in the depth camera frame
   };
 
-  const DepthImage& depth_image(const Frame& frame) const;
+  /// The frame's image of the depth camera; nullptr when it delivered no depth this frame.
+  const DepthImage* depth_image(const Frame& frame) const;
   /// How a correspondence pass searches the depth image around each point.
   struct Search {
     float considered_distance;  ///< metres

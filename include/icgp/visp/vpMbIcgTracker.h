@@ -121,7 +121,8 @@ class vpMbIcgTracker : public vpMbTracker {
   void track(const vpImage<vpRGBa>& I_color) override;
   /// vpMbGenericTracker's RGB-D call: images of "Camera1", organised point clouds (row
   /// major, one vpColVector X, Y, Z in metres per pixel, Z <= 0 or NaN for no measurement)
-  /// of "Camera2" in its own frame.
+  /// of "Camera2" in its own frame. Width and height 0 mean, as in ViSP, that the depth
+  /// camera delivered nothing this frame: the depth cue sits it out.
   void track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
              std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
              std::map<std::string, unsigned int>& mapOfPointCloudWidths,
