@@ -270,7 +270,11 @@ void vpMbIcgTracker::setPose(const vpImage<vpRGBa>& I_color, const vpHomogeneous
 }
 
 void vpMbIcgTracker::resetTracker() {
+  // As vpMbGenericTracker, which keeps its map of camera transformation matrices: ViSP's
+  // programs reload the model, settings and cameras after a reset, not the extrinsics.
+  const vpHomogeneousMatrix depth_M_color = impl_->depth_M_color;
   impl_ = std::make_unique<Impl>();
+  impl_->depth_M_color = depth_M_color;
   m_cMo.eye();
   m_cam = vpCameraParameters();
   m_error.resize(0);

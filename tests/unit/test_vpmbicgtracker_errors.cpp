@@ -162,3 +162,26 @@ TEST_CASE("vpMbIcgTracker: width and height 0 in the cloud maps mean no depth th
       CHECK(tiny < 10);
   }
 }
+
+TEST_CASE("vpMbIcgTracker: resetTracker keeps the camera transformation matrix, as vpMbGenericTracker does") {
+  RgbdFixture f(true);
+  const std::vector<Frame> frames = test::teabox_frames(6);
+  // What ViSP's RGB-D example does after a reset: settings, model, cameras and pose again,
+  // but not the depth camera's extrinsics (here a 10 cm baseline).
+  f.tracker.resetTracker();
+  test::configure_for_tests(f.tracker);
+  f.tracker.loadModel(kTeaboxCao, kTeaboxCao);
+  f.tracker.setCameraParameters(to_camera_parameters(f.frame.colors.front().intrinsics),
+                                to_camera_parameters(f.frame.depths.front().intrinsics));
+  f.input.convert(frames.front());
+  f.tracker.initFromPose(f.input.grey, to_homogeneous_matrix(*frames.front().truth()));
+  for (const Frame& frame : frames) {
+    f.input.convert(frame);
+    f.track();
+    vpHomogeneousMatrix cMo;
+    f.tracker.getPose(cMo);
+    INFO("frame " << frame.index);
+    CHECK(translation_error_mm(to_pose(cMo), *frame.truth()) < 0.5);
+    CHECK(rotation_error_deg(to_pose(cMo), *frame.truth()) < 0.2);
+  }
+}
