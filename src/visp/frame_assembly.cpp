@@ -87,8 +87,6 @@ void FrameAssembler::set_depth(const std::string& camera, unsigned int width, un
   d.source.set_reader(std::move(read));
 }
 
-void FrameAssembler::clear_depth() { frame_.depths.clear(); }
-
 void FrameAssembler::set_no_depth(const std::string& camera) {
   frame_.depths.resize(1);
   DepthImage& d = frame_.depths.front();

@@ -38,7 +38,6 @@ class FrameAssembler {
   void set_depth(const std::string& camera, unsigned int width, unsigned int height,
                  const std::optional<vpCameraParameters>& parameters, const vpHomogeneousMatrix& camera_M_color,
                  DepthReader read);
-  void clear_depth();
   /// The depth camera delivered nothing this frame (DepthImage::delivered).
   void set_no_depth(const std::string& camera);
   /// Drops the reader of set_depth (which usually refers to the caller's cloud): pixels

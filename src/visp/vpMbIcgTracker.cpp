@@ -77,6 +77,16 @@ struct vpMbIcgTracker::Impl {
                                 "vpMbIcgTracker::track: not initialised; call loadModel() and initFromPose() first");
   }
 
+  /// track(I) has only a colour image: a configuration of the depth cue alone has nothing to
+  /// track it with.
+  void require_colour_cue() const {
+    const auto& m = config.modalities;
+    if (std::find(m.begin(), m.end(), "region") == m.end() && std::find(m.begin(), m.end(), "texture") == m.end())
+      throw vpException(vpException::badValue,
+                        "vpMbIcgTracker::track(I): the configured cues need depth; give a point cloud or a depth "
+                        "image (track with the maps of clouds, or track(I, I_depth_raw, depthScale))");
+  }
+
   void model_changed() {
     tracker.reset();
     edges.reset();
@@ -290,15 +300,19 @@ void vpMbIcgTracker::resetTracker() {
 
 void vpMbIcgTracker::track(const vpImage<unsigned char>& I) {
   impl_->require_initialised();
+  impl_->require_colour_cue();
   impl_->assembler.set_color(kColorCamera, I, m_cam, impl_->color_camera_set);
-  impl_->assembler.clear_depth();
+  // A colour-only call: the depth cue, on by default, sits the frame out as when a depth
+  // camera delivers nothing, so a monocular program runs on the defaults.
+  impl_->assembler.set_no_depth(kDepthCamera);
   track_current_frame(&I);
 }
 
 void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color) {
   impl_->require_initialised();
+  impl_->require_colour_cue();
   impl_->assembler.set_color(kColorCamera, I_color, m_cam, impl_->color_camera_set);
-  impl_->assembler.clear_depth();
+  impl_->assembler.set_no_depth(kDepthCamera);
   track_current_frame(nullptr);
 }
 

@@ -185,3 +185,12 @@ TEST_CASE("vpMbIcgTracker: resetTracker keeps the camera transformation matrix, 
     CHECK(rotation_error_deg(to_pose(cMo), *frame.truth()) < 0.2);
   }
 }
+
+TEST_CASE("vpMbIcgTracker: track(I) with the depth cue alone is a vpException naming the call") {
+  RgbdFixture f(true);
+  f.tracker.setModalities({"depth"});
+  f.tracker.initFromPose(f.input.grey, to_homogeneous_matrix(*f.frame.truth()));
+  const vpException e = vp_exception_of([&] { f.tracker.track(f.input.grey); });
+  CHECK(e.getCode() == vpException::badValue);
+  CHECK_THAT(e.getStringMessage(), Contains("track(I)"));
+}

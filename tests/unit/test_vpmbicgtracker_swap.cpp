@@ -61,11 +61,10 @@ TEST_CASE(
   CHECK(icg_errors.r_deg <= visp_errors.r_deg);
 }
 
-TEST_CASE("vpMbIcgTracker through a vpMbTracker* tracks colour-only teabox-blender frames") {
+TEST_CASE("vpMbIcgTracker through a vpMbTracker* tracks colour-only teabox-blender frames on the defaults") {
   const std::vector<Frame> frames = test::teabox_frames(10);
   vpMbIcgTracker icg;
-  test::configure_for_tests(icg);
-  icg.setModalities({"region"});  // no depth camera in a colour-only program
+  test::configure_for_tests(icg);  // the defaults' cues (depth among them), coarse models
 
   // From here on only vpMbTracker's interface, as code written for any ViSP tracker.
   vpMbTracker& tracker = icg;
@@ -83,9 +82,11 @@ TEST_CASE("vpMbIcgTracker through a vpMbTracker* tracks colour-only teabox-blend
     max_t_mm = std::max(max_t_mm, translation_error_mm(to_pose(cMo), *frame.truth()));
     max_r_deg = std::max(max_r_deg, rotation_error_deg(to_pose(cMo), *frame.truth()));
   }
+  // A monocular program: no depth camera was ever set, so region and texture track alone,
+  // less exactly along the line of sight than with depth.
   INFO("largest error over " << frames.size() << " frames: " << max_t_mm << " mm, " << max_r_deg << " deg");
-  CHECK(max_t_mm < 1e9);
-  CHECK(max_r_deg < 1e9);
+  CHECK(max_t_mm < 5.0);
+  CHECK(max_r_deg < 1.0);
 }
 
 TEST_CASE("loadConfigFile reads the <camera> blocks of ViSP tracker XML files, value by value") {
