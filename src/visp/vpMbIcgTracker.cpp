@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbtXmlGenericParser.h>
@@ -67,6 +68,8 @@ struct vpMbIcgTracker::Impl {
   double quality = 0.0;
   std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
 
+  std::set<std::string> reported_without_effect;  ///< ViSP settings already reported once
+
   std::unique_ptr<icgp::ModelEdges> edges;  ///< for display, made on first use
   std::unique_ptr<icgp::Renderer> renderer;
   icgp::Renderer::BodyHandle render_body{};
@@ -85,6 +88,12 @@ struct vpMbIcgTracker::Impl {
       throw vpException(vpException::badValue,
                         "vpMbIcgTracker::track(I): the configured cues need depth; give a point cloud or a depth "
                         "image (track with the maps of clouds, or track(I, I_depth_raw, depthScale))");
+  }
+
+  /// A ViSP setting this tracker accepts but cannot honour: said once per tracker.
+  void report_without_effect(const std::string& call, const std::string& why) {
+    if (reported_without_effect.insert(call).second)
+      std::cerr << "vpMbIcgTracker::" << call << ": no effect (" << why << ")\n";
   }
 
   void model_changed() {
@@ -294,6 +303,12 @@ void vpMbIcgTracker::resetTracker() {
   modelInitialised = false;
   projectionError = 90.0;
   covarianceMatrix.resize(0, 0);
+}
+
+void vpMbIcgTracker::setScanLineVisibilityTest(const bool& v) {
+  vpMbTracker::setScanLineVisibilityTest(v);
+  impl_->report_without_effect("setScanLineVisibilityTest",
+                               "visibility comes from the rendered viewpoint models, exact for every face");
 }
 
 // ------------------------------------------------------------------------------ tracking

@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <sstream>
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpTrackingException.h>
 
@@ -193,4 +195,16 @@ TEST_CASE("vpMbIcgTracker: track(I) with the depth cue alone is a vpException na
   const vpException e = vp_exception_of([&] { f.tracker.track(f.input.grey); });
   CHECK(e.getCode() == vpException::badValue);
   CHECK_THAT(e.getStringMessage(), Contains("track(I)"));
+}
+
+TEST_CASE("vpMbIcgTracker: setScanLineVisibilityTest is accepted and reported once as having no effect") {
+  vpMbIcgTracker tracker;
+  std::ostringstream said;
+  std::streambuf* const stderr_buffer = std::cerr.rdbuf(said.rdbuf());
+  tracker.setScanLineVisibilityTest(true);
+  tracker.setScanLineVisibilityTest(false);
+  std::cerr.rdbuf(stderr_buffer);
+  const std::string text = said.str();
+  CHECK_THAT(text, Contains("setScanLineVisibilityTest: no effect"));
+  CHECK(text.find("setScanLineVisibilityTest") == text.rfind("setScanLineVisibilityTest"));  // once
 }

@@ -111,8 +111,13 @@ class vpMbIcgTracker : public vpMbTracker {
   /// Moves the estimate to cdMo; the cues restart there on the next track() call.
   void setPose(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cdMo) override;
   void setPose(const vpImage<vpRGBa>& I_color, const vpHomogeneousMatrix& cdMo) override;
-  /// Back to a freshly constructed tracker: no model, default parameters and cameras.
+  /// Back to a freshly constructed tracker: no model, default parameters and cameras; the
+  /// depth camera's transformation matrix stays, as in vpMbGenericTracker.
   void resetTracker() override;
+  /// Accepted, and reported once on stderr as having no effect: the cues' visibility comes
+  /// from the viewpoint models rendered from the mesh, exact for every face, so there is
+  /// no polygon visibility test to refine.
+  void setScanLineVisibilityTest(const bool& v) override;
   //@}
 
   /** @name Tracking */
