@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
-#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <visp3/mbt/vpMbGenericTracker.h>
@@ -80,7 +79,7 @@ void print_table(const std::vector<TimedRow>& rows, const std::vector<RowName>& 
     const TimedRow* row = find_row(rows, name.name());
     if (!row) continue;
     const TrackingSummary& s = row->summary;
-    const double speed = reference ? speed_ratio(*reference, *row) : std::numeric_limits<double>::quiet_NaN();
+    const double speed = speed_ratio(reference, *row);
     std::printf("%-20s %-26s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", name.tracker.c_str(), name.config.c_str(),
                 s.mean_t_mm, s.max_t_mm, s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, speed);
   }
@@ -159,13 +158,8 @@ void run_compare(const CompareOptions& o) {
   // and not counted. NaN (null in the summary) when either run failed.
   const TimedRow* icg = find_row(rows, RowName{kIcgTracker, icgp_name}.name());
   const TimedRow* core = find_row(rows, RowName{kCoreTracker, icgp_name + kGreySuffix}.name());
-  double overhead_percent = std::numeric_limits<double>::quiet_NaN();
-  if (icg && core) {
-    std::vector<double> overheads;
-    for (std::size_t r = 0; r < std::min(icg->round_ms.size(), core->round_ms.size()); ++r)
-      overheads.push_back((icg->round_ms[r] - core->round_ms[r]) / icg->round_ms[r] * 100.0);
-    if (!overheads.empty()) overhead_percent = median(overheads);
-  }
+  const double overhead_percent =
+      median_over_rounds(icg, core, [](double icg_ms, double core_ms) { return (icg_ms - core_ms) / icg_ms * 100.0; });
   if (std::isfinite(overhead_percent))
     std::printf(
         "\nViSP-layer overhead of vpMbIcgTracker: track() %.3f ms (point cloud read included) vs\n"
@@ -211,7 +205,7 @@ void register_compare_command(CLI::App& app) {
                   "Write the table as JSON: {\"rows\": [...], \"visp_layer_overhead_percent\": x}");
   cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
   cmd->add_option("--rounds", o->rounds,
-                  "Run every tracker this many times, alternating the order, and time each by its fastest round")
+                  "Run every tracker this many times, alternating the order, and take speed ratios within a round")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);

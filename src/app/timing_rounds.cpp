@@ -49,11 +49,16 @@ std::vector<TimedRow> run_rounds(const std::vector<TimedJob>& jobs, int rounds, 
   return rows;
 }
 
-double speed_ratio(const TimedRow& reference, const TimedRow& row) {
-  std::vector<double> ratios;
-  for (std::size_t r = 0; r < std::min(reference.round_ms.size(), row.round_ms.size()); ++r)
-    ratios.push_back(reference.round_ms[r] / row.round_ms[r]);
-  return ratios.empty() ? std::numeric_limits<double>::quiet_NaN() : median(ratios);
+double median_over_rounds(const TimedRow* a, const TimedRow* b, const std::function<double(double, double)>& per_round) {
+  std::vector<double> values;
+  if (a && b)
+    for (std::size_t r = 0; r < std::min(a->round_ms.size(), b->round_ms.size()); ++r)
+      values.push_back(per_round(a->round_ms[r], b->round_ms[r]));
+  return values.empty() ? std::numeric_limits<double>::quiet_NaN() : median(values);
+}
+
+double speed_ratio(const TimedRow* reference, const TimedRow& row) {
+  return median_over_rounds(reference, &row, [](double reference_ms, double row_ms) { return reference_ms / row_ms; });
 }
 
 const TimedRow* find_row(const std::vector<TimedRow>& rows, const std::string& name) {

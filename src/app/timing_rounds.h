@@ -33,9 +33,13 @@ struct TimedRow {
 std::vector<TimedRow> run_rounds(const std::vector<TimedJob>& jobs, int rounds, int n_frames,
                                  std::vector<std::string>& failures);
 
-/// How many times faster `row` is than `reference`: the median over rounds of the ratio of
-/// their medians in the same round. NaN without a common round.
-double speed_ratio(const TimedRow& reference, const TimedRow& row);
+/// The median over the rounds both rows ran of `per_round(a's median, b's median)` in that
+/// round. NaN without a common round or without one of the rows (nullptr).
+double median_over_rounds(const TimedRow* a, const TimedRow* b, const std::function<double(double, double)>& per_round);
+
+/// How many times faster `row` is than `reference` (nullptr: NaN): the median over rounds
+/// of the ratio of their medians in the same round.
+double speed_ratio(const TimedRow* reference, const TimedRow& row);
 
 /// The row named `name`, or nullptr.
 const TimedRow* find_row(const std::vector<TimedRow>& rows, const std::string& name);

@@ -75,11 +75,17 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   bool found = false;
   const float ifu = static_cast<float>(1.0 / k.fu), ifv = static_cast<float>(1.0 / k.fv);
   const float pu = static_cast<float>(k.pu), pv = static_cast<float>(k.pv);
-  const auto consider = [&](int row, int col) {
+  // The measured point at a pixel, false where the pixel holds no measurement.
+  const auto measured = [&](int row, int col, Eigen::Vector3f& P) {
     const float z = depth.at(row, col);
-    if (!(z > 0.f && z < std::numeric_limits<float>::infinity())) return;
+    if (!(z > 0.f && z < std::numeric_limits<float>::infinity())) return false;
+    P = Eigen::Vector3f((col - pu) * ifu * z, (row - pv) * ifv * z, z);
+    return true;
+  };
+  const auto consider = [&](int row, int col) {
+    Eigen::Vector3f P;
+    if (!measured(row, col, P)) return;
     saw_depth = true;
-    const Eigen::Vector3f P((col - pu) * ifu * z, (row - pv) * ifv * z, z);
     const float d2 = (P - point).squaredNorm();
     if (d2 < best) {
       best = d2;
@@ -107,10 +113,8 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   float upper = best;
   const int near_row = std::clamp(round_to_int(centre.y() / step) * step, row_min, row_max - (row_max - row_min) % step);
   const int near_col = std::clamp(round_to_int(centre.x() / step) * step, col_min, col_max - (col_max - col_min) % step);
-  const float near_z = depth.at(near_row, near_col);
-  if (near_z > 0.f && near_z < std::numeric_limits<float>::infinity())
-    upper = std::min(upper, (Eigen::Vector3f((near_col - pu) * ifu * near_z, (near_row - pv) * ifv * near_z, near_z) -
-                             point).squaredNorm());
+  Eigen::Vector3f near;
+  if (measured(near_row, near_col, near)) upper = std::min(upper, (near - point).squaredNorm());
   // The margin covers the rounding of the bounds, which must never exclude a winner.
   const float limit = upper * 1.001f + 1e-12f;
   const auto beyond = [&](float gap, float normalised) { return gap * gap > limit * (1.f + normalised * normalised); };

@@ -267,13 +267,13 @@ float RegionModality::normalised_residual(const Line& line, const Posef& camera_
 
 void RegionModality::weigh_lines(const Posef& camera_T_body, int corr_iter) {
   noise_.estimate([&](auto add) {
-    for (const Line& line : lines_) add(normalised_residual(line, camera_T_body));
+    for (Line& line : lines_) add(line.residual = normalised_residual(line, camera_T_body));
   });
   // Robust weights, fixed for this pass's updates (iteratively reweighted): a line whose
   // contour lies far beyond the others' scatter, such as a background of the object's
-  // colour, must not pull the pose.
+  // colour, must not pull the pose. Without them (no residuals collected) weight() is 1.
   const double scale = noise_.scale(iteration_value(params_.standard_deviations, corr_iter));
-  for (Line& line : lines_) line.weight = noise_.weight(normalised_residual(line, camera_T_body), scale);
+  for (Line& line : lines_) line.weight = noise_.weight(line.residual, scale);
 }
 
 double RegionModality::sigma(int corr_iter) const {

@@ -8,8 +8,8 @@ namespace icgp {
 
 void ResidualNoise::estimate_from_residuals() {
   estimate_ = -1.0;
-  if (!(params_.estimate || params_.robust) || static_cast<int>(residuals_.size()) < std::max(1, params_.min_residuals))
-    return;
+  // estimate() collects nothing when neither estimation nor robust weights are on.
+  if (static_cast<int>(residuals_.size()) < std::max(1, params_.min_residuals)) return;
   for (float& r : residuals_) r = std::abs(r);
   const auto middle = residuals_.begin() + static_cast<std::ptrdiff_t>(residuals_.size() / 2);
   std::nth_element(residuals_.begin(), middle, residuals_.end());

@@ -59,7 +59,8 @@ class RegionModality : public Modality {
     float normal_factor;  ///< n̄ = |n_dominant| / scale: pixels along the normal -> segments
     float mean;           ///< μ of the contour-location distribution (segments)
     float variance;       ///< σ_d², clamped below by σ_min²
-    float weight = 1.f;   ///< robust weight of this correspondence pass (ResidualNoise::weight)
+    float residual = 0.f;  ///< normalised_residual() at the pose of the correspondence search
+    float weight = 1.f;    ///< robust weight of this correspondence pass (ResidualNoise::weight)
   };
 
   const ColorImage& color_image(const Frame& frame) const;
