@@ -63,7 +63,7 @@ class IcgpEstimator : public PoseEstimator {
   std::string name() const override { return name_; }
 
  private:
-  vpMbIcgTracker tracker_;
+  vpMbIcgTracker tracker_{icgp::kRgbdTrackerTypes};
   std::string name_;
 };
 

@@ -130,7 +130,7 @@ void run_compare(const CompareOptions& o) {
     });
   }
   add_job({kIcgTracker, icgp_name}, [&] {
-    vpMbIcgTracker tracker;
+    vpMbIcgTracker tracker(kRgbdTrackerTypes);
     tracker.setTrackerConfig(icgp_config);
     icg_run = track_rgbd_sequence(tracker, frames, visp_files, cMo0);
     return summarise(frames, object.name, mesh, icg_run);

@@ -75,11 +75,12 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   bool found = false;
   const float ifu = static_cast<float>(1.0 / k.fu), ifv = static_cast<float>(1.0 / k.fv);
   const float pu = static_cast<float>(k.pu), pv = static_cast<float>(k.pv);
+  const bool pinhole_rays = depth.rays.empty();
   // The measured point at a pixel, false where the pixel holds no measurement.
   const auto measured = [&](int row, int col, Eigen::Vector3f& P) {
     const float z = depth.at(row, col);
     if (!(z > 0.f && z < std::numeric_limits<float>::infinity())) return false;
-    P = Eigen::Vector3f((col - pu) * ifu * z, (row - pv) * ifv * z, z);
+    P = pinhole_rays ? Eigen::Vector3f((col - pu) * ifu * z, (row - pv) * ifv * z, z) : depth.point(row, col, z);
     return true;
   };
   const auto consider = [&](int row, int col) {
@@ -110,6 +111,12 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   // bounds the distance of every sample of the row from below (likewise for columns): rows
   // and columns that cannot hold a sample within the upper bound are not read. The samples
   // left are visited in the full search's order, so the result is the full search's.
+  // Points off the pinhole rays (a distorted sensor's cloud) have no such bound.
+  if (!pinhole_rays) {
+    for (int row = row_min; row <= row_max; row += step)
+      for (int col = col_min; col <= col_max; col += step) consider(row, col);
+    return found;
+  }
   float upper = best;
   const int near_row = std::clamp(round_to_int(centre.y() / step) * step, row_min, row_max - (row_max - row_min) % step);
   const int near_col = std::clamp(round_to_int(centre.x() / step) * step, col_min, col_max - (col_max - col_min) % step);
@@ -159,6 +166,7 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
       const Eigen::Vector3f X = depth_T_body_now * points[p].position;
       if (X.z() <= 0.f) continue;
       if (with_occlusion_test && occlusions_.occluded(p)) continue;
+      if (!depth.mask.all_pixels() && !depth.mask.usable(depth.intrinsics.project<float>(X))) continue;
       Eigen::Vector3f measured;
       if (!find_closest_measurement(depth, X, search, measured, saw_depth_)) continue;
       correspondences_.push_back({points[p].position, points[p].normal, measured});

@@ -240,6 +240,7 @@ void RegionModality::correspondences(const Frame& frame, int corr_iter) {
     for (int i = 0; i < n_considered_; ++i) {
       if (!project(points[i], pose, intrinsics_, p)) continue;
       if (std::min(p.foreground_px, p.background_px) / scale < params_.min_continuous_distance) continue;
+      if (!image.mask.usable(p.centre)) continue;
       ++n_measurable_;
       if (test_occlusions && occlusions_.occluded(i)) continue;
       Line line;
@@ -362,6 +363,16 @@ void RegionModality::append_residuals(std::vector<double>& residuals, std::vecto
     const double delta = line.normal_factor * (line.normal.cast<double>().dot(x - line.centre.cast<double>()) - line.delta_r);
     residuals.push_back((delta - line.mean) / line.normal_factor);
     weights.push_back(line.weight * min_variance_ / line.variance);
+  }
+}
+
+void RegionModality::append_image_features(std::vector<ImageFeature>& features) const {
+  // The most likely contour location: where the line's position, n̄ (n·(x − c) − Δr),
+  // equals the distribution's mean.
+  for (const Line& line : lines_) {
+    const float along_normal = line.mean / line.normal_factor + line.delta_r;
+    features.push_back({(line.centre + along_normal * line.normal).cast<double>(),
+                        static_cast<double>(line.weight)});
   }
 }
 

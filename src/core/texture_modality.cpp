@@ -230,6 +230,18 @@ void TextureModality::detect(const Frame& frame) {
     return;
   }
   extractor_.extract(color.image, square_around_sphere(intrinsics_, centre, sphere_radius_), points_, descriptors_);
+  if (!color.mask.all_pixels()) drop_masked_points(color.mask);
+}
+
+void TextureModality::drop_masked_points(const PixelMask& mask) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    if (!mask.usable(Eigen::Vector2f(points_[i].x, points_[i].y))) continue;
+    if (kept != i) descriptors_.row(static_cast<int>(i)).copyTo(descriptors_.row(static_cast<int>(kept)));
+    points_[kept++] = points_[i];
+  }
+  points_.resize(kept);
+  descriptors_ = descriptors_.rowRange(0, static_cast<int>(kept));
 }
 
 void TextureModality::make_keyframe(const Frame& frame) {
@@ -368,6 +380,10 @@ void TextureModality::append_residuals(std::vector<double>& residuals, std::vect
     residuals.insert(residuals.end(), {e.x(), e.y()});
     weights.insert(weights.end(), {m.weight, m.weight});  // Tukey
   }
+}
+
+void TextureModality::append_image_features(std::vector<ImageFeature>& features) const {
+  for (const Match& m : matches_) features.push_back({m.image_point.cast<double>(), m.weight});
 }
 
 void TextureModality::finish(const Frame& frame) {

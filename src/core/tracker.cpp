@@ -68,6 +68,16 @@ void Tracker::residuals(const std::string& name, std::vector<double>& residuals,
   throw std::invalid_argument("tracker has no body named '" + name + "'");
 }
 
+std::vector<const Modality*> Tracker::modalities(const std::string& name) const {
+  for (const auto& s : states_)
+    if (s->body->name == name) {
+      std::vector<const Modality*> out;
+      for (const auto& m : s->modalities) out.push_back(m.get());
+      return out;
+    }
+  throw std::invalid_argument("tracker has no body named '" + name + "'");
+}
+
 void Tracker::start(const Frame& frame) {
   for (auto& s : states_)
     for (auto& m : s->modalities) m->start(frame);

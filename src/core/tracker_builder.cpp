@@ -33,17 +33,44 @@ std::vector<ViewpointModel> multi_region_models(const TrackerConfig& config, con
 }  // namespace
 
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name) {
+  // The cameras the parameters name: the colour cues' camera, which looks for occlusions
+  // in the region cue's depth camera (the texture cue's when region is off), and the depth
+  // cue's camera.
+  const bool region_on = std::find(config.modalities.begin(), config.modalities.end(), "region") != config.modalities.end();
+  std::vector<CameraCues> cameras;
+  auto camera = [&](const std::string& name) -> CameraCues& {
+    for (CameraCues& c : cameras)
+      if (c.camera == name) return c;
+    return cameras.emplace_back(CameraCues{name});
+  };
+  camera(config.texture.color_camera).occlusion_depth_camera = config.texture.depth_camera;
+  camera(config.region.color_camera).occlusion_depth_camera =
+      region_on ? config.region.depth_camera : config.texture.depth_camera;
+  camera(config.region.color_camera).region = true;
+  camera(config.texture.color_camera).texture = true;
+  camera(config.depth.depth_camera).depth = true;
+  return build_tracker(config, mesh, body_name, cameras);
+}
+
+std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
+                                       const std::vector<CameraCues>& cameras) {
   auto uses = [&](const std::string& name) {
     return std::find(config.modalities.begin(), config.modalities.end(), name) != config.modalities.end();
   };
   for (const std::string& name : config.modalities)
     if (name != "region" && name != "depth" && name != "texture")
       throw std::invalid_argument("modality '" + name + "' is not available (available: region, depth, texture)");
+  auto any_camera = [&](bool CameraCues::*cue) {
+    return std::any_of(cameras.begin(), cameras.end(), [cue](const CameraCues& c) { return c.*cue; });
+  };
+  const bool region = uses("region") && any_camera(&CameraCues::region);
+  const bool depth = uses("depth") && any_camera(&CameraCues::depth);
+  const bool texture = uses("texture") && any_camera(&CameraCues::texture);
 
-  const bool multi_region = uses("region") && !config.regions.empty();
+  const bool multi_region = region && !config.regions.empty();
   std::vector<ModelRequest> requests;
-  if (uses("region") && !multi_region) requests.push_back({ViewpointModel::Kind::kRegion, config.region_model});
-  if (uses("depth")) requests.push_back({ViewpointModel::Kind::kDepth, config.depth_model});
+  if (region && !multi_region) requests.push_back({ViewpointModel::Kind::kRegion, config.region_model});
+  if (depth) requests.push_back({ViewpointModel::Kind::kDepth, config.depth_model});
   ModelGenerationOptions options;
   options.name = body_name;
   std::vector<ViewpointModel> models = load_or_generate(mesh, requests, config.cache_dir, options);
@@ -52,14 +79,32 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
 
   auto tracker = std::make_unique<Tracker>(config.tracker);
   Body& body = tracker->add_body({body_name, mesh, Pose()});
-  for (ViewpointModel& model : models) {
-    auto shared = std::make_shared<const ViewpointModel>(std::move(model));
-    if (shared->kind() == ViewpointModel::Kind::kRegion)
-      tracker->add_modality(std::make_unique<RegionModality>(body, shared, config.region));
-    else
-      tracker->add_modality(std::make_unique<DepthModality>(body, shared, config.depth));
+  std::vector<std::shared_ptr<const ViewpointModel>> shared;
+  for (ViewpointModel& model : models) shared.push_back(std::make_shared<const ViewpointModel>(std::move(model)));
+  // Model by model, then camera by camera: one camera per cue gives the modality order of
+  // a single-camera tracker.
+  for (const auto& model : shared) {
+    for (const CameraCues& camera : cameras) {
+      if (model->kind() == ViewpointModel::Kind::kRegion && region && camera.region) {
+        RegionParams params = config.region;
+        params.color_camera = camera.camera;
+        params.depth_camera = camera.occlusion_depth_camera;
+        tracker->add_modality(std::make_unique<RegionModality>(body, model, params));
+      } else if (model->kind() == ViewpointModel::Kind::kDepth && depth && camera.depth) {
+        DepthParams params = config.depth;
+        params.depth_camera = camera.camera;
+        tracker->add_modality(std::make_unique<DepthModality>(body, model, params));
+      }
+    }
   }
-  if (uses("texture")) tracker->add_modality(std::make_unique<TextureModality>(body, config.texture));
+  if (texture)
+    for (const CameraCues& camera : cameras) {
+      if (!camera.texture) continue;
+      TextureParams params = config.texture;
+      params.color_camera = camera.camera;
+      params.depth_camera = camera.occlusion_depth_camera;
+      tracker->add_modality(std::make_unique<TextureModality>(body, params));
+    }
   return tracker;
 }
 

@@ -238,7 +238,7 @@ class CaoGeometryCollector final : public vpMbTracker {
 
   [[noreturn]] static void not_a_tracker() {
     throw vpException(vpException::notImplementedError,
-                      "CaoGeometryCollector only parses .cao models, it is not a tracker");
+                      "CaoGeometryCollector only parses ViSP models, it is not a tracker");
   }
   vpColVector getError() const override { not_a_tracker(); }
   vpColVector getRobustWeights() const override { not_a_tracker(); }
@@ -299,11 +299,12 @@ std::string as_clause(const std::string& diagnostics) {
   return joined.empty() ? "" : " (" + joined + ")";
 }
 
-bool has_cao_extension(const std::string& path) {
+/// .cao and .wrl: the formats ViSP's vpMbTracker::loadModel reads (VRML through Coin3D).
+bool has_visp_model_extension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".cao";
+  return extension == ".cao" || extension == ".wrl";
 }
 
 }  // namespace
@@ -341,7 +342,7 @@ Mesh load_cao_mesh(const std::string& path, const Pose& T, const CaoTessellation
   else if (mesh.empty())
     problem = "it describes no surface (no faces, cylinders or circles)";
   if (!problem.empty())
-    throw std::runtime_error("cannot load .cao model '" + path + "': " + problem + as_clause(diagnostics));
+    throw std::runtime_error("cannot load ViSP model '" + path + "': " + problem + as_clause(diagnostics));
 
   std::cerr << diagnostics;  // warnings of a successful parse stay visible
   return mesh;
@@ -352,7 +353,7 @@ Mesh load_any_mesh(const std::string& path, double scale, const Pose& T) {
     throw std::invalid_argument("load_any_mesh: scale must be positive and finite (got " + std::to_string(scale) +
                                 ") for '" + path + "'");
   Mesh mesh;
-  if (has_cao_extension(path)) {
+  if (has_visp_model_extension(path)) {
     mesh = load_cao_mesh(path);
     for (MeshPart& part : mesh.parts)
       for (Eigen::Vector3f& v : part.vertices) v *= static_cast<float>(scale);

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <functional>
-#include <optional>
+#include <map>
 #include <string>
 #include <vector>
 #include <visp3/core/vpCameraParameters.h>
-#include <visp3/core/vpColVector.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpRGBa.h>
@@ -16,41 +16,65 @@
 
 namespace icgp {
 
-/// Builds the icgp::Frame a tracker reads from what ViSP users hold: vpImage colour or grey
-/// images, organised point clouds, raw depth images. Buffers are reused from frame to
-/// frame, and a grey vpImage is wrapped without a copy. Camera problems throw vpException
-/// naming the camera.
+/// Builds the icgp::Frame a tracker reads from what ViSP users hold, camera by camera:
+/// vpImage colour or grey images, organised point clouds, raw depth images. Buffers are
+/// kept per camera from frame to frame, and a grey vpImage is wrapped without a copy.
+/// Camera problems throw vpException naming the camera.
 class FrameAssembler {
  public:
+  /// Starts a frame in which no camera has delivered anything yet.
+  void begin_frame();
+
   /// `camera_set` false: the user never gave the parameters (ViSP would silently use its
   /// defaults; icgp refuses).
   void set_color(const std::string& camera, const vpImage<unsigned char>& I, const vpCameraParameters& parameters,
-                 bool camera_set);
+                 bool camera_set, const vpHomogeneousMatrix& camera_M_reference);
   void set_color(const std::string& camera, const vpImage<vpRGBa>& I, const vpCameraParameters& parameters,
-                 bool camera_set);
+                 bool camera_set, const vpHomogeneousMatrix& camera_M_reference);
+
   /// Where a depth pixel comes from: metres at (row, col); 0, negative or not finite
   /// means no measurement.
   using DepthReader = std::function<float(int row, int col)>;
-  /// The frame's depth image, converted from `read` on first read of each pixel (see
+  /// A measured point at (row, col) in the camera frame (metres), for clouds whose points
+  /// are not on the pinhole rays of their pixels.
+  using PointReader = std::function<Eigen::Vector3f(int row, int col)>;
+  /// The camera's depth image, converted from `read` on first read of each pixel (see
   /// DepthImage::source): the cues read a few thousand pixels, and reading a whole cloud
   /// of ViSP's vpColVectors would cost as much as tracking. `read` is used until
   /// end_depth_reads().
   void set_depth(const std::string& camera, unsigned int width, unsigned int height,
-                 const std::optional<vpCameraParameters>& parameters, const vpHomogeneousMatrix& camera_M_color,
+                 const vpCameraParameters& parameters, bool camera_set, const vpHomogeneousMatrix& camera_M_reference,
                  DepthReader read);
-  /// The depth camera delivered nothing this frame (DepthImage::delivered).
+  void set_depth_points(const std::string& camera, unsigned int width, unsigned int height,
+                        const vpCameraParameters& parameters, bool camera_set,
+                        const vpHomogeneousMatrix& camera_M_reference, PointReader read);
+  /// The depth camera delivers nothing this frame (DepthImage::delivered); the depth cue
+  /// reading it sits the frame out.
   void set_no_depth(const std::string& camera);
-  /// Drops the reader of set_depth (which usually refers to the caller's cloud): pixels
+  /// Drops the readers of set_depth (which usually refer to the caller's clouds): pixels
   /// not read so far read as "no measurement" from now on.
   void end_depth_reads();
 
+  /// ViSP's setMask: the pixels every camera's cues may use (true), for every image of the
+  /// mask's size; an empty mask allows all. A camera of another size throws when it delivers.
+  void set_mask(const vpImage<bool>& mask);
+
   const Frame& frame() const { return frame_; }
-  /// The last colour image as ViSP grey, for ViSP's projection error.
-  const vpImage<unsigned char>& grey_image();
+  /// A colour camera's image of this frame as ViSP grey, for ViSP's projection error;
+  /// nullptr when the camera delivered none.
+  const vpImage<unsigned char>* grey_image(const std::string& camera);
 
  private:
+  ColorImage& color_slot(const std::string& camera, const vpCameraParameters& parameters, bool camera_set,
+                         const vpHomogeneousMatrix& camera_M_reference, unsigned int width, unsigned int height);
+  DepthImage& depth_slot(const std::string& camera, const vpCameraParameters& parameters, bool camera_set,
+                         const vpHomogeneousMatrix& camera_M_reference, unsigned int width, unsigned int height);
+  cv::Mat mask_for(const std::string& camera, int width, int height) const;
+
   Frame frame_;
-  cv::Mat rgba_view_;
+  std::map<std::string, ColorImage> color_slots_;  ///< buffers kept across frames
+  std::map<std::string, cv::Mat> depth_buffers_, ray_buffers_;
+  cv::Mat mask_;
   vpImage<unsigned char> grey_;
 };
 

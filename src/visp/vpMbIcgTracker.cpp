@@ -1,29 +1,23 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "icgp/visp/vpMbIcgTracker.h"
-
-#include <Eigen/Dense>
+// vpMbIcgTracker: construction, parameters, model, cameras and initialisation.
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
-#include <iostream>
-#include <optional>
-#include <set>
-#include <visp3/core/vpDisplay.h>
-#include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbtXmlGenericParser.h>
 
-#include "icgp/render/model_edges.h"
-#include "icgp/render/renderer.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
 
-#include "frame_assembly.h"
+#include "vpMbIcgTracker_impl.h"
+
+using icgp::visp_detail::guarded;
+
+static_assert(int{vpMbIcgTracker::EDGE_TRACKER} == int{icgp::CameraRig::kEdge} &&
+                  int{vpMbIcgTracker::KLT_TRACKER} == int{icgp::CameraRig::kKlt} &&
+                  int{vpMbIcgTracker::DEPTH_NORMAL_TRACKER} == int{icgp::CameraRig::kDepthNormal} &&
+                  int{vpMbIcgTracker::DEPTH_DENSE_TRACKER} == int{icgp::CameraRig::kDepthDense},
+              "the rig's tracker types are vpMbGenericTracker's");
 
 namespace {
-
-constexpr const char* kColorCamera = "Camera1";
-constexpr const char* kDepthCamera = "Camera2";
-constexpr const char* kBody = "object";
 
 std::string lower_extension(const std::string& path) {
   std::string e = std::filesystem::path(path).extension().string();
@@ -51,96 +45,90 @@ vpCameraParameters camera_of_visp_xml(const std::string& path, bool verbose) {
   return camera;
 }
 
+icgp::Mesh load_model_file(const std::string& path, const vpHomogeneousMatrix& T) {
+  require_file(path, "model file");
+  return guarded("loadModel", [&] {
+    try {
+      return icgp::load_any_mesh(path, 1.0, icgp::to_pose(T));
+    } catch (const std::exception& e) {
+      throw vpException(vpException::badValue, "vpMbIcgTracker::loadModel: cannot load '" + path +
+                                                   "' (.cao, .wrl, or a mesh format assimp reads): " + e.what());
+    }
+  });
+}
+
+/// One object seen by several cameras must be one model: two files describe the same
+/// object when their bounding boxes agree to 1 % of its size (a .wrl and a .cao of it).
+void require_same_object(const icgp::Mesh& reference, const std::string& reference_file, const icgp::Mesh& other,
+                         const std::string& other_file) {
+  Eigen::Vector3f lo_a, hi_a, lo_b, hi_b;
+  reference.bounds(lo_a, hi_a);
+  other.bounds(lo_b, hi_b);
+  const float size = (hi_a - lo_a).norm();
+  const float gap = std::max((lo_a - lo_b).cwiseAbs().maxCoeff(), (hi_a - hi_b).cwiseAbs().maxCoeff());
+  if (!(gap <= 0.01f * size))
+    throw vpException(vpException::badValue,
+                      "vpMbIcgTracker::loadModel: one rigid object is tracked by every camera, but '" + other_file +
+                          "' does not describe the object of '" + reference_file + "' (their bounding boxes differ by " +
+                          std::to_string(gap) + " m, more than 1 % of the object's size " + std::to_string(size) +
+                          " m)");
+}
+
 }  // namespace
 
-struct vpMbIcgTracker::Impl {
-  icgp::TrackerConfig config;
-  icgp::Mesh mesh;
-  bool has_cao_part = false;  ///< ViSP's projection-error model exists
-  std::unique_ptr<icgp::Tracker> tracker;  ///< for the current mesh and config, built by init()
-  bool start_pending = false;
+// ------------------------------------------------------------------------ construction
 
-  bool color_camera_set = false;
-  std::optional<vpCameraParameters> depth_camera;
-  vpHomogeneousMatrix depth_M_color;
+vpMbIcgTracker::vpMbIcgTracker()
+    : vpMbIcgTracker(std::vector<std::string>{"Camera"},
+                     std::vector<int>{EDGE_TRACKER | KLT_TRACKER | DEPTH_DENSE_TRACKER}) {}
 
-  icgp::FrameAssembler assembler;
-  double quality = 0.0;
-  std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
+vpMbIcgTracker::vpMbIcgTracker(unsigned int nbCameras, int trackerType)
+    : vpMbIcgTracker(icgp::CameraRig::visp_names(nbCameras), std::vector<int>(nbCameras, trackerType)) {}
 
-  std::set<std::string> reported_without_effect;  ///< ViSP settings already reported once
+vpMbIcgTracker::vpMbIcgTracker(const std::vector<int>& trackerTypes)
+    : vpMbIcgTracker(icgp::CameraRig::visp_names(trackerTypes.size()), trackerTypes) {}
 
-  std::unique_ptr<icgp::ModelEdges> edges;  ///< for display, made on first use
-  std::unique_ptr<icgp::Renderer> renderer;
-  icgp::Renderer::BodyHandle render_body{};
+vpMbIcgTracker::vpMbIcgTracker(const std::vector<std::string>& cameraNames, const std::vector<int>& trackerTypes)
+    : impl_(std::make_unique<Impl>(icgp::CameraRig(cameraNames, trackerTypes))) {}
 
-  void require_initialised() const {
-    if (!tracker)
-      throw vpTrackingException(vpTrackingException::initializationError,
-                                "vpMbIcgTracker::track: not initialised; call loadModel() and initFromPose() first");
-  }
-
-  /// track(I) has only a colour image: a configuration of the depth cue alone has nothing to
-  /// track it with.
-  void require_colour_cue() const {
-    const auto& m = config.modalities;
-    if (std::find(m.begin(), m.end(), "region") == m.end() && std::find(m.begin(), m.end(), "texture") == m.end())
-      throw vpException(vpException::badValue,
-                        "vpMbIcgTracker::track(I): the configured cues need depth; give a point cloud or a depth "
-                        "image (track with the maps of clouds, or track(I, I_depth_raw, depthScale))");
-  }
-
-  /// A ViSP setting this tracker accepts but cannot honour: said once per tracker.
-  void report_without_effect(const std::string& call, const std::string& why) {
-    if (reported_without_effect.insert(call).second)
-      std::cerr << "vpMbIcgTracker::" << call << ": no effect (" << why << ")\n";
-  }
-
-  void model_changed() {
-    tracker.reset();
-    edges.reset();
-    renderer.reset();
-  }
-};
-
-vpMbIcgTracker::vpMbIcgTracker() : impl_(std::make_unique<Impl>()) {}
 vpMbIcgTracker::~vpMbIcgTracker() = default;
 
 // ---------------------------------------------------------------------------- parameters
 
 void vpMbIcgTracker::loadConfigFile(const std::string& configFile, bool verbose) {
-  const std::string extension = lower_extension(configFile);
-  if (extension == ".yaml" || extension == ".yml") {
-    require_file(configFile, "configuration file");
-    try {
-      setTrackerConfig(icgp::load_tracker_config(configFile));
-    } catch (const std::exception& e) {
-      throw vpException(vpException::badValue, std::string("vpMbIcgTracker: ") + e.what());
-    }
-    if (verbose) std::cout << "vpMbIcgTracker: parameters from " << configFile << "\n";
-  } else if (extension == ".xml") {
-    setCameraParameters(camera_of_visp_xml(configFile, verbose));
-    if (verbose) std::cout << "vpMbIcgTracker: colour camera from " << configFile << "\n";
-  } else {
-    throw vpException(vpException::badValue, "vpMbIcgTracker: configuration file '" + configFile +
-                                                 "' must be icgp's YAML (.yaml, .yml) or a ViSP tracker XML (.xml)");
-  }
+  loadConfigFile(std::map<std::string, std::string>{{impl_->rig.reference(), configFile}}, verbose);
 }
 
-void vpMbIcgTracker::loadConfigFile(const std::string& colorConfigFile, const std::string& depthConfigFile,
-                                    bool verbose) {
-  loadConfigFile(colorConfigFile, verbose);
-  if (lower_extension(depthConfigFile) == ".xml") {
-    impl_->depth_camera = camera_of_visp_xml(depthConfigFile, verbose);
-    if (verbose) std::cout << "vpMbIcgTracker: depth camera from " << depthConfigFile << "\n";
-  } else {
-    loadConfigFile(depthConfigFile, verbose);
+void vpMbIcgTracker::loadConfigFile(const std::string& configFile1, const std::string& configFile2, bool verbose) {
+  const auto [first, second] = impl_->rig.pair("loadConfigFile");
+  loadConfigFile(std::map<std::string, std::string>{{first, configFile1}, {second, configFile2}}, verbose);
+}
+
+void vpMbIcgTracker::loadConfigFile(const std::map<std::string, std::string>& mapOfConfigFiles, bool verbose) {
+  for (const auto& [camera, file] : mapOfConfigFiles) {
+    impl_->rig.at(camera, "loadConfigFile");
+    const std::string extension = lower_extension(file);
+    if (extension == ".yaml" || extension == ".yml") {
+      require_file(file, "configuration file");
+      try {
+        setTrackerConfig(icgp::load_tracker_config(file));
+      } catch (const std::exception& e) {
+        throw vpException(vpException::badValue, std::string("vpMbIcgTracker::loadConfigFile: ") + e.what());
+      }
+      if (verbose) std::cout << "vpMbIcgTracker: parameters from " << file << "\n";
+    } else if (extension == ".xml") {
+      setCameraParameters(std::map<std::string, vpCameraParameters>{{camera, camera_of_visp_xml(file, verbose)}});
+      if (verbose) std::cout << "vpMbIcgTracker: camera \"" << camera << "\" from " << file << "\n";
+    } else {
+      throw vpException(vpException::badValue, "vpMbIcgTracker::loadConfigFile: '" + file +
+                                                   "' must be icgp's YAML (.yaml, .yml) or a ViSP tracker XML (.xml)");
+    }
   }
 }
 
 void vpMbIcgTracker::setTrackerConfig(const icgp::TrackerConfig& config) {
   impl_->config = config;
-  impl_->tracker.reset();
+  impl_->tracker_changed();
 }
 
 const icgp::TrackerConfig& vpMbIcgTracker::getTrackerConfig() const { return impl_->config; }
@@ -151,23 +139,34 @@ void vpMbIcgTracker::setModalities(const std::vector<std::string>& modalities) {
   setTrackerConfig(config);
 }
 
+void vpMbIcgTracker::setTrackerType(int type) {
+  for (const std::string& camera : impl_->rig.names()) impl_->rig.set_types(camera, type, "setTrackerType");
+  impl_->tracker_changed();
+}
+
+void vpMbIcgTracker::setTrackerType(const std::map<std::string, int>& mapOfTrackerTypes) {
+  for (const auto& [camera, type] : mapOfTrackerTypes) impl_->rig.set_types(camera, type, "setTrackerType");
+  impl_->tracker_changed();
+}
+
+int vpMbIcgTracker::getTrackerType() const { return impl_->rig.reference_camera().types; }
+
+std::map<std::string, int> vpMbIcgTracker::getCameraTrackerTypes() const {
+  std::map<std::string, int> types;
+  for (const auto& [name, camera] : impl_->rig.cameras()) types[name] = camera.types;
+  return types;
+}
+
 // --------------------------------------------------------------------------------- model
 
 void vpMbIcgTracker::loadModel(const std::string& modelFile, bool verbose, const vpHomogeneousMatrix& T) {
-  require_file(modelFile, "model file");
-  icgp::Mesh part;
-  try {
-    part = icgp::load_any_mesh(modelFile, 1.0, icgp::to_pose(T));
-  } catch (const std::exception& e) {
-    throw vpException(vpException::badValue,
-                      "vpMbIcgTracker: cannot load model '" + modelFile + "' (.cao, or a mesh format assimp reads): " +
-                          e.what());
-  }
+  icgp::Mesh part = load_model_file(modelFile, T);
   // ViSP's own parser also fills `faces` and the projection-error model, so that
   // computeCurrentProjectionError means what it means for ViSP's trackers.
-  if (lower_extension(modelFile) == ".cao") {
+  const std::string extension = lower_extension(modelFile);
+  if (extension == ".cao" || extension == ".wrl") {
     vpMbTracker::loadModel(modelFile, verbose, T);
-    impl_->has_cao_part = true;
+    impl_->has_visp_model_part = true;
   }
 
   Impl& d = *impl_;
@@ -183,57 +182,173 @@ void vpMbIcgTracker::loadModel(const std::string& modelFile, bool verbose, const
   }
 }
 
-void vpMbIcgTracker::loadModel(const std::string& colorModelFile, const std::string& depthModelFile, bool verbose,
-                               const vpHomogeneousMatrix& colorT, const vpHomogeneousMatrix& depthT) {
-  if (!depthModelFile.empty() && (std::filesystem::path(depthModelFile) != std::filesystem::path(colorModelFile) ||
-                                  !(colorT == depthT)))
-    throw vpException(vpException::badValue, "vpMbIcgTracker: one rigid object is tracked with both cameras, so the "
-                                             "depth camera's model must be the colour camera's ('" +
-                                                 colorModelFile + "'), got '" + depthModelFile + "'");
-  loadModel(colorModelFile, verbose, colorT);
+void vpMbIcgTracker::loadModel(const std::string& modelFile1, const std::string& modelFile2, bool verbose,
+                               const vpHomogeneousMatrix& T1, const vpHomogeneousMatrix& T2) {
+  const auto [first, second] = impl_->rig.pair("loadModel");
+  loadModel(std::map<std::string, std::string>{{first, modelFile1}, {second, modelFile2}}, verbose,
+            std::map<std::string, vpHomogeneousMatrix>{{first, T1}, {second, T2}});
+}
+
+void vpMbIcgTracker::loadModel(const std::map<std::string, std::string>& mapOfModelFiles, bool verbose,
+                               const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  const icgp::CameraRig& rig = impl_->rig;
+  for (const auto& [camera, file] : mapOfModelFiles) rig.at(camera, "loadModel");
+  for (const auto& [camera, T] : mapOfT) rig.at(camera, "loadModel");
+  if (mapOfModelFiles.empty())
+    throw vpException(vpException::badValue, "vpMbIcgTracker::loadModel: no model file given");
+  // The reference camera's file is the object; any other camera's must be the same object.
+  const auto transform = [&](const std::string& camera) {
+    const auto it = mapOfT.find(camera);
+    return it == mapOfT.end() ? vpHomogeneousMatrix() : it->second;
+  };
+  const auto main = mapOfModelFiles.count(rig.reference()) ? mapOfModelFiles.find(rig.reference())
+                                                           : mapOfModelFiles.begin();
+  for (const auto& [camera, file] : mapOfModelFiles) {
+    if (camera == main->first || file.empty()) continue;
+    if (file == main->second && transform(camera) == transform(main->first)) continue;
+    require_same_object(load_model_file(main->second, transform(main->first)), main->second,
+                        load_model_file(file, transform(camera)), file);
+  }
+  loadModel(main->second, verbose, transform(main->first));
+}
+
+void vpMbIcgTracker::clear_model() {
+  impl_->mesh = icgp::Mesh();
+  impl_->has_visp_model_part = false;
+  impl_->model_changed();
+  faces.reset();
+  m_projectionErrorFaces.reset();
+}
+
+void vpMbIcgTracker::reInitModel(const vpImage<unsigned char>& I, const std::string& cad_name,
+                                 const vpHomogeneousMatrix& cMo, bool verbose, const vpHomogeneousMatrix& T) {
+  clear_model();
+  loadModel(cad_name, verbose, T);
+  initFromPose(I, cMo);
+}
+
+void vpMbIcgTracker::reInitModel(const vpImage<vpRGBa>& I_color, const std::string& cad_name,
+                                 const vpHomogeneousMatrix& cMo, bool verbose, const vpHomogeneousMatrix& T) {
+  clear_model();
+  loadModel(cad_name, verbose, T);
+  initFromPose(I_color, cMo);
+}
+
+void vpMbIcgTracker::reInitModel(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                                 const std::string& cad_name1, const std::string& cad_name2,
+                                 const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo, bool verbose,
+                                 const vpHomogeneousMatrix& T1, const vpHomogeneousMatrix& T2) {
+  const auto [first, second] = impl_->rig.pair("reInitModel");
+  reInitModel(std::map<std::string, const vpImage<unsigned char>*>{{first, &I1}, {second, &I2}},
+              {{first, cad_name1}, {second, cad_name2}}, {{first, c1Mo}, {second, c2Mo}}, verbose,
+              {{first, T1}, {second, T2}});
+}
+
+void vpMbIcgTracker::reInitModel(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                                 const std::string& cad_name1, const std::string& cad_name2,
+                                 const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo, bool verbose,
+                                 const vpHomogeneousMatrix& T1, const vpHomogeneousMatrix& T2) {
+  const auto [first, second] = impl_->rig.pair("reInitModel");
+  reInitModel(std::map<std::string, const vpImage<vpRGBa>*>{{first, &I_color1}, {second, &I_color2}},
+              {{first, cad_name1}, {second, cad_name2}}, {{first, c1Mo}, {second, c2Mo}}, verbose,
+              {{first, T1}, {second, T2}});
+}
+
+void vpMbIcgTracker::reInitModel(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                                 const std::map<std::string, std::string>& mapOfModelFiles,
+                                 const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses, bool verbose,
+                                 const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  clear_model();
+  loadModel(mapOfModelFiles, verbose, mapOfT);
+  initFromPose(mapOfImages, mapOfCameraPoses);
+}
+
+void vpMbIcgTracker::reInitModel(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                                 const std::map<std::string, std::string>& mapOfModelFiles,
+                                 const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses, bool verbose,
+                                 const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  clear_model();
+  loadModel(mapOfModelFiles, verbose, mapOfT);
+  initFromPose(mapOfColorImages, mapOfCameraPoses);
+}
+
+vpMbHiddenFaces<vpMbtPolygon>& vpMbIcgTracker::getFaces(const std::string& cameraName) {
+  impl_->rig.at(cameraName, "getFaces");
+  return faces;
+}
+
+void vpMbIcgTracker::getNbPolygon(std::map<std::string, unsigned int>& mapOfNbPolygons) const {
+  mapOfNbPolygons.clear();
+  for (const std::string& camera : impl_->rig.names()) mapOfNbPolygons[camera] = getNbPolygon();
+}
+
+vpMbtPolygon* vpMbIcgTracker::getPolygon(const std::string& cameraName, unsigned int index) {
+  impl_->rig.at(cameraName, "getPolygon");
+  return getPolygon(index);
+}
+
+void vpMbIcgTracker::getPolygonFaces(std::map<std::string, std::vector<vpPolygon>>& mapOfPolygons,
+                                     std::map<std::string, std::vector<std::vector<vpPoint>>>& mapOfPoints,
+                                     bool orderPolygons, bool useVisibility, bool clipPolygon) {
+  // vpMbTracker computes the faces of its own camera and pose: each camera's in turn.
+  const vpHomogeneousMatrix cMo = m_cMo;
+  const vpCameraParameters cam = m_cam;
+  mapOfPolygons.clear();
+  mapOfPoints.clear();
+  for (const auto& [name, camera] : impl_->rig.cameras()) {
+    m_cMo = camera.camera_M_reference * cMo;
+    m_cam = camera.parameters;
+    auto polygons = getPolygonFaces(orderPolygons, useVisibility, clipPolygon);
+    mapOfPolygons[name] = std::move(polygons.first);
+    mapOfPoints[name] = std::move(polygons.second);
+  }
+  m_cMo = cMo;
+  m_cam = cam;
 }
 
 // ------------------------------------------------------------------------------- cameras
 
-void vpMbIcgTracker::setCameraParameters(const vpCameraParameters& colorCamera) {
-  m_cam = colorCamera;
-  impl_->color_camera_set = true;
+void vpMbIcgTracker::setCameraParameters(const vpCameraParameters& camera) {
+  setCameraParameters(std::map<std::string, vpCameraParameters>{{impl_->rig.reference(), camera}});
 }
 
-void vpMbIcgTracker::setCameraParameters(const vpCameraParameters& colorCamera, const vpCameraParameters& depthCamera) {
-  setCameraParameters(colorCamera);
-  impl_->depth_camera = depthCamera;
+void vpMbIcgTracker::setCameraParameters(const vpCameraParameters& camera1, const vpCameraParameters& camera2) {
+  const auto [first, second] = impl_->rig.pair("setCameraParameters");
+  setCameraParameters(std::map<std::string, vpCameraParameters>{{first, camera1}, {second, camera2}});
 }
 
 void vpMbIcgTracker::setCameraParameters(const std::map<std::string, vpCameraParameters>& mapOfCameraParameters) {
-  for (const auto& [name, camera] : mapOfCameraParameters) {
-    if (name == kColorCamera)
-      setCameraParameters(camera);
-    else if (name == kDepthCamera)
-      impl_->depth_camera = camera;
-    else
-      throw vpException(vpException::badValue, "vpMbIcgTracker: unknown camera '" + name +
-                                                   "' (the cameras are \"Camera1\" colour and \"Camera2\" depth)");
+  for (const auto& [name, parameters] : mapOfCameraParameters) {
+    icgp::CameraRig::Camera& camera = impl_->rig.at(name, "setCameraParameters");
+    camera.parameters = parameters;
+    camera.parameters_set = true;
+    if (name == impl_->rig.reference()) m_cam = parameters;  // vpMbTracker's clicks and projection error use it
   }
 }
 
-void vpMbIcgTracker::getCameraParameters(vpCameraParameters& colorCamera, vpCameraParameters& depthCamera) const {
-  colorCamera = m_cam;
-  depthCamera = impl_->depth_camera.value_or(m_cam);
+void vpMbIcgTracker::getCameraParameters(vpCameraParameters& camera) const {
+  camera = impl_->rig.reference_camera().parameters;
+}
+
+void vpMbIcgTracker::getCameraParameters(vpCameraParameters& cam1, vpCameraParameters& cam2) const {
+  const auto [first, second] = impl_->rig.pair("getCameraParameters");
+  cam1 = impl_->rig.at(first, "getCameraParameters").parameters;
+  cam2 = impl_->rig.at(second, "getCameraParameters").parameters;
+}
+
+void vpMbIcgTracker::getCameraParameters(std::map<std::string, vpCameraParameters>& mapOfCameraParameters) const {
+  mapOfCameraParameters.clear();
+  for (const auto& [name, camera] : impl_->rig.cameras()) mapOfCameraParameters[name] = camera.parameters;
 }
 
 void vpMbIcgTracker::setCameraTransformationMatrix(const std::string& cameraName,
                                                    const vpHomogeneousMatrix& cameraTransformationMatrix) {
-  if (cameraName == kDepthCamera) {
-    impl_->depth_M_color = cameraTransformationMatrix;
-  } else if (cameraName == kColorCamera) {
-    if (!(cameraTransformationMatrix == vpHomogeneousMatrix()))
-      throw vpException(vpException::badValue, "vpMbIcgTracker: \"Camera1\" is the reference camera, its "
-                                               "transformation matrix must be the identity");
-  } else {
-    throw vpException(vpException::badValue, "vpMbIcgTracker: unknown camera '" + cameraName +
-                                                 "' (the cameras are \"Camera1\" colour and \"Camera2\" depth)");
-  }
+  icgp::CameraRig::Camera& camera = impl_->rig.at(cameraName, "setCameraTransformationMatrix");
+  if (cameraName == impl_->rig.reference() && !(cameraTransformationMatrix == vpHomogeneousMatrix()))
+    throw vpException(vpException::badValue, "vpMbIcgTracker::setCameraTransformationMatrix: \"" + cameraName +
+                                                 "\" is the reference camera, its transformation matrix must be "
+                                                 "the identity");
+  camera.camera_M_reference = cameraTransformationMatrix;
 }
 
 void vpMbIcgTracker::setCameraTransformationMatrix(
@@ -241,8 +356,13 @@ void vpMbIcgTracker::setCameraTransformationMatrix(
   for (const auto& [name, M] : mapOfTransformationMatrix) setCameraTransformationMatrix(name, M);
 }
 
-std::vector<std::string> vpMbIcgTracker::getCameraNames() const { return {kColorCamera, kDepthCamera}; }
-std::string vpMbIcgTracker::getReferenceCameraName() const { return kColorCamera; }
+std::vector<std::string> vpMbIcgTracker::getCameraNames() const { return impl_->rig.names(); }
+std::string vpMbIcgTracker::getReferenceCameraName() const { return impl_->rig.reference(); }
+
+void vpMbIcgTracker::setReferenceCameraName(const std::string& referenceCameraName) {
+  impl_->rig.set_reference(referenceCameraName);
+  m_cam = impl_->rig.reference_camera().parameters;
+}
 
 // ------------------------------------------------------------------------ initialisation
 
@@ -251,14 +371,11 @@ void vpMbIcgTracker::init(const vpImage<unsigned char>&) {
   if (d.mesh.parts.empty())
     throw vpTrackingException(vpTrackingException::initializationError,
                               "vpMbIcgTracker: no model; call loadModel() before initialising");
-  if (!d.tracker) {
-    try {
-      d.tracker = icgp::build_tracker(d.config, d.mesh, kBody);
-    } catch (const std::exception& e) {
-      throw vpException(vpException::badValue, std::string("vpMbIcgTracker: ") + e.what());
-    }
-  }
-  d.tracker->body(kBody).reference_T_body = icgp::to_pose(m_cMo);
+  if (!d.tracker)
+    d.tracker = guarded("init", [&] {
+      return icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.rig.cues(d.config.modalities));
+    });
+  d.tracker->body(Impl::kBody).reference_T_body = icgp::to_pose(m_cMo);
   d.start_pending = true;
   d.quality = 0.0;
   d.hessian.reset();
@@ -274,26 +391,249 @@ void vpMbIcgTracker::initFromPose(const vpImage<vpRGBa>&, const vpHomogeneousMat
   init(m_I);  // init() reads no image: the cues start on the next tracked frame
 }
 
+vpHomogeneousMatrix vpMbIcgTracker::reference_pose(const std::string& camera, const vpHomogeneousMatrix& cMo,
+                                                   const std::string& call) const {
+  // c_M_reference * referenceMo = cMo
+  return impl_->rig.at(camera, call).camera_M_reference.inverse() * cMo;
+}
+
+template <typename Image>
+void vpMbIcgTracker::init_from_poses(const std::map<std::string, const Image*>& images,
+                                     const std::map<std::string, vpHomogeneousMatrix>& poses,
+                                     const std::string& call) {
+  for (const auto& [camera, image] : images) impl_->rig.at(camera, call);
+  // As ViSP: the reference camera's pose if given, else the first camera's, moved into it.
+  auto it = poses.find(impl_->rig.reference());
+  if (it == poses.end()) it = poses.begin();
+  if (it == poses.end()) throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no pose given");
+  m_cMo = reference_pose(it->first, it->second, call);
+  init(m_I);
+}
+
+template <typename Image>
+void vpMbIcgTracker::init_from_pose_files(const std::map<std::string, const Image*>& images,
+                                          const std::map<std::string, std::string>& files, const std::string& call) {
+  auto it = files.find(impl_->rig.reference());
+  if (it == files.end()) it = files.begin();
+  if (it == files.end()) throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no pose file given");
+  const auto image = images.find(it->first);
+  if (image == images.end() || !image->second)
+    throw vpException(vpException::badValue,
+                      "vpMbIcgTracker::" + call + ": no image of camera '" + it->first + "', whose pose file is given");
+  // vpMbTracker reads the file (its format and its ".pos" rule) and calls initFromPose(I, cMo).
+  vpMbTracker::initFromPose(*image->second, it->second);
+  if (it->first != impl_->rig.reference()) initFromPose(*image->second, reference_pose(it->first, m_cMo, call));
+}
+
+void vpMbIcgTracker::initFromPose(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                                  const std::string& initFile1, const std::string& initFile2) {
+  const auto [first, second] = impl_->rig.pair("initFromPose");
+  init_from_pose_files(std::map<std::string, const vpImage<unsigned char>*>{{first, &I1}, {second, &I2}},
+                       {{first, initFile1}, {second, initFile2}}, "initFromPose");
+}
+
+void vpMbIcgTracker::initFromPose(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                                  const std::string& initFile1, const std::string& initFile2) {
+  const auto [first, second] = impl_->rig.pair("initFromPose");
+  init_from_pose_files(std::map<std::string, const vpImage<vpRGBa>*>{{first, &I_color1}, {second, &I_color2}},
+                       {{first, initFile1}, {second, initFile2}}, "initFromPose");
+}
+
+void vpMbIcgTracker::initFromPose(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                                  const std::map<std::string, std::string>& mapOfInitPoses) {
+  init_from_pose_files(mapOfImages, mapOfInitPoses, "initFromPose");
+}
+
+void vpMbIcgTracker::initFromPose(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                                  const std::map<std::string, std::string>& mapOfInitPoses) {
+  init_from_pose_files(mapOfColorImages, mapOfInitPoses, "initFromPose");
+}
+
+void vpMbIcgTracker::initFromPose(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                                  const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo) {
+  const auto [first, second] = impl_->rig.pair("initFromPose");
+  init_from_poses(std::map<std::string, const vpImage<unsigned char>*>{{first, &I1}, {second, &I2}},
+                  {{first, c1Mo}, {second, c2Mo}}, "initFromPose");
+}
+
+void vpMbIcgTracker::initFromPose(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                                  const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo) {
+  const auto [first, second] = impl_->rig.pair("initFromPose");
+  init_from_poses(std::map<std::string, const vpImage<vpRGBa>*>{{first, &I_color1}, {second, &I_color2}},
+                  {{first, c1Mo}, {second, c2Mo}}, "initFromPose");
+}
+
+void vpMbIcgTracker::initFromPose(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                                  const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses) {
+  init_from_poses(mapOfImages, mapOfCameraPoses, "initFromPose");
+}
+
+void vpMbIcgTracker::initFromPose(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                                  const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses) {
+  init_from_poses(mapOfColorImages, mapOfCameraPoses, "initFromPose");
+}
+
+namespace {
+
+/// The camera whose file ViSP's multi-camera initialisations use: the reference camera's
+/// if given, else the first.
+template <typename Map>
+typename Map::const_iterator reference_or_first(const Map& files, const std::string& reference,
+                                                const std::string& call) {
+  auto it = files.find(reference);
+  if (it == files.end()) it = files.begin();
+  if (it == files.end()) throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no file given");
+  return it;
+}
+
+template <typename Image>
+const Image& image_of(const std::map<std::string, const Image*>& images, const std::string& camera,
+                      const std::string& call) {
+  const auto it = images.find(camera);
+  if (it == images.end() || !it->second)
+    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no image of camera '" + camera + "'");
+  return *it->second;
+}
+
+}  // namespace
+
+void vpMbIcgTracker::initClick(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                               const std::string& initFile1, const std::string& initFile2, bool displayHelp,
+                               const vpHomogeneousMatrix& T1, const vpHomogeneousMatrix& T2) {
+  const auto [first, second] = impl_->rig.pair("initClick");
+  initClick(std::map<std::string, const vpImage<unsigned char>*>{{first, &I1}, {second, &I2}},
+            {{first, initFile1}, {second, initFile2}}, displayHelp, {{first, T1}, {second, T2}});
+}
+
+void vpMbIcgTracker::initClick(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                               const std::string& initFile1, const std::string& initFile2, bool displayHelp,
+                               const vpHomogeneousMatrix& T1, const vpHomogeneousMatrix& T2) {
+  const auto [first, second] = impl_->rig.pair("initClick");
+  initClick(std::map<std::string, const vpImage<vpRGBa>*>{{first, &I_color1}, {second, &I_color2}},
+            {{first, initFile1}, {second, initFile2}}, displayHelp, {{first, T1}, {second, T2}});
+}
+
+namespace {
+
+/// Runs one of vpMbTracker's single-camera initialisations (clicks, points) in `camera`:
+/// vpMbTracker computes the pose with m_cam, so it is that camera's during the call.
+template <typename Init>
+void in_camera(vpCameraParameters& m_cam, const vpCameraParameters& camera, Init&& init) {
+  const vpCameraParameters reference = m_cam;
+  m_cam = camera;
+  try {
+    init();
+  } catch (...) {
+    m_cam = reference;
+    throw;
+  }
+  m_cam = reference;
+}
+
+}  // namespace
+
+void vpMbIcgTracker::initClick(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                               const std::map<std::string, std::string>& mapOfInitFiles, bool displayHelp,
+                               const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  const auto file = reference_or_first(mapOfInitFiles, impl_->rig.reference(), "initClick");
+  const std::string& camera = file->first;
+  const vpImage<unsigned char>& I = image_of(mapOfImages, camera, "initClick");
+  const auto T = mapOfT.find(camera);
+  in_camera(m_cam, impl_->rig.at(camera, "initClick").parameters, [&] {
+    vpMbTracker::initClick(I, file->second, displayHelp, T == mapOfT.end() ? vpHomogeneousMatrix() : T->second);
+  });
+  if (camera != impl_->rig.reference()) initFromPose(I, reference_pose(camera, m_cMo, "initClick"));
+}
+
+void vpMbIcgTracker::initClick(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfImages,
+                               const std::map<std::string, std::string>& mapOfInitFiles, bool displayHelp,
+                               const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  const auto file = reference_or_first(mapOfInitFiles, impl_->rig.reference(), "initClick");
+  const std::string& camera = file->first;
+  const vpImage<vpRGBa>& I = image_of(mapOfImages, camera, "initClick");
+  const auto T = mapOfT.find(camera);
+  in_camera(m_cam, impl_->rig.at(camera, "initClick").parameters, [&] {
+    vpMbTracker::initClick(I, file->second, displayHelp, T == mapOfT.end() ? vpHomogeneousMatrix() : T->second);
+  });
+  if (camera != impl_->rig.reference()) initFromPose(I, reference_pose(camera, m_cMo, "initClick"));
+}
+
+void vpMbIcgTracker::initFromPoints(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                                    const std::string& initFile1, const std::string& initFile2) {
+  const auto [first, second] = impl_->rig.pair("initFromPoints");
+  initFromPoints(std::map<std::string, const vpImage<unsigned char>*>{{first, &I1}, {second, &I2}},
+                 {{first, initFile1}, {second, initFile2}});
+}
+
+void vpMbIcgTracker::initFromPoints(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                                    const std::string& initFile1, const std::string& initFile2) {
+  const auto [first, second] = impl_->rig.pair("initFromPoints");
+  initFromPoints(std::map<std::string, const vpImage<vpRGBa>*>{{first, &I_color1}, {second, &I_color2}},
+                 {{first, initFile1}, {second, initFile2}});
+}
+
+void vpMbIcgTracker::initFromPoints(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                                    const std::map<std::string, std::string>& mapOfInitPoints) {
+  const auto file = reference_or_first(mapOfInitPoints, impl_->rig.reference(), "initFromPoints");
+  const vpImage<unsigned char>& I = image_of(mapOfImages, file->first, "initFromPoints");
+  in_camera(m_cam, impl_->rig.at(file->first, "initFromPoints").parameters,
+            [&] { vpMbTracker::initFromPoints(I, file->second); });
+  if (file->first != impl_->rig.reference()) initFromPose(I, reference_pose(file->first, m_cMo, "initFromPoints"));
+}
+
+void vpMbIcgTracker::initFromPoints(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                                    const std::map<std::string, std::string>& mapOfInitPoints) {
+  const auto file = reference_or_first(mapOfInitPoints, impl_->rig.reference(), "initFromPoints");
+  const vpImage<vpRGBa>& I = image_of(mapOfColorImages, file->first, "initFromPoints");
+  in_camera(m_cam, impl_->rig.at(file->first, "initFromPoints").parameters,
+            [&] { vpMbTracker::initFromPoints(I, file->second); });
+  if (file->first != impl_->rig.reference()) initFromPose(I, reference_pose(file->first, m_cMo, "initFromPoints"));
+}
+
 void vpMbIcgTracker::setPose(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cdMo) {
-  if (!impl_->tracker)
-    throw vpTrackingException(vpTrackingException::initializationError,
-                              "vpMbIcgTracker: setPose() before initFromPose()");
+  impl_->require_initialised("setPose");
   initFromPose(I, cdMo);
 }
 
 void vpMbIcgTracker::setPose(const vpImage<vpRGBa>& I_color, const vpHomogeneousMatrix& cdMo) {
-  if (!impl_->tracker)
-    throw vpTrackingException(vpTrackingException::initializationError,
-                              "vpMbIcgTracker: setPose() before initFromPose()");
+  impl_->require_initialised("setPose");
   initFromPose(I_color, cdMo);
 }
 
+void vpMbIcgTracker::setPose(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                             const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo) {
+  impl_->require_initialised("setPose");
+  initFromPose(I1, I2, c1Mo, c2Mo);
+}
+
+void vpMbIcgTracker::setPose(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                             const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo) {
+  impl_->require_initialised("setPose");
+  initFromPose(I_color1, I_color2, c1Mo, c2Mo);
+}
+
+void vpMbIcgTracker::setPose(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                             const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses) {
+  impl_->require_initialised("setPose");
+  init_from_poses(mapOfImages, mapOfCameraPoses, "setPose");
+}
+
+void vpMbIcgTracker::setPose(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                             const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses) {
+  impl_->require_initialised("setPose");
+  init_from_poses(mapOfColorImages, mapOfCameraPoses, "setPose");
+}
+
 void vpMbIcgTracker::resetTracker() {
-  // As vpMbGenericTracker, which keeps its map of camera transformation matrices: ViSP's
-  // programs reload the model, settings and cameras after a reset, not the extrinsics.
-  const vpHomogeneousMatrix depth_M_color = impl_->depth_M_color;
-  impl_ = std::make_unique<Impl>();
-  impl_->depth_M_color = depth_M_color;
+  // As vpMbGenericTracker: the cameras, their types and their transformation matrices
+  // stay; ViSP's programs reload the model, the settings and the cameras' parameters.
+  icgp::CameraRig rig = impl_->rig;
+  for (const std::string& name : rig.names()) {
+    icgp::CameraRig::Camera& camera = rig.at(name, "resetTracker");
+    camera.parameters = vpCameraParameters();
+    camera.parameters_set = false;
+  }
+  impl_ = std::make_unique<Impl>(std::move(rig));
   m_cMo.eye();
   m_cam = vpCameraParameters();
   m_error.resize(0);
@@ -305,321 +645,7 @@ void vpMbIcgTracker::resetTracker() {
   covarianceMatrix.resize(0, 0);
 }
 
-void vpMbIcgTracker::setScanLineVisibilityTest(const bool& v) {
-  vpMbTracker::setScanLineVisibilityTest(v);
-  impl_->report_without_effect("setScanLineVisibilityTest",
-                               "visibility comes from the rendered viewpoint models, exact for every face");
-}
-
-// ------------------------------------------------------------------------------ tracking
-
-void vpMbIcgTracker::track(const vpImage<unsigned char>& I) {
-  impl_->require_initialised();
-  impl_->require_colour_cue();
-  impl_->assembler.set_color(kColorCamera, I, m_cam, impl_->color_camera_set);
-  // A colour-only call: the depth cue, on by default, sits the frame out as when a depth
-  // camera delivers nothing, so a monocular program runs on the defaults.
-  impl_->assembler.set_no_depth(kDepthCamera);
-  track_current_frame(&I);
-}
-
-void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color) {
-  impl_->require_initialised();
-  impl_->require_colour_cue();
-  impl_->assembler.set_color(kColorCamera, I_color, m_cam, impl_->color_camera_set);
-  impl_->assembler.set_no_depth(kDepthCamera);
-  track_current_frame(nullptr);
-}
-
-namespace {
-
-/// Z of an organised cloud's point, ViSP's zero-length vectors included.
-float cloud_depth(const std::vector<vpColVector>& cloud, unsigned int width, int row, int col) {
-  const vpColVector& point = cloud[static_cast<std::size_t>(row) * width + col];
-  return point.size() >= 3 ? static_cast<float>(point[2]) : 0.f;
-}
-
-/// The one organised cloud of "Camera2" in ViSP's map form, with its size checked.
-const std::vector<vpColVector>& cloud_of_depth_camera(std::map<std::string, const std::vector<vpColVector>*>& clouds,
-                                                      std::map<std::string, unsigned int>& widths,
-                                                      std::map<std::string, unsigned int>& heights, unsigned int& width,
-                                                      unsigned int& height) {
-  const std::vector<vpColVector>* cloud = nullptr;
-  for (const auto& [name, c] : clouds) {
-    if (name != kDepthCamera)
-      throw vpException(vpException::badValue, "vpMbIcgTracker::track: unknown camera '" + name +
-                                                   "' in the point clouds (the depth camera is \"Camera2\")");
-    cloud = c;
-  }
-  if (!cloud) throw vpException(vpException::badValue, "vpMbIcgTracker::track: no point cloud of \"Camera2\"");
-  if (!widths.count(kDepthCamera) || !heights.count(kDepthCamera))
-    throw vpException(vpException::badValue, "vpMbIcgTracker::track: no width/height of \"Camera2\"'s point cloud");
-  width = widths[kDepthCamera];
-  height = heights[kDepthCamera];
-  // Width and height 0 is ViSP's "no depth this frame", whatever the cloud holds.
-  if (width == 0 && height == 0) return *cloud;
-  if (cloud->size() != static_cast<std::size_t>(width) * height)
-    throw vpException(vpException::badValue, "vpMbIcgTracker::track: the point cloud of \"Camera2\" has " +
-                                                 std::to_string(cloud->size()) + " points, but width x height is " +
-                                                 std::to_string(width) + " x " + std::to_string(height) +
-                                                 " (an organised cloud has one point per pixel)");
-  return *cloud;
-}
-
-}  // namespace
-
-template <typename Image>
-void vpMbIcgTracker::track_with_depth(std::map<std::string, const Image*>& images, unsigned int depthWidth,
-                                      unsigned int depthHeight, DepthReader read) {
-  const Image* color = nullptr;
-  for (const auto& [name, image] : images) {
-    if (name == kColorCamera)
-      color = image;
-    else if (name != kDepthCamera)  // ViSP users may pass the depth camera's image too
-      throw vpException(vpException::badValue, "vpMbIcgTracker::track: unknown camera '" + name +
-                                                   "' in the images (the cameras are \"Camera1\" and \"Camera2\")");
-  }
-  if (!color) throw vpException(vpException::badValue, "vpMbIcgTracker::track: no image of \"Camera1\"");
-  track_with_depth(*color, depthWidth, depthHeight, std::move(read));
-}
-
-template void vpMbIcgTracker::track_with_depth(std::map<std::string, const vpImage<unsigned char>*>&, unsigned int,
-                                               unsigned int, DepthReader);
-template void vpMbIcgTracker::track_with_depth(std::map<std::string, const vpImage<vpRGBa>*>&, unsigned int,
-                                               unsigned int, DepthReader);
-
-void vpMbIcgTracker::set_depth(unsigned int width, unsigned int height, DepthReader read, bool depthFromColorCamera) {
-  Impl& d = *impl_;
-  if (width == 0 && height == 0) {  // as in ViSP: no depth this frame; the depth cue sits it out
-    d.assembler.set_no_depth(kDepthCamera);
-    return;
-  }
-  const std::optional<vpCameraParameters> camera = depthFromColorCamera ? std::optional(m_cam) : d.depth_camera;
-  const vpHomogeneousMatrix M = depthFromColorCamera ? vpHomogeneousMatrix() : d.depth_M_color;
-  d.assembler.set_depth(kDepthCamera, width, height, camera, M, std::move(read));
-}
-
-void vpMbIcgTracker::track_with_depth(const vpImage<unsigned char>& I, unsigned int depthWidth,
-                                      unsigned int depthHeight, DepthReader read, bool depthFromColorCamera) {
-  impl_->require_initialised();
-  impl_->assembler.set_color(kColorCamera, I, m_cam, impl_->color_camera_set);
-  set_depth(depthWidth, depthHeight, std::move(read), depthFromColorCamera);
-  track_current_frame(&I);
-}
-
-void vpMbIcgTracker::track_with_depth(const vpImage<vpRGBa>& I, unsigned int depthWidth, unsigned int depthHeight,
-                                      DepthReader read, bool depthFromColorCamera) {
-  impl_->require_initialised();
-  impl_->assembler.set_color(kColorCamera, I, m_cam, impl_->color_camera_set);
-  set_depth(depthWidth, depthHeight, std::move(read), depthFromColorCamera);
-  track_current_frame(nullptr);
-}
-
-template <typename Image>
-void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& images,
-                                       std::map<std::string, const std::vector<vpColVector>*>& clouds,
-                                       std::map<std::string, unsigned int>& widths,
-                                       std::map<std::string, unsigned int>& heights) {
-  unsigned int width = 0, height = 0;
-  const auto& cloud = cloud_of_depth_camera(clouds, widths, heights, width, height);
-  track_with_depth(images, width, height,
-                   [&cloud, width](int row, int col) { return cloud_depth(cloud, width, row, col); });
-}
-
-void vpMbIcgTracker::track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
-                           std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
-                           std::map<std::string, unsigned int>& mapOfPointCloudWidths,
-                           std::map<std::string, unsigned int>& mapOfPointCloudHeights) {
-  track_with_clouds(mapOfImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
-}
-
-void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
-                           std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
-                           std::map<std::string, unsigned int>& mapOfPointCloudWidths,
-                           std::map<std::string, unsigned int>& mapOfPointCloudHeights) {
-  track_with_clouds(mapOfColorImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
-}
-
-namespace {
-
-/// Raw depth times the scale.
-std::function<float(int, int)> raw_depth_reader(const vpImage<uint16_t>& raw, double scale) {
-  if (!(scale > 0.0) || !std::isfinite(scale))
-    throw vpException(vpException::badValue,
-                      "vpMbIcgTracker::track: the depth scale must be positive (metres per raw unit), got " +
-                          std::to_string(scale));
-  return [&raw, scale = static_cast<float>(scale)](int row, int col) {
-    return scale * raw[static_cast<unsigned int>(row)][col];
-  };
-}
-
-}  // namespace
-
-void vpMbIcgTracker::track(const vpImage<unsigned char>& I, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
-  track_with_depth(I, I_depth_raw.getWidth(), I_depth_raw.getHeight(), raw_depth_reader(I_depth_raw, depthScale));
-}
-
-void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
-  track_with_depth(I_color, I_depth_raw.getWidth(), I_depth_raw.getHeight(),
-                   raw_depth_reader(I_depth_raw, depthScale));
-}
-
-void vpMbIcgTracker::track_current_frame(const vpImage<unsigned char>* grey) {
-  Impl& d = *impl_;
-  const icgp::Frame& frame = d.assembler.frame();
-  icgp::Body& body = d.tracker->body(kBody);
-  // The depth reader refers to the caller's cloud, which is only known valid during this call.
-  struct EndDepthReads {
-    icgp::FrameAssembler& assembler;
-    ~EndDepthReads() { assembler.end_depth_reads(); }
-  } end_depth_reads{d.assembler};
-  try {
-    if (d.start_pending) {
-      body.reference_T_body = icgp::to_pose(m_cMo);
-      d.tracker->start(frame);
-      d.start_pending = false;
-    }
-    const icgp::BodyResult result = d.tracker->track(frame).front();
-    d.quality = result.quality;
-  } catch (const std::invalid_argument& e) {
-    // The frame does not suit the configured cues (a missing depth image, a wrong size):
-    // the caller's mistake, reported the ViSP way.
-    throw vpException(vpException::badValue, std::string("vpMbIcgTracker::track: ") + e.what());
-  }
-  m_cMo = icgp::to_homogeneous_matrix(body.reference_T_body);
-  d.hessian = d.tracker->last_hessian(kBody);
-  computeVVSInit();
-  computeVVSInteractionMatrixAndResidu();
-
-  if (computeCovariance) covarianceMatrix = getCovarianceMatrix();
-  if (computeProjError) {
-    projectionError = computeCurrentProjectionError(grey ? *grey : d.assembler.grey_image(), m_cMo, m_cam);
-  }
-}
-
-void vpMbIcgTracker::testTracking() {
-  const icgp::Tracker* tracker = impl_->tracker.get();
-  if (!tracker)
-    throw vpTrackingException(vpTrackingException::initializationError, "vpMbIcgTracker::testTracking: not initialised");
-  const double threshold = tracker->params().quality_threshold;
-  if (impl_->quality < threshold)
-    throw vpTrackingException(vpTrackingException::fatalError,
-                              "vpMbIcgTracker: tracking lost (quality " + std::to_string(impl_->quality) +
-                                  " below the threshold " + std::to_string(threshold) + ")");
-}
-
-double vpMbIcgTracker::getTrackingQuality() const { return impl_->quality; }
-
-// ----------------------------------------------------------------------------- results
-
-void vpMbIcgTracker::computeVVSInit() {
-  m_error.resize(0);
-  m_w.resize(0);
-}
-
-void vpMbIcgTracker::computeVVSInteractionMatrixAndResidu() {
-  if (!impl_->tracker) return;
-  std::vector<double> residuals, weights;
-  impl_->tracker->residuals(kBody, residuals, weights);
-  m_error.resize(static_cast<unsigned int>(residuals.size()), false);
-  m_w.resize(static_cast<unsigned int>(weights.size()), false);
-  for (unsigned int i = 0; i < m_error.size(); ++i) {
-    m_error[i] = residuals[i];
-    m_w[i] = weights[i];
-  }
-}
-
-double vpMbIcgTracker::computeCurrentProjectionError(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cMo,
-                                                     const vpCameraParameters& cam) {
-  if (!impl_->has_cao_part)
-    throw vpException(vpException::notImplementedError,
-                      "vpMbIcgTracker: the projection error is ViSP's, computed on the edges of a .cao model; this "
-                      "model has no .cao part");
-  return vpMbTracker::computeCurrentProjectionError(I, cMo, cam);
-}
-
-vpColVector vpMbIcgTracker::getError() const { return m_error; }
-vpColVector vpMbIcgTracker::getRobustWeights() const { return m_w; }
-
-vpMatrix vpMbIcgTracker::getCovarianceMatrix() const {
-  if (!impl_->hessian)
-    throw vpTrackingException(vpTrackingException::initializationError,
-                              "vpMbIcgTracker::getCovarianceMatrix: no frame has been tracked yet");
-  // Σ_θ = (−H)⁻¹ over the body-frame variation θ = [θ_r; θ_t] (T ← T exp(θ)). A body-frame
-  // twist ξ_b is the camera-frame twist ξ_c = Ad(cMo) ξ_b; ViSP orders twists (v, ω).
-  const Eigen::Matrix<double, 6, 6> information = -*impl_->hessian;
-  const Eigen::Matrix<double, 6, 6> body_covariance = information.completeOrthogonalDecomposition().pseudoInverse();
-  Eigen::Matrix<double, 6, 6> to_v_omega = Eigen::Matrix<double, 6, 6>::Zero();  // (v, ω) = P θ
-  to_v_omega.block<3, 3>(0, 3).setIdentity();
-  to_v_omega.block<3, 3>(3, 0).setIdentity();
-  const icgp::Pose cMo = icgp::to_pose(m_cMo);
-  const Eigen::Matrix3d R = cMo.rotation();
-  Eigen::Matrix3d t_cross;
-  t_cross << 0, -cMo.translation().z(), cMo.translation().y(), cMo.translation().z(), 0, -cMo.translation().x(),
-      -cMo.translation().y(), cMo.translation().x(), 0;
-  Eigen::Matrix<double, 6, 6> adjoint = Eigen::Matrix<double, 6, 6>::Zero();
-  adjoint.block<3, 3>(0, 0) = R;
-  adjoint.block<3, 3>(0, 3) = t_cross * R;
-  adjoint.block<3, 3>(3, 3) = R;
-  const Eigen::Matrix<double, 6, 6> A = adjoint * to_v_omega;
-  const Eigen::Matrix<double, 6, 6> product = A * body_covariance * A.transpose();
-  const Eigen::Matrix<double, 6, 6> camera_covariance = 0.5 * (product + product.transpose());  // exactly symmetric
-  vpMatrix out(6, 6);
-  for (unsigned int i = 0; i < 6; ++i)
-    for (unsigned int j = 0; j < 6; ++j) out[i][j] = camera_covariance(i, j);
-  return out;
-}
-
-// ----------------------------------------------------------------------------- display
-
-std::vector<std::vector<double>> vpMbIcgTracker::getModelForDisplay(unsigned int width, unsigned int height,
-                                                                    const vpHomogeneousMatrix& cMo,
-                                                                    const vpCameraParameters& cam,
-                                                                    bool displayFullModel) {
-  Impl& d = *impl_;
-  if (d.mesh.parts.empty())
-    throw vpTrackingException(vpTrackingException::initializationError, "vpMbIcgTracker: no model to display");
-  if (!d.edges) d.edges = std::make_unique<icgp::ModelEdges>(d.mesh);
-  const icgp::Intrinsics k = icgp::to_intrinsics(cam, static_cast<int>(width), static_cast<int>(height));
-  const icgp::Pose camera_T_body = icgp::to_pose(cMo);
-  cv::Mat depth;
-  if (!displayFullModel) {
-    if (!d.renderer) {
-      d.renderer = std::make_unique<icgp::Renderer>();
-      d.render_body = d.renderer->add_body(d.mesh, 1);
-    }
-    d.renderer->set_body_pose(d.render_body, camera_T_body);
-    depth = d.renderer->render(k, icgp::Pose(), icgp::kRenderDepth).depth;
-  }
-  std::vector<std::vector<double>> lines;
-  for (const icgp::ImageSegment& s : d.edges->project(k, camera_T_body, depth))
-    lines.push_back({0.0, s.a.y(), s.a.x(), s.b.y(), s.b.x()});  // ViSP: i is the row (v), j the column (u)
-  return lines;
-}
-
-namespace {
-
-template <typename Image>
-void draw_lines(const Image& I, const std::vector<std::vector<double>>& lines, const vpColor& color,
-                unsigned int thickness) {
-  for (const std::vector<double>& l : lines)
-    vpDisplay::displayLine(I, vpImagePoint(l[1], l[2]), vpImagePoint(l[3], l[4]), color, thickness);
-}
-
-}  // namespace
-
-void vpMbIcgTracker::display(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cMo,
-                             const vpCameraParameters& cam, const vpColor& col, unsigned int thickness,
-                             bool displayFullModel) {
-  draw_lines(I, getModelForDisplay(I.getWidth(), I.getHeight(), cMo, cam, displayFullModel), col, thickness);
-}
-
-void vpMbIcgTracker::display(const vpImage<vpRGBa>& I, const vpHomogeneousMatrix& cMo, const vpCameraParameters& cam,
-                             const vpColor& col, unsigned int thickness, bool displayFullModel) {
-  draw_lines(I, getModelForDisplay(I.getWidth(), I.getHeight(), cMo, cam, displayFullModel), col, thickness);
-}
-
-// ------------------------------------------------------------ ViSP's .cao parser hooks
+// ------------------------------------------------------ ViSP's .cao / .wrl parser hooks
 
 void vpMbIcgTracker::initCircle(const vpPoint&, const vpPoint&, const vpPoint&, double, int, const std::string&) {}
 void vpMbIcgTracker::initCylinder(const vpPoint&, const vpPoint&, double, int, const std::string&) {}

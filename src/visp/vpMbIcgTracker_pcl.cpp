@@ -6,7 +6,7 @@
 
 #include <visp3/core/vpException.h>
 
-#include "icgp/visp/vpMbIcgTracker.h"
+#include "vpMbIcgTracker_impl.h"
 
 namespace {
 
@@ -19,52 +19,50 @@ void require_organised(const pcl::PointCloud<Point>& cloud, const std::string& c
                                                  std::to_string(cloud.width) + " x " + std::to_string(cloud.height));
 }
 
-/// The organised cloud of "Camera2" from the map.
-const pcl::PointCloud<pcl::PointXYZ>& depth_camera_cloud(
-    std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& clouds) {
-  const pcl::PointCloud<pcl::PointXYZ>* cloud = nullptr;
-  for (const auto& [name, c] : clouds) {
-    if (name != "Camera2")
-      throw vpException(vpException::badValue, "vpMbIcgTracker::track: unknown camera '" + name +
-                                                   "' in the point clouds (the depth camera is \"Camera2\")");
-    cloud = c.get();
-  }
-  if (!cloud) throw vpException(vpException::badValue, "vpMbIcgTracker::track: no point cloud of \"Camera2\"");
-  require_organised(*cloud, "Camera2");
-  return *cloud;
+/// The point of an organised cloud's pixel.
+template <typename Point>
+Eigen::Vector3f cloud_point(const pcl::PointCloud<Point>& cloud, int row, int col) {
+  const Point& p = cloud.points[static_cast<std::size_t>(row) * cloud.width + col];
+  return {p.x, p.y, p.z};
 }
 
-/// Z of an organised cloud's point.
+/// The cloud as a camera's depth (icgp::visp_detail::read_cloud).
 template <typename Point>
-float cloud_depth(const pcl::PointCloud<Point>& cloud, int row, int col) {
-  return cloud.points[static_cast<std::size_t>(row) * cloud.width + col].z;
+icgp::visp_detail::DepthInput depth_of_cloud(const std::string& camera, const std::shared_ptr<const pcl::PointCloud<Point>>& cloud,
+                                             const vpCameraParameters& parameters) {
+  if (!cloud) throw vpException(vpException::badValue, "vpMbIcgTracker::track: the point cloud of camera '" + camera + "' is null");
+  require_organised(*cloud, camera);
+  icgp::visp_detail::DepthInput depth{camera, cloud->width, cloud->height};
+  icgp::visp_detail::read_cloud(depth, [cloud](int row, int col) { return cloud_point(*cloud, row, col); }, parameters);
+  return depth;
 }
 
 }  // namespace
 
 void vpMbIcgTracker::track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
                            std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& mapOfPointClouds) {
-  const pcl::PointCloud<pcl::PointXYZ>& cloud = depth_camera_cloud(mapOfPointClouds);
-  track_with_depth(mapOfImages, cloud.width, cloud.height,
-                   [&cloud](int row, int col) { return cloud_depth(cloud, row, col); });
+  std::vector<DepthInput> depths;
+  for (const auto& [camera, cloud] : mapOfPointClouds) depths.push_back(depth_of_cloud(camera, cloud, impl_->rig.at(camera, "track").parameters));
+  track_frame(mapOfImages, depths, "track");
 }
 
 void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
                            std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& mapOfPointClouds) {
-  const pcl::PointCloud<pcl::PointXYZ>& cloud = depth_camera_cloud(mapOfPointClouds);
-  track_with_depth(mapOfColorImages, cloud.width, cloud.height,
-                   [&cloud](int row, int col) { return cloud_depth(cloud, row, col); });
+  std::vector<DepthInput> depths;
+  for (const auto& [camera, cloud] : mapOfPointClouds) depths.push_back(depth_of_cloud(camera, cloud, impl_->rig.at(camera, "track").parameters));
+  track_frame(mapOfColorImages, depths, "track");
 }
 
 void vpMbIcgTracker::track(const std::shared_ptr<const pcl::PointCloud<pcl::PointXYZRGBA>>& cloud) {
-  if (!cloud) throw vpException(vpException::badValue, "vpMbIcgTracker::track: null point cloud");
-  require_organised(*cloud, "Camera1");
+  const std::string& camera = impl_->rig.reference();
+  if (!impl_->rig.is_depth_camera(camera))
+    throw vpException(vpException::badValue, "vpMbIcgTracker::track(cloud): a registered cloud is the reference camera's "
+                                             "colour and depth, but camera '" + camera + "' has no depth tracker type");
+  DepthInput depth = depth_of_cloud(camera, cloud, impl_->rig.reference_camera().parameters);
   vpImage<vpRGBa> color(cloud->height, cloud->width);
   for (std::size_t i = 0; i < cloud->points.size(); ++i) {
     const pcl::PointXYZRGBA& p = cloud->points[i];
     color.bitmap[i] = vpRGBa(p.r, p.g, p.b, p.a);
   }
-  track_with_depth(color, cloud->width, cloud->height,
-                   [&cloud](int row, int col) { return cloud_depth(*cloud, row, col); },
-                   /*depthFromColorCamera=*/true);
+  track_frame(std::map<std::string, const vpImage<vpRGBa>*>{{camera, &color}}, {depth}, "track(cloud)");
 }

@@ -79,7 +79,7 @@ bool check_tracking(const icgp::Mesh& cube, const std::filesystem::path& work_di
   const std::filesystem::path model = work_dir / "cube.obj";
   write_obj(cube, model);
 
-  vpMbIcgTracker icg;
+  vpMbIcgTracker icg(1, vpMbIcgTracker::DEPTH_DENSE_TRACKER);  // one camera, "Camera", depth only
   // Coarse viewpoint models, generated in about a second into a folder of this build.
   icgp::TrackerConfig config = icg.getTrackerConfig();
   config.region_model.n_divides = config.depth_model.n_divides = 3;
@@ -87,7 +87,7 @@ bool check_tracking(const icgp::Mesh& cube, const std::filesystem::path& work_di
   config.cache_dir = (work_dir / "model-cache").string();
   icg.setTrackerConfig(config);
   icg.setModalities({"depth"});
-  icg.setCameraParameters(cam, cam);  // colour and depth camera: one RGB-D sensor, registered
+  icg.setCameraParameters(cam);
 
   // From here on, code written for any ViSP model-based tracker.
   vpMbTracker* tracker = &icg;

@@ -14,6 +14,7 @@
 
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 
@@ -43,6 +44,15 @@ struct VispFrame {
   vpImage<unsigned char> grey;
   vpImage<uint16_t> depth_raw;  ///< 0.1 mm units
 };
+
+/// Each pixel's point on its pinhole ray at the raw depth (0.1 mm units).
+std::vector<Eigen::Vector3f> pinhole_points(const Intrinsics& k, const vpImage<uint16_t>& depth_raw) {
+  std::vector<Eigen::Vector3f> points;
+  for (unsigned int r = 0; r < depth_raw.getHeight(); ++r)
+    for (unsigned int c = 0; c < depth_raw.getWidth(); ++c)
+      points.push_back(k.back_project<float>(static_cast<float>(c), static_cast<float>(r), depth_raw[r][c] * 1e-4f));
+  return points;
+}
 
 VispFrame to_visp(const Frame& frame) {
   VispFrame v;
@@ -149,7 +159,7 @@ TEST_CASE("vpMbIcgTracker tracks raw depth, PCL clouds and vector clouds alike")
   const vpHomogeneousMatrix cMo0 = to_homogeneous_matrix(*frames.front().truth());
 
   const auto run = [&](const std::function<void(vpMbIcgTracker&, const Frame&, const VispFrame&)>& track) {
-    vpMbIcgTracker tracker;
+    vpMbIcgTracker tracker(kRgbdTrackerTypes);
     configure(tracker, {"region", "depth"});
     tracker.loadModel(kTeabox);
     set_cameras(tracker, frames.front());
@@ -164,18 +174,23 @@ TEST_CASE("vpMbIcgTracker tracks raw depth, PCL clouds and vector clouds alike")
   };
 
   const auto raw = run([](vpMbIcgTracker& t, const Frame&, const VispFrame& v) { t.track(v.color, v.depth_raw, 1e-4); });
-  const auto vectors = run([](vpMbIcgTracker& t, const Frame&, const VispFrame& v) {
+  // Clouds as a sensor's SDK de-projects the depth image: each pixel's point on its ray.
+  const auto vectors = run([](vpMbIcgTracker& t, const Frame& f, const VispFrame& v) {
+    const std::vector<Eigen::Vector3f> points = pinhole_points(f.depths[0].intrinsics, v.depth_raw);
     std::vector<vpColVector> cloud(v.depth_raw.getSize(), vpColVector(3, 0.0));
-    for (unsigned int i = 0; i < v.depth_raw.getSize(); ++i) cloud[i][2] = v.depth_raw.bitmap[i] * 1e-4;
+    for (unsigned int i = 0; i < v.depth_raw.getSize(); ++i)
+      for (unsigned int k = 0; k < 3; ++k) cloud[i][k] = points[i][k];
     std::map<std::string, const vpImage<vpRGBa>*> images{{"Camera1", &v.color}};
     std::map<std::string, const std::vector<vpColVector>*> clouds{{"Camera2", &cloud}};
     std::map<std::string, unsigned int> widths{{"Camera2", v.depth_raw.getWidth()}};
     std::map<std::string, unsigned int> heights{{"Camera2", v.depth_raw.getHeight()}};
     t.track(images, clouds, widths, heights);
   });
-  const auto pcl_clouds = run([](vpMbIcgTracker& t, const Frame&, const VispFrame& v) {
+  const auto pcl_clouds = run([](vpMbIcgTracker& t, const Frame& f, const VispFrame& v) {
+    const std::vector<Eigen::Vector3f> points = pinhole_points(f.depths[0].intrinsics, v.depth_raw);
     auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(v.depth_raw.getWidth(), v.depth_raw.getHeight());
-    for (unsigned int i = 0; i < v.depth_raw.getSize(); ++i) cloud->points[i].z = static_cast<float>(v.depth_raw.bitmap[i] * 1e-4);
+    for (unsigned int i = 0; i < v.depth_raw.getSize(); ++i)
+      cloud->points[i].getVector3fMap() = points[i];
     std::map<std::string, const vpImage<vpRGBa>*> images{{"Camera1", &v.color}};
     std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>> clouds{{"Camera2", cloud}};
     t.track(images, clouds);
@@ -189,6 +204,55 @@ TEST_CASE("vpMbIcgTracker tracks raw depth, PCL clouds and vector clouds alike")
     CHECK(translation_error_mm(to_pose(vectors[i]), to_pose(raw[i])) < 1e-3);
     CHECK(translation_error_mm(to_pose(pcl_clouds[i]), to_pose(raw[i])) < 1e-3);
   }
+}
+
+TEST_CASE("vpMbIcgTracker reads clouds as 3D points: a sensor's cloud de-projected with its lens distortion") {
+  // A depth sensor with barrel distortion sees the true surface points at distorted pixels;
+  // its SDK de-projects each pixel through the distortion, so a cloud pixel holds the true
+  // point, off the pinhole ray of that pixel (by up to ~20 px at the corners here). Read as
+  // Z alone on pinhole rays, the same cloud places every point beside the surface.
+  const auto& frames = teabox_frames();
+  constexpr float kBarrel = -0.15f;  // u = pu + fu x (1 + k r^2)
+  const auto distorted_cloud = [&](const Frame& f, bool z_only) {
+    const Intrinsics& k = f.depths[0].intrinsics;
+    const VispFrame v = to_visp(f);
+    std::vector<vpColVector> cloud(v.depth_raw.getSize(), vpColVector(3, 0.0));
+    for (const Eigen::Vector3f& P : pinhole_points(k, v.depth_raw)) {
+      if (!(P.z() > 0.f)) continue;
+      const float x = P.x() / P.z(), y = P.y() / P.z(), radial = 1.f + kBarrel * (x * x + y * y);
+      const long u = std::lround(k.pu + k.fu * x * radial), row = std::lround(k.pv + k.fv * y * radial);
+      if (u < 0 || row < 0 || u >= k.width || row >= k.height) continue;
+      vpColVector& pixel = cloud[static_cast<std::size_t>(row) * k.width + u];
+      if (pixel[2] != 0.0 && pixel[2] < P.z()) continue;  // the nearest surface is seen
+      const Eigen::Vector3f on_pinhole_ray =
+          k.back_project<float>(static_cast<float>(u), static_cast<float>(row), P.z());
+      const Eigen::Vector3f stored = z_only ? on_pinhole_ray : P;
+      for (unsigned int c = 0; c < 3; ++c) pixel[c] = stored[c];
+    }
+    return cloud;
+  };
+  const auto mean_error_mm = [&](bool z_only) {
+    vpMbIcgTracker tracker(kRgbdTrackerTypes);
+    configure(tracker, {"depth"});
+    tracker.loadModel(kTeabox);
+    set_cameras(tracker, frames.front());
+    tracker.initFromPose(vpImage<unsigned char>(), to_homogeneous_matrix(*frames.front().truth()));
+    double sum = 0.0;
+    for (const Frame& f : frames) {
+      const std::vector<vpColVector> cloud = distorted_cloud(f, z_only);
+      std::map<std::string, const vpImage<unsigned char>*> images;
+      std::map<std::string, const std::vector<vpColVector>*> clouds{{"Camera2", &cloud}};
+      std::map<std::string, unsigned int> widths{{"Camera2", static_cast<unsigned int>(f.depths[0].intrinsics.width)}};
+      std::map<std::string, unsigned int> heights{{"Camera2", static_cast<unsigned int>(f.depths[0].intrinsics.height)}};
+      tracker.track(images, clouds, widths, heights);
+      sum += translation_error_mm(to_pose(tracker.getPose()), *f.truth());
+    }
+    return sum / frames.size();
+  };
+  const double as_points = mean_error_mm(false), as_depth = mean_error_mm(true);
+  INFO("mean translation error: " << as_points << " mm read as points, " << as_depth << " mm read as Z on pinhole rays");
+  CHECK(as_points < 0.5);
+  CHECK(as_depth > 3.0 * as_points);
 }
 
 TEST_CASE("vpMbIcgTracker takes colour and depth from one registered PCL cloud") {
@@ -214,7 +278,7 @@ TEST_CASE("vpMbIcgTracker takes colour and depth from one registered PCL cloud")
         p.g = bgr[1];
         p.b = bgr[0];
         p.a = 255;
-        p.z = 0.f;
+        p.x = p.y = p.z = 0.f;
       }
     for (int v = 0; v < kd.height; ++v)
       for (int u = 0; u < kd.width; ++u) {
@@ -225,7 +289,9 @@ TEST_CASE("vpMbIcgTracker takes colour and depth from one registered PCL cloud")
         const int cu = static_cast<int>(std::lround(x.x())), cv_ = static_cast<int>(std::lround(x.y()));
         if (cu < 0 || cv_ < 0 || cu >= kc.width || cv_ >= kc.height) continue;
         auto& p = cloud->points[static_cast<std::size_t>(cv_) * kc.width + cu];
-        if (p.z == 0.f || X.z() < p.z) p.z = static_cast<float>(X.z());
+        // The registered point of the pixel: on its ray, at the depth that reaches it.
+        if (p.z == 0.f || X.z() < p.z)
+          p.getVector3fMap() = kc.back_project<float>(static_cast<float>(cu), static_cast<float>(cv_), static_cast<float>(X.z()));
       }
     tracker.track(std::shared_ptr<const pcl::PointCloud<pcl::PointXYZRGBA>>(cloud));
     INFO("frame " << f.index);
@@ -235,7 +301,7 @@ TEST_CASE("vpMbIcgTracker takes colour and depth from one registered PCL cloud")
 
 TEST_CASE("vpMbIcgTracker's residuals, weights and covariance") {
   const auto& frames = teabox_frames();
-  vpMbIcgTracker tracker;
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
   configure(tracker, {"region", "depth"});
   tracker.loadModel(kTeabox);
   set_cameras(tracker, frames[0]);
@@ -269,7 +335,7 @@ TEST_CASE("vpMbIcgTracker's covariance is about the camera, in ViSP's (v, ω) or
   const auto& frames = teabox_frames();
   const VispFrame v = to_visp(frames[1]);
   const auto covariance = [&](const vpHomogeneousMatrix& T, const vpHomogeneousMatrix& cMo) {
-    vpMbIcgTracker tracker;
+    vpMbIcgTracker tracker(kRgbdTrackerTypes);
     configure(tracker, {"depth"});
     tracker.loadModel(kTeabox, false, T);
     set_cameras(tracker, frames[1]);
@@ -301,7 +367,7 @@ TEST_CASE("vpMbIcgTracker's covariance is about the camera, in ViSP's (v, ω) or
 
 TEST_CASE("vpMbIcgTracker::testTracking tells a tracked box from a lost one") {
   const auto& frames = teabox_frames();
-  vpMbIcgTracker tracker;
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
   configure(tracker, {"region", "depth"});
   tracker.loadModel(kTeabox);
   set_cameras(tracker, frames[0]);

@@ -41,7 +41,7 @@ struct RgbdFixture {
   std::vector<Frame> frames = test::teabox_frames(1);
   const Frame& frame = frames.front();
   VispRgbdFrame input;
-  vpMbIcgTracker tracker;
+  vpMbIcgTracker tracker{kRgbdTrackerTypes};
   std::map<std::string, const vpImage<unsigned char>*> images;
   std::map<std::string, const std::vector<vpColVector>*> clouds;
   std::map<std::string, unsigned int> widths, heights;
@@ -67,7 +67,7 @@ struct RgbdFixture {
 }  // namespace
 
 TEST_CASE("vpMbIcgTracker: missing and unsupported files are ViSP exceptions naming the file") {
-  vpMbIcgTracker tracker;
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
   const std::filesystem::path missing = std::filesystem::temp_directory_path() / "icgp-no-such-dir";
 
   SECTION("missing mesh") {

@@ -45,7 +45,7 @@ TEST_CASE(
       make_visp_tracker(visp_reference_configuration("edge + KLT + dense depth"), files);
   const MeanErrors visp_errors = mean_errors(track_rgbd_sequence(*visp, frames, files, cMo0).poses, frames);
 
-  vpMbIcgTracker icg;
+  vpMbIcgTracker icg(kRgbdTrackerTypes);
   test::configure_for_tests(icg);
   icg.setModalities({"region", "depth"});
   const MeanErrors icg_errors = mean_errors(track_rgbd_sequence(icg, frames, files, cMo0).poses, frames);
@@ -101,7 +101,7 @@ TEST_CASE("loadConfigFile reads the <camera> blocks of ViSP tracker XML files, v
   write_xml("colour.xml", 321.25, 238.5, 612.75, 611.5);
   write_xml("depth.xml", 318.0, 243.75, 575.25, 574.0);
 
-  vpMbIcgTracker tracker;
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
   tracker.loadConfigFile((dir / "colour.xml").string(), (dir / "depth.xml").string(), false);
   vpCameraParameters colour, depth;
   tracker.getCameraParameters(colour, depth);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <opencv2/core/mat.hpp>
@@ -14,6 +15,22 @@
 
 namespace icgp {
 
+/// Which pixels of an image the cues may use (ViSP's setMask): CV_8UC1 of the image's
+/// size, 0 where a pixel must be ignored. Empty: every pixel.
+struct PixelMask {
+  cv::Mat mask;
+
+  bool all_pixels() const { return mask.empty(); }
+  /// False for a pixel the mask excludes; pixels outside the image are left to the caller.
+  bool usable(int row, int col) const {
+    return mask.empty() || row < 0 || col < 0 || row >= mask.rows || col >= mask.cols ||
+           mask.ptr<std::uint8_t>(row)[col] != 0;
+  }
+  bool usable(const Eigen::Vector2f& pixel) const {
+    return usable(static_cast<int>(std::lround(pixel.y())), static_cast<int>(std::lround(pixel.x())));
+  }
+};
+
 /// One colour camera's image and calibration. The reference frame of a Frame is its first
 /// colour camera, so that camera has camera_T_reference = identity.
 struct ColorImage {
@@ -21,6 +38,7 @@ struct ColorImage {
   Intrinsics intrinsics;
   Pose camera_T_reference;
   cv::Mat image;  ///< CV_8UC3 (BGR, OpenCV order) or CV_8UC1 (grey)
+  PixelMask mask;
 };
 
 /// Where the not yet converted pixels of a depth image get their depth (see DepthImage),
@@ -30,14 +48,35 @@ class LazyDepthSource {
   static constexpr float kNotConverted = -1.f;
 
   /// `read`: the measured depth at (row, col) in metres; 0, negative or not finite: none.
-  void set_reader(std::function<float(int row, int col)> read) { read_ = std::move(read); }
+  void set_reader(std::function<float(int row, int col)> read) {
+    read_ = std::move(read);
+    read_point_ = nullptr;
+  }
+  /// `read`: the measured point at (row, col) in the camera frame, metres; Z 0, negative or
+  /// not finite: none. Its ray (X/Z, Y/Z) is written to the `rays` of convert().
+  void set_point_reader(std::function<Eigen::Vector3f(int row, int col)> read) {
+    read_point_ = std::move(read);
+    read_ = nullptr;
+  }
   /// Pixels not converted so far read as no measurement from now on.
-  void drop_reader() { read_ = nullptr; }
+  void drop_reader() {
+    read_ = nullptr;
+    read_point_ = nullptr;
+  }
 
-  /// The depth of kNotConverted pixel (row, col) of `depth`, which is written there.
-  float convert(cv::Mat& depth, int row, int col) {
-    if (!read_) return 0.f;
-    float z = read_(row, col);
+  /// The depth of kNotConverted pixel (row, col) of `depth`, which is written there (and
+  /// the point's ray to `rays` when the source gives points).
+  float convert(cv::Mat& depth, cv::Mat& rays, int row, int col) {
+    float z = 0.f;
+    if (read_point_) {
+      const Eigen::Vector3f P = read_point_(row, col);
+      z = P.z();
+      if (z > 0.f && std::isfinite(z)) rays.ptr<cv::Vec2f>(row)[col] = cv::Vec2f(P.x() / z, P.y() / z);
+    } else if (read_) {
+      z = read_(row, col);
+    } else {
+      return 0.f;
+    }
     if (!(z > 0.f) || !std::isfinite(z)) z = 0.f;
     depth.ptr<float>(row)[col] = z;
     converted_.emplace_back(col, row);
@@ -52,6 +91,7 @@ class LazyDepthSource {
 
  private:
   std::function<float(int row, int col)> read_;
+  std::function<Eigen::Vector3f(int row, int col)> read_point_;
   std::vector<cv::Point> converted_;
 };
 
@@ -69,6 +109,11 @@ struct DepthImage {
   Intrinsics intrinsics;
   Pose camera_T_reference;  ///< for a ViSP sequence this is depth_M_color
   cv::Mat depth;            ///< CV_32FC1, metres, 0 where there is no measurement
+  /// CV_32FC2 (X/Z, Y/Z) of each measured pixel when the points do not lie on the
+  /// intrinsics' pinhole rays (a cloud de-projected with the sensor's distortion); empty:
+  /// a pixel's point is its pinhole ray times its depth.
+  cv::Mat rays;
+  PixelMask mask;
   /// Converting on read keeps the image logically constant: a pixel only ever takes the
   /// one value its source gives.
   mutable LazyDepthSource source;
@@ -79,7 +124,15 @@ struct DepthImage {
   /// The depth at (row, col), inside the image: metres, 0 where there is no measurement.
   float at(int row, int col) const {
     const float z = depth.ptr<float>(row)[col];
-    return z != kNotConverted ? z : source.convert(const_cast<cv::Mat&>(depth), row, col);
+    return z != kNotConverted ? z : source.convert(const_cast<cv::Mat&>(depth), const_cast<cv::Mat&>(rays), row, col);
+  }
+  /// The measured point at (row, col), given its depth z = at(row, col) > 0.
+  Eigen::Vector3f point(int row, int col, float z) const {
+    if (rays.empty())
+      return {static_cast<float>((col - intrinsics.pu) / intrinsics.fu) * z,
+              static_cast<float>((row - intrinsics.pv) / intrinsics.fv) * z, z};
+    const cv::Vec2f& r = rays.ptr<cv::Vec2f>(row)[col];
+    return {r[0] * z, r[1] * z, z};
   }
 };
 

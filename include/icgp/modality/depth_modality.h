@@ -24,6 +24,7 @@ class DepthModality : public Modality {
   DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params);
 
   std::string name() const override { return "depth"; }
+  const std::string& camera() const override { return params_.depth_camera; }
   void start(const Frame& frame) override;
   void correspondences(const Frame& frame, int corr_iter) override;
   void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;

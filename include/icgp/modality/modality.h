@@ -30,6 +30,13 @@ struct ModalityQuality {
   double sigma = 0.0;
 };
 
+/// Where a cue measured something in one camera's image, for display (ViSP's
+/// getFeaturesForDisplay): a region line's contour, a texture keypoint's match.
+struct ImageFeature {
+  Eigen::Vector2d pixel;  ///< (u, v)
+  double weight = 1.0;    ///< the correspondence's weight in [0, 1]
+};
+
 /// One cue about one body's pose (ALGORITHMS.md §2): it supplies the gradient and Hessian of
 /// its log-likelihood with respect to a body-frame pose variation θ = [θ_r; θ_t] at θ = 0.
 /// The optimizer only sums them; a new cue needs nothing but a new subclass.
@@ -41,6 +48,8 @@ class Modality {
   Modality& operator=(const Modality&) = delete;
 
   virtual std::string name() const = 0;
+  /// The camera whose images the cue reads.
+  virtual const std::string& camera() const = 0;
   /// (Re)initialises from the body's current pose: histograms, keyframes, ...
   virtual void start(const Frame& frame) = 0;
   /// Finds data associations at the current pose for correspondence iteration `corr_iter`.
@@ -58,6 +67,9 @@ class Modality {
   /// the modality's own: pixels along the contour normal (region), metres point-to-plane
   /// (depth), pixels in u and v (texture). ViSP's getError()/getRobustWeights() show them.
   virtual void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const = 0;
+  /// Appends the image measurements of the last correspondences in camera(); cues that
+  /// measure depth rather than image positions append nothing.
+  virtual void append_image_features(std::vector<ImageFeature>&) const {}
 
   Body& body() const { return *body_; }
 

@@ -33,11 +33,13 @@ class RegionModality : public Modality {
   RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params);
 
   std::string name() const override { return "region"; }
+  const std::string& camera() const override { return params_.color_camera; }
   void start(const Frame& frame) override;
   void correspondences(const Frame& frame, int corr_iter) override;
   void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
   double log_likelihood(int corr_iter) const override;
   void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const override;
+  void append_image_features(std::vector<ImageFeature>& features) const override;
   void finish(const Frame& frame) override;
   ModalityQuality quality() const override { return quality_; }
 

@@ -111,11 +111,13 @@ class TextureModality : public Modality {
   TextureModality(Body& body, TextureParams params);
 
   std::string name() const override { return "texture"; }
+  const std::string& camera() const override { return params_.color_camera; }
   void start(const Frame& frame) override;
   void correspondences(const Frame& frame, int corr_iter) override;
   void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
   double log_likelihood(int corr_iter) const override;
   void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const override;
+  void append_image_features(std::vector<ImageFeature>& features) const override;
   void finish(const Frame& frame) override;
   ModalityQuality quality() const override { return quality_; }
 
@@ -127,6 +129,8 @@ class TextureModality : public Modality {
   const ColorImage& color_image(const Frame& frame) const;
   Pose camera_T_body() const;
   void detect(const Frame& frame);
+  /// Keeps only the detected points on pixels the camera's mask allows.
+  void drop_masked_points(const PixelMask& mask);
   void make_keyframe(const Frame& frame);
   void match();
   void update_weights();

@@ -59,6 +59,8 @@ class Tracker {
   /// The residuals and weights of every modality of `body` at its current pose, in the
   /// order the modalities were added (Modality::append_residuals).
   void residuals(const std::string& body, std::vector<double>& residuals, std::vector<double>& weights) const;
+  /// The modalities of `body`, in the order they were added (for per-cue diagnostics).
+  std::vector<const Modality*> modalities(const std::string& body) const;
 
  private:
   struct BodyState;

@@ -14,7 +14,8 @@ struct CaoTessellation {
   int circle_segments = 48;    ///< triangles of a circle's disc (>= 3)
 };
 
-/// Reads a ViSP .cao model with ViSP's own parser (vpMbTracker::loadModel, so load()
+/// Reads a ViSP .cao model (or a VRML .wrl model, which ViSP reads through Coin3D and
+/// calls back with the same faces and cylinders) with ViSP's own parser (vpMbTracker::loadModel, so load()
 /// includes with their t= / tu= transforms behave exactly as in ViSP's trackers) and
 /// triangulates what it describes into one MeshPart with the default grey material:
 /// * faces (from points or from lines): planar polygons, possibly non-convex, ear-clipped
@@ -34,7 +35,7 @@ struct CaoTessellation {
 /// call, so other threads should not write to std::cerr meanwhile.
 Mesh load_cao_mesh(const std::string& path, const Pose& T = Pose(), const CaoTessellation& tessellation = {});
 
-/// Any mesh by its extension: .cao through load_cao_mesh, everything else through the
+/// Any mesh by its extension: .cao and .wrl through load_cao_mesh, everything else through the
 /// assimp loader (icgp::load_mesh). Vertices are T * (scale * X) for the file's points X
 /// whatever the format. Throws as the loader it uses, and std::invalid_argument for a
 /// non-positive or non-finite scale.

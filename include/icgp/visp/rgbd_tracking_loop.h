@@ -16,6 +16,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/mbt/vpMbGenericTracker.h>
 
 #include "icgp/eval/frame.h"
 #include "icgp/geometry/pose.h"
@@ -27,6 +28,10 @@ namespace icgp {
 /// vpMbGenericTracker's camera names: the colour camera is the reference, cMo is relative to it.
 inline const std::string kVispColorCamera = "Camera1";
 inline const std::string kVispDepthCamera = "Camera2";
+/// The tracker types of that pair, as ViSP's RGB-D programs construct it: the colour
+/// camera's edges and KLT points (icgp: region and texture), the depth camera's dense depth.
+inline const std::vector<int> kRgbdTrackerTypes = {vpMbGenericTracker::EDGE_TRACKER | vpMbGenericTracker::KLT_TRACKER,
+                                                   vpMbGenericTracker::DEPTH_DENSE_TRACKER};
 
 /// A frame in the shapes ViSP's RGB-D track() takes. Kept from frame to frame so that
 /// converting a sequence reuses the same buffers instead of allocating a cloud per frame.

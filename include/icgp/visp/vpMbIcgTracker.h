@@ -10,7 +10,17 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
+#include <list>
+#include <opencv2/core/types.hpp>
+#include <visp3/klt/vpKltOpencv.h>
 #include <visp3/mbt/vpMbTracker.h>
+#include <visp3/mbt/vpMbtDistanceCircle.h>
+#include <visp3/mbt/vpMbtDistanceCylinder.h>
+#include <visp3/mbt/vpMbtDistanceKltCylinder.h>
+#include <visp3/mbt/vpMbtDistanceKltPoints.h>
+#include <visp3/mbt/vpMbtDistanceLine.h>
+#include <visp3/mbt/vpMbtFaceDepthNormal.h>
+#include <visp3/me/vpMe.h>
 
 #include "icgp/tracker/tracker_config.h"
 
@@ -23,37 +33,66 @@ template <typename PointT>
 class PointCloud;
 }  // namespace pcl
 
+namespace icgp::visp_detail {
+struct DepthInput;
+}  // namespace icgp::visp_detail
+
 /*!
   The ICG+ tracker (region, depth and texture cues fused in one regularised Newton
-  optimisation) as a ViSP model-based tracker: code written against vpMbTracker, or against
-  vpMbGenericTracker's RGB-D calls, runs with it by changing the class name and the
-  parameter file.
+  optimisation) as a ViSP model-based tracker with vpMbGenericTracker's whole public API:
+  a program written for vpMbGenericTracker runs with it by changing the class name.
+  docs/visp.md tables every method and what it does here.
 
-  Cameras have vpMbGenericTracker's names: "Camera1" is the colour camera and the reference
-  (cMo is relative to it), "Camera2" the depth camera, placed with
-  setCameraTransformationMatrix("Camera2", depth_M_color). Camera parameters are used
-  without distortion. Which cues run is set by the parameter file (loadConfigFile with
-  icgp's YAML, see docs/configuration.md) or setModalities(); the default is region +
-  depth. Colour-only tracking (track(I)) needs a configuration without "depth".
+  Cameras are vpMbGenericTracker's: named, each with tracker types that say which cues
+  read it, EDGE_TRACKER → region (the contour), KLT_TRACKER → texture (keypoints),
+  DEPTH_NORMAL_TRACKER or DEPTH_DENSE_TRACKER → depth. The cues of every camera are fused
+  in one Newton step; cMo is the reference camera's (the first name, as in ViSP), the
+  others placed with setCameraTransformationMatrix (c_M_reference). The default
+  constructor gives one camera "Camera" with every cue (ICG+ on a colour image, and on a
+  registered depth image when one is given); vpMbIcgTracker({EDGE_TRACKER | KLT_TRACKER,
+  DEPTH_DENSE_TRACKER}) is the usual RGB-D pair "Camera1" (colour) + "Camera2" (depth).
+  The cues of a YAML configuration (TrackerConfig::modalities) further select among them.
+  A depth camera that gets no depth in a call (track(I), width and height 0) sits the frame
+  out; a camera whose colour cues get no image is an error. Camera parameters are used
+  without distortion; clouds are read as 3D points.
 
-  Model: loadModel() takes ViSP .cao files (parsed by vpMbTracker itself) and meshes that
-  assimp reads (.obj, .ply, .stl, ...) by extension; repeated calls add parts to the same
-  rigid object. The sparse viewpoint models are generated on the first initFromPose after a
-  model or parameter change (with progress on std::cerr, a few seconds) and cached on disk
-  (TrackerConfig::cache_dir), so later runs load them in milliseconds.
+  Model: loadModel() takes ViSP .cao and .wrl files (parsed by ViSP itself, .wrl through
+  Coin3D) and meshes that assimp reads (.obj, .ply, .stl, ...) by extension; repeated calls
+  add parts to the same rigid object. The sparse viewpoint models are generated on the
+  first initFromPose after a model or parameter change (with progress on std::cerr, a few
+  seconds) and cached on disk (TrackerConfig::cache_dir).
 
   Initialisation is deferred like vpMbGenericTracker's RGB-D use: initFromPose() and
-  setPose() store the pose; the next track() call starts the cues (colour histograms,
-  keyframes) on its frame at that pose and then tracks that frame.
+  setPose() store the pose; the next track() call starts the cues on its frame at that pose
+  and then tracks that frame.
 
-  Errors are ViSP exceptions: vpException::ioError for missing or unreadable files,
-  vpException::badValue for unsupported extensions, unknown camera names or clouds whose
-  size is not width x height, vpTrackingException::initializationError for tracking before
-  loadModel/initFromPose, vpTrackingException::fatalError from testTracking() when lost.
+  ViSP settings of its own cues (moving edges, KLT, depth features, visibility and
+  clipping) are stored and returned by their getters; where icgp has a parameter of that
+  meaning they set it, otherwise the first call says once on std::cerr that it has no
+  effect.
+
+  Errors are ViSP exceptions, and only those: vpException::ioError for missing or
+  unreadable files, vpException::badValue for unsupported extensions, unknown camera
+  names, invalid tracker types or clouds whose size is not width x height,
+  vpTrackingException::initializationError for tracking before loadModel/initFromPose,
+  vpTrackingException::fatalError from testTracking() when lost.
 */
 class vpMbIcgTracker : public vpMbTracker {
  public:
+  /// vpMbGenericTracker's tracker types, with its values.
+  enum vpTrackerType {
+    EDGE_TRACKER = 1 << 0,
+    KLT_TRACKER = 1 << 1,
+    DEPTH_NORMAL_TRACKER = 1 << 2,
+    DEPTH_DENSE_TRACKER = 1 << 3
+  };
+
+  /// One camera "Camera" with every cue: EDGE_TRACKER | KLT_TRACKER | DEPTH_DENSE_TRACKER.
   vpMbIcgTracker();
+  /// nbCameras cameras of one type, named "Camera" (one) or "Camera1" ... "CameraN".
+  vpMbIcgTracker(unsigned int nbCameras, int trackerType = EDGE_TRACKER);
+  explicit vpMbIcgTracker(const std::vector<int>& trackerTypes);
+  vpMbIcgTracker(const std::vector<std::string>& cameraNames, const std::vector<int>& trackerTypes);
   ~vpMbIcgTracker() override;
   vpMbIcgTracker(const vpMbIcgTracker&) = delete;
   vpMbIcgTracker& operator=(const vpMbIcgTracker&) = delete;
@@ -61,43 +100,96 @@ class vpMbIcgTracker : public vpMbTracker {
   /** @name Parameters */
   //@{
   /// .yaml / .yml: icgp's tracker parameters (docs/configuration.md); .xml: a ViSP tracker
-  /// XML file, of which the <camera> block sets the colour camera.
+  /// XML file, whose <camera> block sets the reference camera's parameters.
   void loadConfigFile(const std::string& configFile, bool verbose = true) override;
-  /// vpMbGenericTracker's two-camera form: each file is a ViSP XML (its <camera> block sets
-  /// that camera: colour, then depth) or icgp's YAML parameters.
-  void loadConfigFile(const std::string& colorConfigFile, const std::string& depthConfigFile, bool verbose = true);
+  /// The first and the second camera's files (each a ViSP XML or icgp's YAML).
+  virtual void loadConfigFile(const std::string& configFile1, const std::string& configFile2, bool verbose = true);
+  virtual void loadConfigFile(const std::map<std::string, std::string>& mapOfConfigFiles, bool verbose = true);
   void setTrackerConfig(const icgp::TrackerConfig& config);
   const icgp::TrackerConfig& getTrackerConfig() const;
-  /// The cues to fuse: any of "region", "depth", "texture".
+  /// The cues to fuse: any of "region", "depth", "texture" (among the cameras' types).
   void setModalities(const std::vector<std::string>& modalities);
+
+  virtual void setTrackerType(int type);
+  virtual void setTrackerType(const std::map<std::string, int>& mapOfTrackerTypes);
+  virtual int getTrackerType() const;
+  virtual std::map<std::string, int> getCameraTrackerTypes() const;
   //@}
 
   /** @name Model */
   //@{
-  /// Adds the parts of a .cao file or an assimp mesh to the object, placed with T (model
-  /// frame points X become T X).
+  /// Adds the parts of a .cao / .wrl file or an assimp mesh to the object, placed with T
+  /// (model frame points X become T X).
   void loadModel(const std::string& modelFile, bool verbose = false,
                  const vpHomogeneousMatrix& T = vpHomogeneousMatrix()) override;
-  /// vpMbGenericTracker's two-camera form. One rigid object is tracked, so both files must
-  /// describe the same model: the colour camera's file is loaded, the depth camera's must
-  /// name the same file (or be empty).
-  void loadModel(const std::string& colorModelFile, const std::string& depthModelFile, bool verbose = false,
-                 const vpHomogeneousMatrix& colorT = vpHomogeneousMatrix(),
-                 const vpHomogeneousMatrix& depthT = vpHomogeneousMatrix());
+  /// One rigid object is tracked by every camera: the reference camera's file is loaded;
+  /// the others' files must describe the same object (as ViSP's .wrl + .cao of one object):
+  /// their bounding boxes must agree to 1 % of the object's size.
+  virtual void loadModel(const std::string& modelFile1, const std::string& modelFile2, bool verbose = false,
+                         const vpHomogeneousMatrix& T1 = vpHomogeneousMatrix(),
+                         const vpHomogeneousMatrix& T2 = vpHomogeneousMatrix());
+  virtual void loadModel(const std::map<std::string, std::string>& mapOfModelFiles, bool verbose = false,
+                         const std::map<std::string, vpHomogeneousMatrix>& mapOfT =
+                             std::map<std::string, vpHomogeneousMatrix>());
+  /// Replaces the model and initialises at cMo.
+  virtual void reInitModel(const vpImage<unsigned char>& I, const std::string& cad_name, const vpHomogeneousMatrix& cMo,
+                           bool verbose = false, const vpHomogeneousMatrix& T = vpHomogeneousMatrix());
+  virtual void reInitModel(const vpImage<vpRGBa>& I_color, const std::string& cad_name,
+                           const vpHomogeneousMatrix& cMo, bool verbose = false,
+                           const vpHomogeneousMatrix& T = vpHomogeneousMatrix());
+  virtual void reInitModel(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                           const std::string& cad_name1, const std::string& cad_name2, const vpHomogeneousMatrix& c1Mo,
+                           const vpHomogeneousMatrix& c2Mo, bool verbose = false,
+                           const vpHomogeneousMatrix& T1 = vpHomogeneousMatrix(),
+                           const vpHomogeneousMatrix& T2 = vpHomogeneousMatrix());
+  virtual void reInitModel(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                           const std::string& cad_name1, const std::string& cad_name2, const vpHomogeneousMatrix& c1Mo,
+                           const vpHomogeneousMatrix& c2Mo, bool verbose = false,
+                           const vpHomogeneousMatrix& T1 = vpHomogeneousMatrix(),
+                           const vpHomogeneousMatrix& T2 = vpHomogeneousMatrix());
+  virtual void reInitModel(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                           const std::map<std::string, std::string>& mapOfModelFiles,
+                           const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses, bool verbose = false,
+                           const std::map<std::string, vpHomogeneousMatrix>& mapOfT =
+                               std::map<std::string, vpHomogeneousMatrix>());
+  virtual void reInitModel(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                           const std::map<std::string, std::string>& mapOfModelFiles,
+                           const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses, bool verbose = false,
+                           const std::map<std::string, vpHomogeneousMatrix>& mapOfT =
+                               std::map<std::string, vpHomogeneousMatrix>());
+  /// ViSP's faces of the .cao / .wrl parts (one object: every camera has the same).
+  using vpMbTracker::getFaces;
+  virtual vpMbHiddenFaces<vpMbtPolygon>& getFaces(const std::string& cameraName);
+  using vpMbTracker::getNbPolygon;
+  virtual void getNbPolygon(std::map<std::string, unsigned int>& mapOfNbPolygons) const;
+  using vpMbTracker::getPolygon;
+  virtual vpMbtPolygon* getPolygon(const std::string& cameraName, unsigned int index);
+  using vpMbTracker::getPolygonFaces;
+  virtual void getPolygonFaces(std::map<std::string, std::vector<vpPolygon>>& mapOfPolygons,
+                               std::map<std::string, std::vector<std::vector<vpPoint>>>& mapOfPoints,
+                               bool orderPolygons = true, bool useVisibility = true, bool clipPolygon = false);
   //@}
 
   /** @name Cameras */
   //@{
-  void setCameraParameters(const vpCameraParameters& colorCamera) override;
-  void setCameraParameters(const vpCameraParameters& colorCamera, const vpCameraParameters& depthCamera);
-  void setCameraParameters(const std::map<std::string, vpCameraParameters>& mapOfCameraParameters);
-  using vpMbTracker::getCameraParameters;
-  void getCameraParameters(vpCameraParameters& colorCamera, vpCameraParameters& depthCamera) const;
-  /// cameraName's pose relative to the colour camera (c_M_color); "Camera1" must stay the identity.
-  void setCameraTransformationMatrix(const std::string& cameraName, const vpHomogeneousMatrix& cameraTransformationMatrix);
-  void setCameraTransformationMatrix(const std::map<std::string, vpHomogeneousMatrix>& mapOfTransformationMatrix);
-  std::vector<std::string> getCameraNames() const;
-  std::string getReferenceCameraName() const;
+  /// The reference camera's parameters.
+  void setCameraParameters(const vpCameraParameters& camera) override;
+  /// The first and the second camera's.
+  virtual void setCameraParameters(const vpCameraParameters& camera1, const vpCameraParameters& camera2);
+  virtual void setCameraParameters(const std::map<std::string, vpCameraParameters>& mapOfCameraParameters);
+  void getCameraParameters(vpCameraParameters& camera) const override;
+  virtual void getCameraParameters(vpCameraParameters& cam1, vpCameraParameters& cam2) const;
+  virtual void getCameraParameters(std::map<std::string, vpCameraParameters>& mapOfCameraParameters) const;
+  /// cameraName's pose relative to the reference camera (c_M_reference); the reference
+  /// camera's must stay the identity.
+  virtual void setCameraTransformationMatrix(const std::string& cameraName,
+                                             const vpHomogeneousMatrix& cameraTransformationMatrix);
+  virtual void setCameraTransformationMatrix(const std::map<std::string, vpHomogeneousMatrix>& mapOfTransformationMatrix);
+  virtual std::vector<std::string> getCameraNames() const;
+  virtual std::string getReferenceCameraName() const;
+  /// Makes another camera the reference: cMo, and every c_M_reference, are then about it,
+  /// as in ViSP (the matrices are not converted).
+  virtual void setReferenceCameraName(const std::string& referenceCameraName);
   //@}
 
   /** @name Initialisation */
@@ -108,44 +200,99 @@ class vpMbIcgTracker : public vpMbTracker {
   void initFromPose(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cMo) override;
   void initFromPose(const vpImage<vpRGBa>& I_color, const vpHomogeneousMatrix& cMo) override;
   using vpMbTracker::initFromPose;
+  /// The reference camera's pose file (a camera's other than the reference is moved into it).
+  virtual void initFromPose(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                            const std::string& initFile1, const std::string& initFile2);
+  virtual void initFromPose(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                            const std::string& initFile1, const std::string& initFile2);
+  virtual void initFromPose(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                            const std::map<std::string, std::string>& mapOfInitPoses);
+  virtual void initFromPose(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                            const std::map<std::string, std::string>& mapOfInitPoses);
+  virtual void initFromPose(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                            const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo);
+  virtual void initFromPose(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                            const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo);
+  virtual void initFromPose(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                            const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses);
+  virtual void initFromPose(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                            const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses);
+  using vpMbTracker::initClick;
+  /// Clicks in the reference camera's image (or another camera's, moved into the
+  /// reference), as ViSP does; needs a display on that image.
+  virtual void initClick(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                         const std::string& initFile1, const std::string& initFile2, bool displayHelp = false,
+                         const vpHomogeneousMatrix& T1 = vpHomogeneousMatrix(),
+                         const vpHomogeneousMatrix& T2 = vpHomogeneousMatrix());
+  virtual void initClick(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                         const std::string& initFile1, const std::string& initFile2, bool displayHelp = false,
+                         const vpHomogeneousMatrix& T1 = vpHomogeneousMatrix(),
+                         const vpHomogeneousMatrix& T2 = vpHomogeneousMatrix());
+  virtual void initClick(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                         const std::map<std::string, std::string>& mapOfInitFiles, bool displayHelp = false,
+                         const std::map<std::string, vpHomogeneousMatrix>& mapOfT =
+                             std::map<std::string, vpHomogeneousMatrix>());
+  virtual void initClick(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfImages,
+                         const std::map<std::string, std::string>& mapOfInitFiles, bool displayHelp = false,
+                         const std::map<std::string, vpHomogeneousMatrix>& mapOfT =
+                             std::map<std::string, vpHomogeneousMatrix>());
+  using vpMbTracker::initFromPoints;
+  virtual void initFromPoints(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                              const std::string& initFile1, const std::string& initFile2);
+  virtual void initFromPoints(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                              const std::string& initFile1, const std::string& initFile2);
+  virtual void initFromPoints(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                              const std::map<std::string, std::string>& mapOfInitPoints);
+  virtual void initFromPoints(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                              const std::map<std::string, std::string>& mapOfInitPoints);
   /// Moves the estimate to cdMo; the cues restart there on the next track() call.
   void setPose(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cdMo) override;
   void setPose(const vpImage<vpRGBa>& I_color, const vpHomogeneousMatrix& cdMo) override;
-  /// Back to a freshly constructed tracker: no model, default parameters and cameras; the
-  /// depth camera's transformation matrix stays, as in vpMbGenericTracker.
+  virtual void setPose(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                       const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo);
+  virtual void setPose(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
+                       const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo);
+  virtual void setPose(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                       const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses);
+  virtual void setPose(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                       const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses);
+  /// Back to the constructed state: no model, default parameters, cameras' parameters
+  /// unset; the cameras, their types and transformation matrices stay, as in ViSP.
   void resetTracker() override;
-  /// Accepted, and reported once on stderr as having no effect: the cues' visibility comes
-  /// from the viewpoint models rendered from the mesh, exact for every face, so there is
-  /// no polygon visibility test to refine.
-  void setScanLineVisibilityTest(const bool& v) override;
   //@}
 
   /** @name Tracking */
   //@{
+  /// The reference camera's image; other cameras' depth cues sit the frame out.
   void track(const vpImage<unsigned char>& I) override;
   void track(const vpImage<vpRGBa>& I_color) override;
-  /// vpMbGenericTracker's RGB-D call: images of "Camera1", organised point clouds (row
-  /// major, one vpColVector X, Y, Z in metres per pixel, Z <= 0 or NaN for no measurement)
-  /// of "Camera2" in its own frame. Width and height 0 mean, as in ViSP, that the depth
-  /// camera delivered nothing this frame: the depth cue sits it out.
-  void track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
-             std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
-             std::map<std::string, unsigned int>& mapOfPointCloudWidths,
-             std::map<std::string, unsigned int>& mapOfPointCloudHeights);
-  void track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
-             std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
-             std::map<std::string, unsigned int>& mapOfPointCloudWidths,
-             std::map<std::string, unsigned int>& mapOfPointCloudHeights);
+  /// The first and the second camera's images.
+  virtual void track(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2);
+  virtual void track(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2);
+  virtual void track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages);
+  virtual void track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages);
+  /// Images and organised point clouds (row major, one vpColVector X, Y, Z in metres per
+  /// pixel in the camera's frame, Z <= 0 or NaN for no measurement). Width and height 0
+  /// mean, as in ViSP, that the camera delivered no depth this frame.
+  virtual void track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                     std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
+                     std::map<std::string, unsigned int>& mapOfPointCloudWidths,
+                     std::map<std::string, unsigned int>& mapOfPointCloudHeights);
+  virtual void track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                     std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
+                     std::map<std::string, unsigned int>& mapOfPointCloudWidths,
+                     std::map<std::string, unsigned int>& mapOfPointCloudHeights);
   /// The same with organised PCL clouds (width x height as the cloud says).
-  void track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
-             std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& mapOfPointClouds);
-  void track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
-             std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& mapOfPointClouds);
-  /// Colour and depth from one organised, registered cloud: the colour image is the points'
-  /// RGB, the depth their Z, both seen by "Camera1" (its parameters serve for the depth).
+  virtual void track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                     std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& mapOfPointClouds);
+  virtual void track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                     std::map<std::string, std::shared_ptr<const pcl::PointCloud<pcl::PointXYZ>>>& mapOfPointClouds);
+  /// icgp's extension: colour and depth of the reference camera from one organised,
+  /// registered cloud (its RGB and its points).
   void track(const std::shared_ptr<const pcl::PointCloud<pcl::PointXYZRGBA>>& cloud);
-  /// A raw depth image of "Camera2" (depth in metres = raw * depthScale, 0: none), without
-  /// building a point cloud.
+  /// icgp's extension: the reference camera's image and a raw depth image (metres = raw *
+  /// depthScale, 0: none) of the depth camera (the reference camera itself in a one-camera
+  /// rig, else the first other camera with a depth type), without building a point cloud.
   void track(const vpImage<unsigned char>& I, const vpImage<uint16_t>& I_depth_raw, double depthScale);
   void track(const vpImage<vpRGBa>& I_color, const vpImage<uint16_t>& I_depth_raw, double depthScale);
   /// Throws vpTrackingException::fatalError when the last frame's quality is below the
@@ -153,23 +300,63 @@ class vpMbIcgTracker : public vpMbTracker {
   void testTracking() override;
   /// Mean score in [0, 1] of the cues on the last frame (1: perfect fit), 0 before tracking.
   double getTrackingQuality() const;
+  /// Pixels the cues may use (true), for every camera whose images have the mask's size.
+  void setMask(const vpImage<bool>& mask) override;
   //@}
 
   /** @name Results of the last optimisation */
   //@{
-  /// Residuals of every cue at the final pose, stacked in the order the cues were added
-  /// (units: region pixels, depth metres, texture pixels).
+  using vpMbTracker::getPose;
+  /// The first and the second camera's poses of the object.
+  virtual void getPose(vpHomogeneousMatrix& c1Mo, vpHomogeneousMatrix& c2Mo) const;
+  virtual void getPose(std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses) const;
+  /// Residuals of every cue at the final pose, camera by camera in the order the cues were
+  /// added (units: region pixels, depth metres, texture pixels).
   vpColVector getError() const override;
   /// Their weights in [0, 1], same order.
   vpColVector getRobustWeights() const override;
+  /// Correspondences of the last frame: region contour points (ViSP's moving edges),
+  /// texture matches (ViSP's KLT points), depth points.
+  virtual unsigned int getNbFeaturesEdge() const;
+  virtual unsigned int getNbFeaturesKlt() const;
+  virtual unsigned int getNbFeaturesDepthNormal() const;
+  virtual unsigned int getNbFeaturesDepthDense() const;
+  /// The reference camera's region contour points (ViSP's moving edges).
+  virtual unsigned int getNbPoints(unsigned int level = 0) const;
+  virtual void getNbPoints(std::map<std::string, unsigned int>& mapOfNbPoints, unsigned int level = 0) const;
+  /// ViSP's format, in the reference camera: {0, i, j, state} per region contour point
+  /// (state 0, vpMeSite::NO_SUPPRESSION, for a correspondence of full weight, 4 (M_ESTIMATOR)
+  /// for a down-weighted one), {1, i, j, id} per texture match.
+  virtual std::vector<std::vector<double>> getFeaturesForDisplay();
+  virtual void getFeaturesForDisplay(std::map<std::string, std::vector<std::vector<double>>>& mapOfFeatures);
+  /// The reference camera's texture matches, as ViSP's KLT points.
+  virtual std::vector<vpImagePoint> getKltImagePoints() const;
+  virtual std::map<int, vpImagePoint> getKltImagePointsWithId() const;
+  virtual int getKltNbPoints() const;
+  virtual std::vector<cv::Point2f> getKltPoints() const;
   /// ViSP's projection error (mean angle in degrees between the model's projected edges and
-  /// the image gradients), computed by vpMbTracker on the edges of the .cao files loaded;
-  /// throws vpException::notImplementedError when the model has no .cao part.
+  /// the image gradients), computed by vpMbTracker on the edges of the .cao / .wrl parts;
+  /// throws vpException::notImplementedError when the model has none.
   double computeCurrentProjectionError(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cMo,
                                        const vpCameraParameters& cam) override;
+  virtual double computeCurrentProjectionError(const vpImage<vpRGBa>& I, const vpHomogeneousMatrix& cMo,
+                                               const vpCameraParameters& cam);
   /// Covariance of the pose in ViSP's convention: 6x6 over the camera-frame twist (v, ω),
   /// the inverse of the data Hessian of the last update (setCovarianceComputation(true)).
   vpMatrix getCovarianceMatrix() const override;
+  /// ViSP's primitives of its own cues: icgp tracks none, so the lists are empty.
+  virtual std::list<vpMbtDistanceCircle*>& getFeaturesCircle();
+  virtual std::list<vpMbtDistanceKltCylinder*>& getFeaturesKltCylinder();
+  virtual std::list<vpMbtDistanceKltPoints*>& getFeaturesKlt();
+  virtual void getLcircle(std::list<vpMbtDistanceCircle*>& circlesList, unsigned int level = 0) const;
+  virtual void getLcircle(const std::string& cameraName, std::list<vpMbtDistanceCircle*>& circlesList,
+                          unsigned int level = 0) const;
+  virtual void getLcylinder(std::list<vpMbtDistanceCylinder*>& cylindersList, unsigned int level = 0) const;
+  virtual void getLcylinder(const std::string& cameraName, std::list<vpMbtDistanceCylinder*>& cylindersList,
+                            unsigned int level = 0) const;
+  virtual void getLline(std::list<vpMbtDistanceLine*>& linesList, unsigned int level = 0) const;
+  virtual void getLline(const std::string& cameraName, std::list<vpMbtDistanceLine*>& linesList,
+                        unsigned int level = 0) const;
   //@}
 
   /** @name Display */
@@ -179,11 +366,106 @@ class vpMbIcgTracker : public vpMbTracker {
                const vpColor& col, unsigned int thickness = 1, bool displayFullModel = false) override;
   void display(const vpImage<vpRGBa>& I, const vpHomogeneousMatrix& cMo, const vpCameraParameters& cam,
                const vpColor& col, unsigned int thickness = 1, bool displayFullModel = false) override;
+  virtual void display(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
+                       const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo,
+                       const vpCameraParameters& cam1, const vpCameraParameters& cam2, const vpColor& color,
+                       unsigned int thickness = 1, bool displayFullModel = false);
+  virtual void display(const vpImage<vpRGBa>& I1, const vpImage<vpRGBa>& I2, const vpHomogeneousMatrix& c1Mo,
+                       const vpHomogeneousMatrix& c2Mo, const vpCameraParameters& cam1,
+                       const vpCameraParameters& cam2, const vpColor& color, unsigned int thickness = 1,
+                       bool displayFullModel = false);
+  virtual void display(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                       const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses,
+                       const std::map<std::string, vpCameraParameters>& mapOfCameraParameters, const vpColor& col,
+                       unsigned int thickness = 1, bool displayFullModel = false);
+  virtual void display(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfImages,
+                       const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses,
+                       const std::map<std::string, vpCameraParameters>& mapOfCameraParameters, const vpColor& col,
+                       unsigned int thickness = 1, bool displayFullModel = false);
   /// ViSP's format: one {0, i1, j1, i2, j2} per visible edge segment (all edges with
   /// displayFullModel), in pixels of a width x height image.
   std::vector<std::vector<double>> getModelForDisplay(unsigned int width, unsigned int height,
                                                       const vpHomogeneousMatrix& cMo, const vpCameraParameters& cam,
                                                       bool displayFullModel = false) override;
+  virtual void getModelForDisplay(std::map<std::string, std::vector<std::vector<double>>>& mapOfModels,
+                                  const std::map<std::string, unsigned int>& mapOfwidths,
+                                  const std::map<std::string, unsigned int>& mapOfheights,
+                                  const std::map<std::string, vpHomogeneousMatrix>& mapOfcMos,
+                                  const std::map<std::string, vpCameraParameters>& mapOfCams,
+                                  bool displayFullModel = false);
+  //@}
+
+  /** @name Settings of ViSP's own cues: stored, mapped where icgp has that meaning */
+  //@{
+  void setAngleAppear(const double& a) override;
+  virtual void setAngleAppear(const double& a1, const double& a2);
+  virtual void setAngleAppear(const std::map<std::string, double>& mapOfAngles);
+  void setAngleDisappear(const double& a) override;
+  virtual void setAngleDisappear(const double& a1, const double& a2);
+  virtual void setAngleDisappear(const std::map<std::string, double>& mapOfAngles);
+  void setClipping(const unsigned int& flags) override;
+  virtual void setClipping(const unsigned int& flags1, const unsigned int& flags2);
+  virtual void setClipping(const std::map<std::string, unsigned int>& mapOfClippingFlags);
+  using vpMbTracker::getClipping;
+  virtual void getClipping(unsigned int& clippingFlag1, unsigned int& clippingFlag2) const;
+  virtual void getClipping(std::map<std::string, unsigned int>& mapOfClippingFlags) const;
+  void setNearClippingDistance(const double& dist) override;
+  virtual void setNearClippingDistance(const double& dist1, const double& dist2);
+  virtual void setNearClippingDistance(const std::map<std::string, double>& mapOfDists);
+  void setFarClippingDistance(const double& dist) override;
+  virtual void setFarClippingDistance(const double& dist1, const double& dist2);
+  virtual void setFarClippingDistance(const std::map<std::string, double>& mapOfClippingDists);
+  virtual void setDepthDenseFilteringMaxDistance(double maxDistance);
+  virtual void setDepthDenseFilteringMethod(int method);
+  virtual void setDepthDenseFilteringMinDistance(double minDistance);
+  virtual void setDepthDenseFilteringOccupancyRatio(double occupancyRatio);
+  virtual void setDepthDenseSamplingStep(unsigned int stepX, unsigned int stepY);
+  virtual void setDepthNormalFaceCentroidMethod(const vpMbtFaceDepthNormal::vpFaceCentroidType& method);
+  virtual void setDepthNormalFeatureEstimationMethod(const vpMbtFaceDepthNormal::vpFeatureEstimationType& method);
+  virtual void setDepthNormalPclPlaneEstimationMethod(int method);
+  virtual void setDepthNormalPclPlaneEstimationRansacMaxIter(int maxIter);
+  virtual void setDepthNormalPclPlaneEstimationRansacThreshold(double threshold);
+  virtual void setDepthNormalSamplingStep(unsigned int stepX, unsigned int stepY);
+  void setDisplayFeatures(bool displayF) override;
+  virtual void setFeatureFactors(const std::map<vpTrackerType, double>& mapOfFeatureFactors);
+  virtual void setGoodMovingEdgesRatioThreshold(double threshold);
+  virtual double getGoodMovingEdgesRatioThreshold() const;
+  /// KLT's maximum number of features sets the texture cue's (TextureParams::orb_n_features).
+  virtual void setKltOpencv(const vpKltOpencv& t);
+  virtual void setKltOpencv(const vpKltOpencv& t1, const vpKltOpencv& t2);
+  virtual void setKltOpencv(const std::map<std::string, vpKltOpencv>& mapOfKlts);
+  virtual vpKltOpencv getKltOpencv() const;
+  virtual void getKltOpencv(vpKltOpencv& klt1, vpKltOpencv& klt2) const;
+  virtual void getKltOpencv(std::map<std::string, vpKltOpencv>& mapOfKlts) const;
+  virtual void setKltMaskBorder(const unsigned int& e);
+  virtual void setKltMaskBorder(const unsigned int& e1, const unsigned int& e2);
+  virtual void setKltMaskBorder(const std::map<std::string, unsigned int>& mapOfErosions);
+  virtual unsigned int getKltMaskBorder() const;
+  virtual void setKltThresholdAcceptation(double th);
+  virtual double getKltThresholdAcceptation() const;
+  void setLod(bool useLod, const std::string& name = "") override;
+  void setMinLineLengthThresh(double minLineLengthThresh, const std::string& name = "") override;
+  void setMinPolygonAreaThresh(double minPolygonAreaThresh, const std::string& name = "") override;
+  virtual void setMovingEdge(const vpMe& me);
+  virtual void setMovingEdge(const vpMe& me1, const vpMe& me2);
+  virtual void setMovingEdge(const std::map<std::string, vpMe>& mapOfMe);
+  virtual vpMe getMovingEdge() const;
+  virtual void getMovingEdge(vpMe& me1, vpMe& me2) const;
+  virtual void getMovingEdge(std::map<std::string, vpMe>& mapOfMovingEdges) const;
+  void setOgreShowConfigDialog(bool showConfigDialog) override;
+  void setOgreVisibilityTest(const bool& v) override;
+  void setOptimizationMethod(const vpMbtOptimizationMethod& opt) override;
+  void setProjectionErrorComputation(const bool& flag) override;
+  void setProjectionErrorDisplay(bool display) override;
+  void setProjectionErrorDisplayArrowLength(unsigned int length) override;
+  void setProjectionErrorDisplayArrowThickness(unsigned int thickness) override;
+  /// Accepted, and reported once on stderr as having no effect: the cues' visibility comes
+  /// from the viewpoint models rendered from the mesh, exact for every face.
+  void setScanLineVisibilityTest(const bool& v) override;
+  virtual void setUseDepthDenseTracking(const std::string& name, const bool& useDepthDenseTracking);
+  virtual void setUseDepthNormalTracking(const std::string& name, const bool& useDepthNormalTracking);
+  virtual void setUseEdgeTracking(const std::string& name, const bool& useEdgeTracking);
+  virtual void setUseKltTracking(const std::string& name, const bool& useKltTracking);
   //@}
 
  protected:
@@ -191,8 +473,8 @@ class vpMbIcgTracker : public vpMbTracker {
   /// these only gather the final residuals and weights into m_error / m_w.
   void computeVVSInit() override;
   void computeVVSInteractionMatrixAndResidu() override;
-  /// Called back by ViSP's .cao parser for each primitive. vpMbTracker has already put the
-  /// primitive in `faces` and in the projection-error model (so computeCurrentProjectionError
+  /// Called back by ViSP's .cao / .wrl parser for each primitive. vpMbTracker has already
+  /// put it in `faces` and in the projection-error model (so computeCurrentProjectionError
   /// works as in ViSP's trackers); the triangles icgp tracks come from icgp::load_cao_mesh,
   /// so there is nothing left to do here.
   void initCircle(const vpPoint& p1, const vpPoint& p2, const vpPoint& p3, double radius, int idFace = 0,
@@ -204,25 +486,40 @@ class vpMbIcgTracker : public vpMbTracker {
 
  private:
   struct Impl;
-  /// The measured depth at a depth pixel (metres; 0, negative or not finite: none), read
-  /// only where the cues look.
-  using DepthReader = std::function<float(int row, int col)>;
-  /// Tracks the colour camera's image with a depth image of depthWidth x depthHeight read
-  /// through `read`; `depthFromColorCamera`: seen by "Camera1" itself (one registered cloud).
-  /// The map-of-clouds calls of both image types: "Camera2"'s organised cloud, size checked.
+  using DepthInput = icgp::visp_detail::DepthInput;
+  /// One frame: the images go to their cameras, the depth inputs to theirs, every other
+  /// depth camera delivers none; then the tracking step. Unknown cameras, and colour cues
+  /// without an image, are refused naming `call`.
+  template <typename Image>
+  void track_frame(const std::map<std::string, const Image*>& images, const std::vector<DepthInput>& depths,
+                   const std::string& call);
+  template <typename Image>
+  void init_from_poses(const std::map<std::string, const Image*>& images,
+                       const std::map<std::string, vpHomogeneousMatrix>& poses, const std::string& call);
+  template <typename Image>
+  void init_from_pose_files(const std::map<std::string, const Image*>& images,
+                            const std::map<std::string, std::string>& files, const std::string& call);
+  /// The reference camera's pose of the object from one camera's.
+  vpHomogeneousMatrix reference_pose(const std::string& camera, const vpHomogeneousMatrix& cMo,
+                                     const std::string& call) const;
+  void track_step(const vpImage<unsigned char>* grey, const std::string& call);
   template <typename Image>
   void track_with_clouds(std::map<std::string, const Image*>& images,
                          std::map<std::string, const std::vector<vpColVector>*>& clouds,
                          std::map<std::string, unsigned int>& widths, std::map<std::string, unsigned int>& heights);
   template <typename Image>
-  void track_with_depth(std::map<std::string, const Image*>& images, unsigned int depthWidth,
-                        unsigned int depthHeight, DepthReader read);
-  void track_with_depth(const vpImage<unsigned char>& I, unsigned int depthWidth, unsigned int depthHeight,
-                        DepthReader read, bool depthFromColorCamera = false);
-  void track_with_depth(const vpImage<vpRGBa>& I, unsigned int depthWidth, unsigned int depthHeight,
-                        DepthReader read, bool depthFromColorCamera = false);
-  void set_depth(unsigned int width, unsigned int height, DepthReader read, bool depthFromColorCamera);
-  void track_current_frame(const vpImage<unsigned char>* grey);
+  void track_with_raw_depth(const Image& I, const vpImage<uint16_t>& I_depth_raw, double depthScale);
+  /// The camera a raw depth image belongs to: the reference camera if it has a depth type,
+  /// else the first camera that has one.
+  std::string depth_camera_of_raw_depth() const;
+  /// The tracker's cues called `name` ("region", "depth", "texture"), of `camera` or all.
+  std::vector<const icgp::Modality*> cues(const std::string& name, const std::string& camera = "") const;
+  /// Depth correspondences of the cameras whose types count them as `type`.
+  unsigned int depth_feature_count(int type) const;
+  /// ViSP's getFeaturesForDisplay format for one camera.
+  std::vector<std::vector<double>> features_for_display(const std::string& camera) const;
+  /// Forgets the model (reInitModel loads another).
+  void clear_model();
   std::unique_ptr<Impl> impl_;
   vpColVector m_error, m_w;
 };

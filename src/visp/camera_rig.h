@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+
+#include "icgp/tracker/tracker_config.h"
+
+namespace icgp {
+
+/// The cameras of a vpMbIcgTracker, named and typed as vpMbGenericTracker's: each has
+/// tracker-type bits (which cues read it), its parameters, and its pose relative to the
+/// reference camera, in whose frame cMo is expressed. Names are kept sorted, as in ViSP's
+/// map of trackers, so "the first and the second camera" mean what they mean there.
+/// Unknown names and invalid types throw vpException naming the call.
+class CameraRig {
+ public:
+  /// vpMbGenericTracker's tracker types.
+  enum Types : int { kEdge = 1 << 0, kKlt = 1 << 1, kDepthNormal = 1 << 2, kDepthDense = 1 << 3 };
+  static constexpr int kAllTypes = kEdge | kKlt | kDepthNormal | kDepthDense;
+
+  struct Camera {
+    int types = 0;
+    vpCameraParameters parameters;
+    bool parameters_set = false;  ///< ViSP silently uses its default camera; icgp refuses to
+    vpHomogeneousMatrix camera_M_reference;
+  };
+
+  /// ViSP's names for n cameras: "Camera" for one, "Camera1" ... "CameraN" otherwise.
+  static std::vector<std::string> visp_names(std::size_t n);
+
+  /// Cameras `names` with `types`; the first name is the reference camera.
+  CameraRig(const std::vector<std::string>& names, const std::vector<int>& types);
+
+  const std::string& reference() const { return reference_; }
+  void set_reference(const std::string& name);
+  std::vector<std::string> names() const;
+  std::size_t size() const { return cameras_.size(); }
+  const std::map<std::string, Camera>& cameras() const { return cameras_; }
+
+  Camera& at(const std::string& name, const std::string& call);
+  const Camera& at(const std::string& name, const std::string& call) const;
+  Camera& reference_camera() { return cameras_.at(reference_); }
+  const Camera& reference_camera() const { return cameras_.at(reference_); }
+  /// The names of the first and second camera, for ViSP's two-camera overloads; throws
+  /// unless the rig has exactly two.
+  std::pair<std::string, std::string> pair(const std::string& call) const;
+
+  void set_types(const std::string& name, int types, const std::string& call);
+
+  /// Which cues run on which camera: EDGE → region, KLT → texture, DEPTH_NORMAL or
+  /// DEPTH_DENSE → depth, each only if `modalities` names it. A colour camera looks for
+  /// occlusions in its own depth when it has a depth type, else in the first depth camera.
+  std::vector<CameraCues> cues(const std::vector<std::string>& modalities) const;
+  /// The camera's cues read its colour image / its depth.
+  bool reads_color(const std::string& name, const std::vector<std::string>& modalities) const;
+  bool reads_depth(const std::string& name, const std::vector<std::string>& modalities) const;
+  /// Has a depth type (its depth may serve for occlusions even if the depth cue is off).
+  bool is_depth_camera(const std::string& name) const;
+
+  /// The names as "\"A\", \"B\"", for error messages.
+  std::string quoted_names() const;
+
+ private:
+  std::map<std::string, Camera> cameras_;
+  std::string reference_;
+};
+
+}  // namespace icgp

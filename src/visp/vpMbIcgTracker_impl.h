@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// vpMbIcgTracker's state, shared by the files that implement it.
+#pragma once
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <visp3/core/vpTrackingException.h>
+
+#include "icgp/render/model_edges.h"
+#include "icgp/render/renderer.h"
+#include "icgp/tracker/tracker.h"
+#include "icgp/visp/vpMbIcgTracker.h"
+
+#include "camera_rig.h"
+#include "frame_assembly.h"
+
+struct vpMbIcgTracker::Impl {
+  static constexpr const char* kBody = "object";
+
+  explicit Impl(icgp::CameraRig rig) : rig(std::move(rig)) {}
+
+  icgp::CameraRig rig;
+  icgp::TrackerConfig config;
+  icgp::Mesh mesh;
+  bool has_visp_model_part = false;  ///< ViSP's projection-error model exists (.cao / .wrl)
+  std::unique_ptr<icgp::Tracker> tracker;  ///< for the current mesh, config and rig, built by init()
+  bool start_pending = false;
+
+  icgp::FrameAssembler assembler;
+  double quality = 0.0;
+  std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
+
+  std::set<std::string> reported_without_effect;  ///< ViSP settings already reported once
+  /// ViSP's settings of its own cues, kept for their getters.
+  struct VispSettings {
+    std::map<std::string, vpMe> moving_edges;
+    std::map<std::string, vpKltOpencv> klts;
+    std::map<std::string, unsigned int> klt_mask_borders, clipping_flags;
+    double klt_threshold_acceptation = 0.0;
+    double good_moving_edges_ratio = 0.4;  ///< ViSP's default
+  } visp;
+  std::list<vpMbtDistanceCircle*> no_circles;
+  std::list<vpMbtDistanceKltCylinder*> no_klt_cylinders;
+  std::list<vpMbtDistanceKltPoints*> no_klt_points;
+
+  std::unique_ptr<icgp::ModelEdges> edges;  ///< for display, made on first use
+  std::unique_ptr<icgp::Renderer> renderer;
+  icgp::Renderer::BodyHandle render_body{};
+
+  void require_initialised(const std::string& call) const {
+    if (!tracker)
+      throw vpTrackingException(vpTrackingException::initializationError,
+                                "vpMbIcgTracker::" + call +
+                                    ": not initialised; call loadModel() and initFromPose() first");
+  }
+
+  /// A ViSP setting this tracker accepts but cannot honour: said once per tracker.
+  void report_without_effect(const std::string& call, const std::string& why) {
+    if (reported_without_effect.insert(call).second)
+      std::cerr << "vpMbIcgTracker::" << call << ": no effect (" << why << ")\n";
+  }
+
+  /// The cues' tracker must be rebuilt (model, configuration or cameras' types changed).
+  void tracker_changed() { tracker.reset(); }
+  void model_changed() {
+    tracker.reset();
+    edges.reset();
+    renderer.reset();
+  }
+};
+
+namespace icgp::visp_detail {
+
+/// One camera's depth in a frame: its size (0 x 0: none this frame) and where a pixel's
+/// depth, or its 3D point, comes from.
+struct DepthInput {
+  std::string camera;
+  unsigned int width = 0, height = 0;
+  FrameAssembler::DepthReader depth;   ///< Z per pixel, or
+  FrameAssembler::PointReader points;  ///< the point per pixel (organised clouds)
+};
+
+/// An organised cloud as a camera's depth: Z alone when its points lie on the pinhole
+/// rays of their pixels (a cloud de-projected without distortion, or made from a depth
+/// image), so that the depth cue's search may prune by rays; its points otherwise (a real
+/// sensor's cloud de-projected with its distortion). A 9 x 9 grid of pixels, corners and
+/// edges included where distortion is largest, decides; 0.05 px is far below what lens
+/// distortion moves an edge pixel.
+inline void read_cloud(DepthInput& depth, FrameAssembler::PointReader point_at, const vpCameraParameters& camera) {
+  constexpr int kGrid = 9;
+  bool pinhole = true;
+  for (int i = 0; i < kGrid && pinhole; ++i)
+    for (int j = 0; j < kGrid && pinhole; ++j) {
+      const int row = static_cast<int>((depth.height - 1) * i / (kGrid - 1));
+      const int col = static_cast<int>((depth.width - 1) * j / (kGrid - 1));
+      const Eigen::Vector3f P = point_at(row, col);
+      if (!(P.z() > 0.f) || !P.allFinite()) continue;
+      const double u = camera.get_px() * P.x() / P.z() + camera.get_u0();
+      const double v = camera.get_py() * P.y() / P.z() + camera.get_v0();
+      pinhole = std::abs(u - col) <= 0.05 && std::abs(v - row) <= 0.05;
+    }
+  if (pinhole)
+    depth.depth = [point_at](int row, int col) { return point_at(row, col).z(); };
+  else
+    depth.points = std::move(point_at);
+}
+
+/// Runs `body`, turning a std:: exception from icgp's core into a vpException naming the
+/// call: ViSP code catches vpException, and nothing else may leave vpMbIcgTracker.
+/// std::invalid_argument is the caller's mistake (badValue); anything else a fatal error.
+template <typename Body>
+auto guarded(const std::string& call, Body&& body) -> decltype(body()) {
+  try {
+    return body();
+  } catch (const vpException&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": " + e.what());
+  } catch (const std::bad_alloc&) {
+    throw vpException(vpException::memoryAllocationError, "vpMbIcgTracker::" + call + ": out of memory");
+  } catch (const std::exception& e) {
+    throw vpException(vpException::fatalError, "vpMbIcgTracker::" + call + ": " + e.what());
+  }
+}
+
+}  // namespace icgp::visp_detail

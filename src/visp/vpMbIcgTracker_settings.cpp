@@ -1,0 +1,364 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// vpMbIcgTracker: the settings of ViSP's own cues (moving edges, KLT, depth features,
+// visibility, clipping). Each is stored for its getter; where icgp has a parameter of that
+// meaning it is set, otherwise the first call says once on std::cerr that it has no effect.
+#include "vpMbIcgTracker_impl.h"
+
+namespace {
+
+const char* const kVisibility = "the cues' visibility comes from the viewpoint models rendered from the mesh";
+const char* const kMovingEdges = "icgp's region cue replaces the moving edges: its correspondence lines and "
+                                 "scales are set in the YAML parameters (region:)";
+const char* const kKlt = "icgp's texture cue replaces the KLT tracker (texture: in the YAML parameters)";
+const char* const kDepthFeatures = "icgp's depth cue samples the model's sparse viewpoint points (depth: in the YAML "
+                                   "parameters)";
+
+/// The values of a two-camera call as a map of the first and second camera.
+template <typename T>
+std::map<std::string, T> as_map(const std::pair<std::string, std::string>& cameras, const T& first, const T& second) {
+  return {{cameras.first, first}, {cameras.second, second}};
+}
+
+}  // namespace
+
+// --------------------------------------------------------------- visibility and clipping
+
+void vpMbIcgTracker::setAngleAppear(const double& a) {
+  vpMbTracker::setAngleAppear(a);
+  impl_->report_without_effect("setAngleAppear", kVisibility);
+}
+
+void vpMbIcgTracker::setAngleAppear(const double& a1, const double& a2) {
+  setAngleAppear(as_map(impl_->rig.pair("setAngleAppear"), a1, a2));
+}
+
+void vpMbIcgTracker::setAngleAppear(const std::map<std::string, double>& mapOfAngles) {
+  for (const auto& [camera, angle] : mapOfAngles) {
+    impl_->rig.at(camera, "setAngleAppear");
+    if (camera == impl_->rig.reference()) setAngleAppear(angle);
+  }
+  impl_->report_without_effect("setAngleAppear", kVisibility);
+}
+
+void vpMbIcgTracker::setAngleDisappear(const double& a) {
+  vpMbTracker::setAngleDisappear(a);
+  impl_->report_without_effect("setAngleDisappear", kVisibility);
+}
+
+void vpMbIcgTracker::setAngleDisappear(const double& a1, const double& a2) {
+  setAngleDisappear(as_map(impl_->rig.pair("setAngleDisappear"), a1, a2));
+}
+
+void vpMbIcgTracker::setAngleDisappear(const std::map<std::string, double>& mapOfAngles) {
+  for (const auto& [camera, angle] : mapOfAngles) {
+    impl_->rig.at(camera, "setAngleDisappear");
+    if (camera == impl_->rig.reference()) setAngleDisappear(angle);
+  }
+  impl_->report_without_effect("setAngleDisappear", kVisibility);
+}
+
+void vpMbIcgTracker::setClipping(const unsigned int& flags) {
+  std::map<std::string, unsigned int> all;
+  for (const std::string& camera : impl_->rig.names()) all[camera] = flags;
+  setClipping(all);
+}
+
+void vpMbIcgTracker::setClipping(const unsigned int& flags1, const unsigned int& flags2) {
+  setClipping(as_map(impl_->rig.pair("setClipping"), flags1, flags2));
+}
+
+void vpMbIcgTracker::setClipping(const std::map<std::string, unsigned int>& mapOfClippingFlags) {
+  for (const auto& [camera, flags] : mapOfClippingFlags) {
+    impl_->rig.at(camera, "setClipping");
+    impl_->visp.clipping_flags[camera] = flags;
+    if (camera == impl_->rig.reference()) vpMbTracker::setClipping(flags);
+  }
+  impl_->report_without_effect("setClipping", kVisibility);
+}
+
+void vpMbIcgTracker::getClipping(unsigned int& clippingFlag1, unsigned int& clippingFlag2) const {
+  std::map<std::string, unsigned int> flags;
+  getClipping(flags);
+  const auto [first, second] = impl_->rig.pair("getClipping");
+  clippingFlag1 = flags[first];
+  clippingFlag2 = flags[second];
+}
+
+void vpMbIcgTracker::getClipping(std::map<std::string, unsigned int>& mapOfClippingFlags) const {
+  mapOfClippingFlags.clear();
+  for (const std::string& camera : impl_->rig.names()) {
+    const auto it = impl_->visp.clipping_flags.find(camera);
+    mapOfClippingFlags[camera] = it == impl_->visp.clipping_flags.end() ? getClipping() : it->second;
+  }
+}
+
+void vpMbIcgTracker::setNearClippingDistance(const double& dist) {
+  vpMbTracker::setNearClippingDistance(dist);
+  impl_->report_without_effect("setNearClippingDistance", kVisibility);
+}
+
+void vpMbIcgTracker::setNearClippingDistance(const double& dist1, const double& dist2) {
+  setNearClippingDistance(as_map(impl_->rig.pair("setNearClippingDistance"), dist1, dist2));
+}
+
+void vpMbIcgTracker::setNearClippingDistance(const std::map<std::string, double>& mapOfDists) {
+  for (const auto& [camera, dist] : mapOfDists) {
+    impl_->rig.at(camera, "setNearClippingDistance");
+    if (camera == impl_->rig.reference()) setNearClippingDistance(dist);
+  }
+  impl_->report_without_effect("setNearClippingDistance", kVisibility);
+}
+
+void vpMbIcgTracker::setFarClippingDistance(const double& dist) {
+  vpMbTracker::setFarClippingDistance(dist);
+  impl_->report_without_effect("setFarClippingDistance", kVisibility);
+}
+
+void vpMbIcgTracker::setFarClippingDistance(const double& dist1, const double& dist2) {
+  setFarClippingDistance(as_map(impl_->rig.pair("setFarClippingDistance"), dist1, dist2));
+}
+
+void vpMbIcgTracker::setFarClippingDistance(const std::map<std::string, double>& mapOfClippingDists) {
+  for (const auto& [camera, dist] : mapOfClippingDists) {
+    impl_->rig.at(camera, "setFarClippingDistance");
+    if (camera == impl_->rig.reference()) setFarClippingDistance(dist);
+  }
+  impl_->report_without_effect("setFarClippingDistance", kVisibility);
+}
+
+void vpMbIcgTracker::setLod(bool useLod, const std::string& name) {
+  vpMbTracker::setLod(useLod, name);
+  impl_->report_without_effect("setLod", kVisibility);
+}
+
+void vpMbIcgTracker::setMinLineLengthThresh(double minLineLengthThresh, const std::string& name) {
+  vpMbTracker::setMinLineLengthThresh(minLineLengthThresh, name);
+  impl_->report_without_effect("setMinLineLengthThresh", kVisibility);
+}
+
+void vpMbIcgTracker::setMinPolygonAreaThresh(double minPolygonAreaThresh, const std::string& name) {
+  vpMbTracker::setMinPolygonAreaThresh(minPolygonAreaThresh, name);
+  impl_->report_without_effect("setMinPolygonAreaThresh", kVisibility);
+}
+
+void vpMbIcgTracker::setOgreShowConfigDialog(bool showConfigDialog) {
+  vpMbTracker::setOgreShowConfigDialog(showConfigDialog);
+  impl_->report_without_effect("setOgreShowConfigDialog", kVisibility);
+}
+
+void vpMbIcgTracker::setOgreVisibilityTest(const bool& v) {
+  // vpMbTracker's would start Ogre (absent from Debian's ViSP): only the flag is kept.
+  useOgre = v;
+  impl_->report_without_effect("setOgreVisibilityTest", kVisibility);
+}
+
+void vpMbIcgTracker::setScanLineVisibilityTest(const bool& v) {
+  vpMbTracker::setScanLineVisibilityTest(v);
+  impl_->report_without_effect("setScanLineVisibilityTest", kVisibility);
+}
+
+// --------------------------------------------------------------- the cues and the solver
+
+void vpMbIcgTracker::setDepthDenseFilteringMaxDistance(double) {
+  impl_->report_without_effect("setDepthDenseFilteringMaxDistance", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthDenseFilteringMethod(int) {
+  impl_->report_without_effect("setDepthDenseFilteringMethod", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthDenseFilteringMinDistance(double) {
+  impl_->report_without_effect("setDepthDenseFilteringMinDistance", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthDenseFilteringOccupancyRatio(double) {
+  impl_->report_without_effect("setDepthDenseFilteringOccupancyRatio", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthDenseSamplingStep(unsigned int, unsigned int) {
+  impl_->report_without_effect("setDepthDenseSamplingStep", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthNormalFaceCentroidMethod(const vpMbtFaceDepthNormal::vpFaceCentroidType&) {
+  impl_->report_without_effect("setDepthNormalFaceCentroidMethod", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthNormalFeatureEstimationMethod(const vpMbtFaceDepthNormal::vpFeatureEstimationType&) {
+  impl_->report_without_effect("setDepthNormalFeatureEstimationMethod", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthNormalPclPlaneEstimationMethod(int) {
+  impl_->report_without_effect("setDepthNormalPclPlaneEstimationMethod", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthNormalPclPlaneEstimationRansacMaxIter(int) {
+  impl_->report_without_effect("setDepthNormalPclPlaneEstimationRansacMaxIter", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthNormalPclPlaneEstimationRansacThreshold(double) {
+  impl_->report_without_effect("setDepthNormalPclPlaneEstimationRansacThreshold", kDepthFeatures);
+}
+void vpMbIcgTracker::setDepthNormalSamplingStep(unsigned int, unsigned int) {
+  impl_->report_without_effect("setDepthNormalSamplingStep", kDepthFeatures);
+}
+
+void vpMbIcgTracker::setDisplayFeatures(bool displayF) { vpMbTracker::setDisplayFeatures(displayF); }
+
+void vpMbIcgTracker::setFeatureFactors(const std::map<vpTrackerType, double>&) {
+  impl_->report_without_effect("setFeatureFactors",
+                               "icgp weighs each cue by the noise it estimates from its residuals (docs/accuracy.md)");
+}
+
+void vpMbIcgTracker::setGoodMovingEdgesRatioThreshold(double threshold) {
+  impl_->visp.good_moving_edges_ratio = threshold;
+  impl_->report_without_effect("setGoodMovingEdgesRatioThreshold",
+                               "loss is the cues' quality below tracker.quality_threshold (getTrackingQuality)");
+}
+
+double vpMbIcgTracker::getGoodMovingEdgesRatioThreshold() const { return impl_->visp.good_moving_edges_ratio; }
+
+void vpMbIcgTracker::setKltOpencv(const vpKltOpencv& t) {
+  std::map<std::string, vpKltOpencv> all;
+  for (const std::string& camera : impl_->rig.names()) all[camera] = t;
+  setKltOpencv(all);
+}
+
+void vpMbIcgTracker::setKltOpencv(const vpKltOpencv& t1, const vpKltOpencv& t2) {
+  setKltOpencv(as_map(impl_->rig.pair("setKltOpencv"), t1, t2));
+}
+
+void vpMbIcgTracker::setKltOpencv(const std::map<std::string, vpKltOpencv>& mapOfKlts) {
+  for (const auto& [camera, klt] : mapOfKlts) {
+    impl_->rig.at(camera, "setKltOpencv");
+    impl_->visp.klts[camera] = klt;
+  }
+  // The one KLT setting with an icgp meaning: how many keypoints to detect. The texture
+  // cue's parameters are shared by every camera; the reference camera's count wins.
+  const auto reference = mapOfKlts.find(impl_->rig.reference());
+  const auto& klt = reference != mapOfKlts.end() ? reference->second : mapOfKlts.begin()->second;
+  if (!mapOfKlts.empty() && klt.getMaxFeatures() > 0 && klt.getMaxFeatures() != impl_->config.texture.orb_n_features) {
+    icgp::TrackerConfig config = impl_->config;
+    config.texture.orb_n_features = klt.getMaxFeatures();
+    setTrackerConfig(config);
+  }
+}
+
+vpKltOpencv vpMbIcgTracker::getKltOpencv() const {
+  const auto it = impl_->visp.klts.find(impl_->rig.reference());
+  return it == impl_->visp.klts.end() ? vpKltOpencv() : it->second;
+}
+
+void vpMbIcgTracker::getKltOpencv(vpKltOpencv& klt1, vpKltOpencv& klt2) const {
+  std::map<std::string, vpKltOpencv> klts;
+  getKltOpencv(klts);
+  const auto [first, second] = impl_->rig.pair("getKltOpencv");
+  klt1 = klts[first];
+  klt2 = klts[second];
+}
+
+void vpMbIcgTracker::getKltOpencv(std::map<std::string, vpKltOpencv>& mapOfKlts) const {
+  mapOfKlts.clear();
+  for (const std::string& camera : impl_->rig.names()) {
+    const auto it = impl_->visp.klts.find(camera);
+    mapOfKlts[camera] = it == impl_->visp.klts.end() ? vpKltOpencv() : it->second;
+  }
+}
+
+void vpMbIcgTracker::setKltMaskBorder(const unsigned int& e) {
+  std::map<std::string, unsigned int> all;
+  for (const std::string& camera : impl_->rig.names()) all[camera] = e;
+  setKltMaskBorder(all);
+}
+
+void vpMbIcgTracker::setKltMaskBorder(const unsigned int& e1, const unsigned int& e2) {
+  setKltMaskBorder(as_map(impl_->rig.pair("setKltMaskBorder"), e1, e2));
+}
+
+void vpMbIcgTracker::setKltMaskBorder(const std::map<std::string, unsigned int>& mapOfErosions) {
+  for (const auto& [camera, erosion] : mapOfErosions) {
+    impl_->rig.at(camera, "setKltMaskBorder");
+    impl_->visp.klt_mask_borders[camera] = erosion;
+  }
+  impl_->report_without_effect("setKltMaskBorder", kKlt);
+}
+
+unsigned int vpMbIcgTracker::getKltMaskBorder() const {
+  const auto it = impl_->visp.klt_mask_borders.find(impl_->rig.reference());
+  return it == impl_->visp.klt_mask_borders.end() ? 5u : it->second;  // vpMbKltTracker's default
+}
+
+void vpMbIcgTracker::setKltThresholdAcceptation(double th) {
+  impl_->visp.klt_threshold_acceptation = th;
+  impl_->report_without_effect("setKltThresholdAcceptation", kKlt);
+}
+
+double vpMbIcgTracker::getKltThresholdAcceptation() const { return impl_->visp.klt_threshold_acceptation; }
+
+void vpMbIcgTracker::setMovingEdge(const vpMe& me) {
+  std::map<std::string, vpMe> all;
+  for (const std::string& camera : impl_->rig.names()) all[camera] = me;
+  setMovingEdge(all);
+}
+
+void vpMbIcgTracker::setMovingEdge(const vpMe& me1, const vpMe& me2) {
+  setMovingEdge(as_map(impl_->rig.pair("setMovingEdge"), me1, me2));
+}
+
+void vpMbIcgTracker::setMovingEdge(const std::map<std::string, vpMe>& mapOfMe) {
+  for (const auto& [camera, me] : mapOfMe) {
+    impl_->rig.at(camera, "setMovingEdge");
+    impl_->visp.moving_edges[camera] = me;
+  }
+  impl_->report_without_effect("setMovingEdge", kMovingEdges);
+}
+
+vpMe vpMbIcgTracker::getMovingEdge() const {
+  const auto it = impl_->visp.moving_edges.find(impl_->rig.reference());
+  return it == impl_->visp.moving_edges.end() ? vpMe() : it->second;
+}
+
+void vpMbIcgTracker::getMovingEdge(vpMe& me1, vpMe& me2) const {
+  std::map<std::string, vpMe> moving_edges;
+  getMovingEdge(moving_edges);
+  const auto [first, second] = impl_->rig.pair("getMovingEdge");
+  me1 = moving_edges[first];
+  me2 = moving_edges[second];
+}
+
+void vpMbIcgTracker::getMovingEdge(std::map<std::string, vpMe>& mapOfMovingEdges) const {
+  mapOfMovingEdges.clear();
+  for (const std::string& camera : impl_->rig.names()) {
+    const auto it = impl_->visp.moving_edges.find(camera);
+    mapOfMovingEdges[camera] = it == impl_->visp.moving_edges.end() ? vpMe() : it->second;
+  }
+}
+
+void vpMbIcgTracker::setOptimizationMethod(const vpMbtOptimizationMethod& opt) {
+  vpMbTracker::setOptimizationMethod(opt);
+  impl_->report_without_effect("setOptimizationMethod",
+                               "icgp fuses its cues in a Newton step with Tikhonov regularisation (tracker: in the "
+                               "YAML parameters)");
+}
+
+void vpMbIcgTracker::setProjectionErrorComputation(const bool& flag) {
+  vpMbTracker::setProjectionErrorComputation(flag);  // computed after each track() on .cao / .wrl models
+}
+
+void vpMbIcgTracker::setProjectionErrorDisplay(bool display) {
+  vpMbTracker::setProjectionErrorDisplay(display);
+  impl_->report_without_effect("setProjectionErrorDisplay", "display() draws the model's edges only");
+}
+
+void vpMbIcgTracker::setProjectionErrorDisplayArrowLength(unsigned int length) {
+  vpMbTracker::setProjectionErrorDisplayArrowLength(length);
+  impl_->report_without_effect("setProjectionErrorDisplayArrowLength", "display() draws the model's edges only");
+}
+
+void vpMbIcgTracker::setProjectionErrorDisplayArrowThickness(unsigned int thickness) {
+  vpMbTracker::setProjectionErrorDisplayArrowThickness(thickness);
+  impl_->report_without_effect("setProjectionErrorDisplayArrowThickness", "display() draws the model's edges only");
+}
+
+void vpMbIcgTracker::setUseDepthDenseTracking(const std::string&, const bool&) {
+  impl_->report_without_effect("setUseDepthDenseTracking", "icgp's cues use the whole model, not named faces");
+}
+void vpMbIcgTracker::setUseDepthNormalTracking(const std::string&, const bool&) {
+  impl_->report_without_effect("setUseDepthNormalTracking", "icgp's cues use the whole model, not named faces");
+}
+void vpMbIcgTracker::setUseEdgeTracking(const std::string&, const bool&) {
+  impl_->report_without_effect("setUseEdgeTracking", "icgp's cues use the whole model, not named faces");
+}
+void vpMbIcgTracker::setUseKltTracking(const std::string&, const bool&) {
+  impl_->report_without_effect("setUseKltTracking", "icgp's cues use the whole model, not named faces");
+}

@@ -1,0 +1,424 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// vpMbIcgTracker: tracking calls, and the results of the last frame.
+#include <Eigen/Dense>
+#include <cmath>
+#include <visp3/core/vpImageConvert.h>
+
+#include "icgp/visp/conversions.h"
+
+#include "vpMbIcgTracker_impl.h"
+
+using icgp::visp_detail::DepthInput;
+using icgp::visp_detail::guarded;
+
+// ------------------------------------------------------------------------------ tracking
+
+template <typename Image>
+void vpMbIcgTracker::track_frame(const std::map<std::string, const Image*>& images,
+                                 const std::vector<DepthInput>& depths, const std::string& call) {
+  Impl& d = *impl_;
+  d.require_initialised(call);
+  const icgp::CameraRig& rig = d.rig;
+  const std::vector<std::string>& modalities = d.config.modalities;
+  d.assembler.begin_frame();
+  const vpImage<unsigned char>* reference_grey = nullptr;
+  for (const auto& [name, image] : images) {
+    const icgp::CameraRig::Camera& camera = rig.at(name, call);
+    // ViSP programs also pass a depth camera's image: only colour cues read one.
+    if (!image || !rig.reads_color(name, modalities)) continue;
+    d.assembler.set_color(name, *image, camera.parameters, camera.parameters_set, camera.camera_M_reference);
+    if constexpr (std::is_same_v<Image, vpImage<unsigned char>>)
+      if (name == rig.reference()) reference_grey = image;
+  }
+  bool any_depth = false;
+  for (const DepthInput& depth : depths) {
+    const icgp::CameraRig::Camera& camera = rig.at(depth.camera, call);
+    if (!rig.is_depth_camera(depth.camera)) continue;  // as ViSP: a cloud no cue of the camera reads
+    if (depth.width == 0 && depth.height == 0) continue;  // ViSP's "no depth this frame"
+    if (depth.points)
+      d.assembler.set_depth_points(depth.camera, depth.width, depth.height, camera.parameters,
+                                   camera.parameters_set, camera.camera_M_reference, depth.points);
+    else
+      d.assembler.set_depth(depth.camera, depth.width, depth.height, camera.parameters, camera.parameters_set,
+                            camera.camera_M_reference, depth.depth);
+    any_depth = any_depth || rig.reads_depth(depth.camera, modalities);
+  }
+  bool any_color = false;
+  for (const std::string& name : rig.names()) {
+    if (rig.is_depth_camera(name)) d.assembler.set_no_depth(name);  // unless delivered above
+    if (!rig.reads_color(name, modalities)) continue;
+    if (!d.assembler.frame().find_color(name))
+      throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no image of camera '" + name +
+                                                   "', whose cues (EDGE_TRACKER: region, KLT_TRACKER: texture) "
+                                                   "read one");
+    any_color = true;
+  }
+  if (!any_color && !any_depth)
+    throw vpException(vpException::badValue,
+                      "vpMbIcgTracker::" + call + ": nothing to track: the tracker's cues read depth only, and this "
+                                                  "call gives none (track with the maps of point clouds, or with a raw "
+                                                  "depth image)");
+  track_step(reference_grey, call);
+}
+
+template void vpMbIcgTracker::track_frame(const std::map<std::string, const vpImage<unsigned char>*>&,
+                                          const std::vector<DepthInput>&, const std::string&);
+template void vpMbIcgTracker::track_frame(const std::map<std::string, const vpImage<vpRGBa>*>&,
+                                          const std::vector<DepthInput>&, const std::string&);
+
+void vpMbIcgTracker::track_step(const vpImage<unsigned char>* grey, const std::string& call) {
+  Impl& d = *impl_;
+  const icgp::Frame& frame = d.assembler.frame();
+  icgp::Body& body = d.tracker->body(Impl::kBody);
+  // The depth readers refer to the caller's clouds, which are only known valid during this call.
+  struct EndDepthReads {
+    icgp::FrameAssembler& assembler;
+    ~EndDepthReads() { assembler.end_depth_reads(); }
+  } end_depth_reads{d.assembler};
+  guarded(call, [&] {
+    if (d.start_pending) {
+      body.reference_T_body = icgp::to_pose(m_cMo);
+      d.tracker->start(frame);
+      d.start_pending = false;
+    }
+    d.quality = d.tracker->track(frame).front().quality;
+  });
+  m_cMo = icgp::to_homogeneous_matrix(body.reference_T_body);
+  d.hessian = d.tracker->last_hessian(Impl::kBody);
+  computeVVSInit();
+  computeVVSInteractionMatrixAndResidu();
+
+  if (computeCovariance) covarianceMatrix = getCovarianceMatrix();
+  if (computeProjError && d.has_visp_model_part) {
+    const vpImage<unsigned char>* image = grey ? grey : d.assembler.grey_image(d.rig.reference());
+    if (image) projectionError = computeCurrentProjectionError(*image, m_cMo, m_cam);
+  }
+}
+
+void vpMbIcgTracker::track(const vpImage<unsigned char>& I) {
+  track_frame(std::map<std::string, const vpImage<unsigned char>*>{{impl_->rig.reference(), &I}}, {}, "track(I)");
+}
+
+void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color) {
+  track_frame(std::map<std::string, const vpImage<vpRGBa>*>{{impl_->rig.reference(), &I_color}}, {},
+              "track(I_color)");
+}
+
+void vpMbIcgTracker::track(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2) {
+  const auto [first, second] = impl_->rig.pair("track");
+  track_frame(std::map<std::string, const vpImage<unsigned char>*>{{first, &I1}, {second, &I2}}, {},
+              "track(I1, I2)");
+}
+
+void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2) {
+  const auto [first, second] = impl_->rig.pair("track");
+  track_frame(std::map<std::string, const vpImage<vpRGBa>*>{{first, &I_color1}, {second, &I_color2}}, {},
+              "track(I_color1, I_color2)");
+}
+
+void vpMbIcgTracker::track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages) {
+  track_frame(mapOfImages, {}, "track");
+}
+
+void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages) {
+  track_frame(mapOfColorImages, {}, "track");
+}
+
+namespace {
+
+/// The point of a ViSP organised cloud's pixel, ViSP's zero-length vectors included.
+Eigen::Vector3f cloud_point(const std::vector<vpColVector>& cloud, unsigned int width, int row, int col) {
+  const vpColVector& point = cloud[static_cast<std::size_t>(row) * width + col];
+  if (point.size() < 3) return Eigen::Vector3f::Zero();
+  return {static_cast<float>(point[0]), static_cast<float>(point[1]), static_cast<float>(point[2])};
+}
+
+}  // namespace
+
+template <typename Image>
+void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& images,
+                                       std::map<std::string, const std::vector<vpColVector>*>& clouds,
+                                       std::map<std::string, unsigned int>& widths,
+                                       std::map<std::string, unsigned int>& heights) {
+  std::vector<DepthInput> depths;
+  for (const auto& [name, cloud] : clouds) {
+    const icgp::CameraRig::Camera& camera = impl_->rig.at(name, "track");
+    if (!widths.count(name) || !heights.count(name))
+      throw vpException(vpException::badValue,
+                        "vpMbIcgTracker::track: no width/height of camera '" + name + "''s point cloud");
+    DepthInput depth{name, widths[name], heights[name]};
+    if (depth.width == 0 && depth.height == 0) {  // ViSP's "no depth this frame", whatever the cloud holds
+      depths.push_back(depth);
+      continue;
+    }
+    if (!cloud)
+      throw vpException(vpException::badValue, "vpMbIcgTracker::track: the point cloud of camera '" + name + "' is null");
+    if (cloud->size() != static_cast<std::size_t>(depth.width) * depth.height)
+      throw vpException(vpException::badValue, "vpMbIcgTracker::track: the point cloud of camera '" + name + "' has " +
+                                                   std::to_string(cloud->size()) + " points, but width x height is " +
+                                                   std::to_string(depth.width) + " x " +
+                                                   std::to_string(depth.height) +
+                                                   " (an organised cloud has one point per pixel)");
+    const unsigned int width = depth.width;
+    icgp::visp_detail::read_cloud(
+        depth, [cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); }, camera.parameters);
+    depths.push_back(std::move(depth));
+  }
+  track_frame(images, depths, "track");
+}
+
+void vpMbIcgTracker::track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                           std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
+                           std::map<std::string, unsigned int>& mapOfPointCloudWidths,
+                           std::map<std::string, unsigned int>& mapOfPointCloudHeights) {
+  track_with_clouds(mapOfImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
+}
+
+void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                           std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
+                           std::map<std::string, unsigned int>& mapOfPointCloudWidths,
+                           std::map<std::string, unsigned int>& mapOfPointCloudHeights) {
+  track_with_clouds(mapOfColorImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
+}
+
+std::string vpMbIcgTracker::depth_camera_of_raw_depth() const {
+  const icgp::CameraRig& rig = impl_->rig;
+  if (rig.is_depth_camera(rig.reference())) return rig.reference();
+  for (const std::string& name : rig.names())
+    if (rig.is_depth_camera(name)) return name;
+  throw vpException(vpException::badValue, "vpMbIcgTracker::track(I, I_depth_raw, depthScale): no camera has a depth "
+                                           "tracker type (DEPTH_DENSE_TRACKER or DEPTH_NORMAL_TRACKER)");
+}
+
+template <typename Image>
+void vpMbIcgTracker::track_with_raw_depth(const Image& I, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
+  if (!(depthScale > 0.0) || !std::isfinite(depthScale))
+    throw vpException(vpException::badValue,
+                      "vpMbIcgTracker::track: the depth scale must be positive (metres per raw unit), got " +
+                          std::to_string(depthScale));
+  DepthInput depth{depth_camera_of_raw_depth(), I_depth_raw.getWidth(), I_depth_raw.getHeight()};
+  depth.depth = [&I_depth_raw, scale = static_cast<float>(depthScale)](int row, int col) {
+    return scale * I_depth_raw[static_cast<unsigned int>(row)][col];
+  };
+  track_frame(std::map<std::string, const Image*>{{impl_->rig.reference(), &I}}, {depth},
+              "track(I, I_depth_raw, depthScale)");
+}
+
+void vpMbIcgTracker::track(const vpImage<unsigned char>& I, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
+  track_with_raw_depth(I, I_depth_raw, depthScale);
+}
+
+void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
+  track_with_raw_depth(I_color, I_depth_raw, depthScale);
+}
+
+void vpMbIcgTracker::testTracking() {
+  const icgp::Tracker* tracker = impl_->tracker.get();
+  if (!tracker)
+    throw vpTrackingException(vpTrackingException::initializationError, "vpMbIcgTracker::testTracking: not initialised");
+  const double threshold = tracker->params().quality_threshold;
+  if (impl_->quality < threshold)
+    throw vpTrackingException(vpTrackingException::fatalError,
+                              "vpMbIcgTracker: tracking lost (quality " + std::to_string(impl_->quality) +
+                                  " below the threshold " + std::to_string(threshold) + ")");
+}
+
+double vpMbIcgTracker::getTrackingQuality() const { return impl_->quality; }
+
+void vpMbIcgTracker::setMask(const vpImage<bool>& mask) {
+  vpMbTracker::setMask(mask);
+  impl_->assembler.set_mask(mask);
+}
+
+// ----------------------------------------------------------------------------- results
+
+void vpMbIcgTracker::getPose(vpHomogeneousMatrix& c1Mo, vpHomogeneousMatrix& c2Mo) const {
+  const auto [first, second] = impl_->rig.pair("getPose");
+  c1Mo = impl_->rig.at(first, "getPose").camera_M_reference * m_cMo;
+  c2Mo = impl_->rig.at(second, "getPose").camera_M_reference * m_cMo;
+}
+
+void vpMbIcgTracker::getPose(std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses) const {
+  mapOfCameraPoses.clear();
+  for (const auto& [name, camera] : impl_->rig.cameras()) mapOfCameraPoses[name] = camera.camera_M_reference * m_cMo;
+}
+
+void vpMbIcgTracker::computeVVSInit() {
+  m_error.resize(0);
+  m_w.resize(0);
+}
+
+void vpMbIcgTracker::computeVVSInteractionMatrixAndResidu() {
+  if (!impl_->tracker) return;
+  std::vector<double> residuals, weights;
+  impl_->tracker->residuals(Impl::kBody, residuals, weights);
+  m_error.resize(static_cast<unsigned int>(residuals.size()), false);
+  m_w.resize(static_cast<unsigned int>(weights.size()), false);
+  for (unsigned int i = 0; i < m_error.size(); ++i) {
+    m_error[i] = residuals[i];
+    m_w[i] = weights[i];
+  }
+}
+
+vpColVector vpMbIcgTracker::getError() const { return m_error; }
+vpColVector vpMbIcgTracker::getRobustWeights() const { return m_w; }
+
+std::vector<const icgp::Modality*> vpMbIcgTracker::cues(const std::string& name, const std::string& camera) const {
+  std::vector<const icgp::Modality*> out;
+  if (!impl_->tracker) return out;
+  for (const icgp::Modality* m : impl_->tracker->modalities(Impl::kBody))
+    if (m->name() == name && (camera.empty() || m->camera() == camera)) out.push_back(m);
+  return out;
+}
+
+namespace {
+
+unsigned int image_feature_count(const std::vector<const icgp::Modality*>& cues) {
+  std::vector<icgp::ImageFeature> features;
+  for (const icgp::Modality* m : cues) m->append_image_features(features);
+  return static_cast<unsigned int>(features.size());
+}
+
+}  // namespace
+
+unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return image_feature_count(cues("region")); }
+unsigned int vpMbIcgTracker::getNbFeaturesKlt() const { return image_feature_count(cues("texture")); }
+
+unsigned int vpMbIcgTracker::depth_feature_count(int type) const {
+  unsigned int n = 0;
+  for (const icgp::Modality* m : cues("depth")) {
+    // A camera with both depth types counts as DEPTH_DENSE, ICG's point-to-plane cue.
+    const int types = impl_->rig.at(m->camera(), "getNbFeatures").types;
+    const int counted = (types & DEPTH_DENSE_TRACKER) ? DEPTH_DENSE_TRACKER : DEPTH_NORMAL_TRACKER;
+    if (counted == type) n += static_cast<unsigned int>(m->quality().n_valid);
+  }
+  return n;
+}
+
+unsigned int vpMbIcgTracker::getNbFeaturesDepthNormal() const { return depth_feature_count(DEPTH_NORMAL_TRACKER); }
+unsigned int vpMbIcgTracker::getNbFeaturesDepthDense() const { return depth_feature_count(DEPTH_DENSE_TRACKER); }
+
+unsigned int vpMbIcgTracker::getNbPoints(unsigned int) const {
+  return image_feature_count(cues("region", impl_->rig.reference()));
+}
+
+void vpMbIcgTracker::getNbPoints(std::map<std::string, unsigned int>& mapOfNbPoints, unsigned int) const {
+  mapOfNbPoints.clear();
+  for (const std::string& name : impl_->rig.names()) mapOfNbPoints[name] = image_feature_count(cues("region", name));
+}
+
+std::vector<std::vector<double>> vpMbIcgTracker::features_for_display(const std::string& camera) const {
+  std::vector<std::vector<double>> out;
+  constexpr double kFullWeight = 0.0, kDownWeighted = 4.0;  // vpMeSite::NO_SUPPRESSION, M_ESTIMATOR
+  std::vector<icgp::ImageFeature> features;
+  for (const icgp::Modality* m : cues("region", camera)) m->append_image_features(features);
+  for (const icgp::ImageFeature& f : features)
+    out.push_back({0.0, f.pixel.y(), f.pixel.x(), f.weight >= 0.5 ? kFullWeight : kDownWeighted});
+  features.clear();
+  for (const icgp::Modality* m : cues("texture", camera)) m->append_image_features(features);
+  for (std::size_t id = 0; id < features.size(); ++id)
+    out.push_back({1.0, features[id].pixel.y(), features[id].pixel.x(), static_cast<double>(id)});
+  return out;
+}
+
+std::vector<std::vector<double>> vpMbIcgTracker::getFeaturesForDisplay() {
+  return features_for_display(impl_->rig.reference());
+}
+
+void vpMbIcgTracker::getFeaturesForDisplay(std::map<std::string, std::vector<std::vector<double>>>& mapOfFeatures) {
+  mapOfFeatures.clear();
+  for (const std::string& name : impl_->rig.names()) mapOfFeatures[name] = features_for_display(name);
+}
+
+std::map<int, vpImagePoint> vpMbIcgTracker::getKltImagePointsWithId() const {
+  std::vector<icgp::ImageFeature> features;
+  for (const icgp::Modality* m : cues("texture", impl_->rig.reference())) m->append_image_features(features);
+  std::map<int, vpImagePoint> points;
+  for (std::size_t id = 0; id < features.size(); ++id)
+    points[static_cast<int>(id)] = vpImagePoint(features[id].pixel.y(), features[id].pixel.x());
+  return points;
+}
+
+std::vector<vpImagePoint> vpMbIcgTracker::getKltImagePoints() const {
+  std::vector<vpImagePoint> points;
+  for (const auto& [id, point] : getKltImagePointsWithId()) points.push_back(point);
+  return points;
+}
+
+int vpMbIcgTracker::getKltNbPoints() const { return static_cast<int>(getKltImagePointsWithId().size()); }
+
+std::vector<cv::Point2f> vpMbIcgTracker::getKltPoints() const {
+  std::vector<cv::Point2f> points;
+  for (const auto& [id, point] : getKltImagePointsWithId())
+    points.emplace_back(static_cast<float>(point.get_u()), static_cast<float>(point.get_v()));
+  return points;
+}
+
+double vpMbIcgTracker::computeCurrentProjectionError(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cMo,
+                                                     const vpCameraParameters& cam) {
+  if (!impl_->has_visp_model_part)
+    throw vpException(vpException::notImplementedError,
+                      "vpMbIcgTracker::computeCurrentProjectionError: the projection error is ViSP's, computed on the "
+                      "edges of a .cao or .wrl model; this model has none");
+  return vpMbTracker::computeCurrentProjectionError(I, cMo, cam);
+}
+
+double vpMbIcgTracker::computeCurrentProjectionError(const vpImage<vpRGBa>& I, const vpHomogeneousMatrix& cMo,
+                                                     const vpCameraParameters& cam) {
+  vpImage<unsigned char> grey;
+  vpImageConvert::convert(I, grey);
+  return computeCurrentProjectionError(grey, cMo, cam);
+}
+
+vpMatrix vpMbIcgTracker::getCovarianceMatrix() const {
+  if (!impl_->hessian)
+    throw vpTrackingException(vpTrackingException::initializationError,
+                              "vpMbIcgTracker::getCovarianceMatrix: no frame has been tracked yet");
+  // Σ_θ = (−H)⁻¹ over the body-frame variation θ = [θ_r; θ_t] (T ← T exp(θ)). A body-frame
+  // twist ξ_b is the camera-frame twist ξ_c = Ad(cMo) ξ_b; ViSP orders twists (v, ω).
+  const Eigen::Matrix<double, 6, 6> information = -*impl_->hessian;
+  const Eigen::Matrix<double, 6, 6> body_covariance = information.completeOrthogonalDecomposition().pseudoInverse();
+  Eigen::Matrix<double, 6, 6> to_v_omega = Eigen::Matrix<double, 6, 6>::Zero();  // (v, ω) = P θ
+  to_v_omega.block<3, 3>(0, 3).setIdentity();
+  to_v_omega.block<3, 3>(3, 0).setIdentity();
+  const icgp::Pose cMo = icgp::to_pose(m_cMo);
+  const Eigen::Matrix3d R = cMo.rotation();
+  Eigen::Matrix<double, 6, 6> adjoint = Eigen::Matrix<double, 6, 6>::Zero();
+  adjoint.block<3, 3>(0, 0) = R;
+  adjoint.block<3, 3>(0, 3) = icgp::skew(cMo.translation()) * R;
+  adjoint.block<3, 3>(3, 3) = R;
+  const Eigen::Matrix<double, 6, 6> A = adjoint * to_v_omega;
+  const Eigen::Matrix<double, 6, 6> product = A * body_covariance * A.transpose();
+  const Eigen::Matrix<double, 6, 6> camera_covariance = 0.5 * (product + product.transpose());  // exactly symmetric
+  vpMatrix out(6, 6);
+  for (unsigned int i = 0; i < 6; ++i)
+    for (unsigned int j = 0; j < 6; ++j) out[i][j] = camera_covariance(i, j);
+  return out;
+}
+
+std::list<vpMbtDistanceCircle*>& vpMbIcgTracker::getFeaturesCircle() { return impl_->no_circles; }
+std::list<vpMbtDistanceKltCylinder*>& vpMbIcgTracker::getFeaturesKltCylinder() { return impl_->no_klt_cylinders; }
+std::list<vpMbtDistanceKltPoints*>& vpMbIcgTracker::getFeaturesKlt() { return impl_->no_klt_points; }
+
+void vpMbIcgTracker::getLcircle(std::list<vpMbtDistanceCircle*>& circlesList, unsigned int) const {
+  circlesList.clear();
+}
+void vpMbIcgTracker::getLcircle(const std::string& cameraName, std::list<vpMbtDistanceCircle*>& circlesList,
+                                unsigned int) const {
+  impl_->rig.at(cameraName, "getLcircle");
+  circlesList.clear();
+}
+void vpMbIcgTracker::getLcylinder(std::list<vpMbtDistanceCylinder*>& cylindersList, unsigned int) const {
+  cylindersList.clear();
+}
+void vpMbIcgTracker::getLcylinder(const std::string& cameraName, std::list<vpMbtDistanceCylinder*>& cylindersList,
+                                  unsigned int) const {
+  impl_->rig.at(cameraName, "getLcylinder");
+  cylindersList.clear();
+}
+void vpMbIcgTracker::getLline(std::list<vpMbtDistanceLine*>& linesList, unsigned int) const { linesList.clear(); }
+void vpMbIcgTracker::getLline(const std::string& cameraName, std::list<vpMbtDistanceLine*>& linesList,
+                              unsigned int) const {
+  impl_->rig.at(cameraName, "getLline");
+  linesList.clear();
+}
