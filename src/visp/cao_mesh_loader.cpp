@@ -299,12 +299,18 @@ std::string as_clause(const std::string& diagnostics) {
   return joined.empty() ? "" : " (" + joined + ")";
 }
 
-/// .cao and .wrl: the formats ViSP's vpMbTracker::loadModel reads (VRML through Coin3D).
-bool has_visp_model_extension(const std::string& path) {
+std::string lower_extension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".cao" || extension == ".wrl";
+  return extension;
+}
+
+bool has_cao_extension(const std::string& path) { return lower_extension(path) == ".cao"; }
+
+/// .cao and .wrl: the formats ViSP's vpMbTracker::loadModel reads (VRML through Coin3D).
+bool has_visp_model_extension(const std::string& path) {
+  return has_cao_extension(path) || lower_extension(path) == ".wrl";
 }
 
 }  // namespace
@@ -345,6 +351,8 @@ Mesh load_cao_mesh(const std::string& path, const Pose& T, const CaoTessellation
     throw std::runtime_error("cannot load ViSP model '" + path + "': " + problem + as_clause(diagnostics));
 
   std::cerr << diagnostics;  // warnings of a successful parse stay visible
+  // ViSP applies the model transform to .cao files only ("currently only for .cao").
+  if (has_visp_model_extension(path) && !has_cao_extension(path)) mesh.transform(T.cast<float>());
   return mesh;
 }
 

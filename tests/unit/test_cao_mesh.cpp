@@ -160,6 +160,23 @@ TEST_CASE("realsense teabox.cao: a 0.165 x 0.068 x 0.08 m box") {
   check_bounds(mesh, {0, 0, -0.08}, {0.165, 0.068, 0}, 1e-7);
 }
 
+TEST_CASE("realsense teabox.wrl: ViSP's VRML path (Coin3D) gives the box its .cao describes") {
+  const fs::path folder = kData / "realsense-cube" / "models" / "teabox";
+  const Mesh wrl = icgp::load_cao_mesh((folder / "teabox.wrl").string());
+  const Mesh cao = icgp::load_cao_mesh((folder / "teabox.cao").string());
+  CHECK(wrl.triangle_count() == 12);
+  CHECK(mesh_surface_area(wrl) == Approx(box_area(0.165, 0.068, 0.08)).epsilon(1e-6));
+  CHECK(std::abs(mesh_signed_volume(wrl)) == Approx(0.165 * 0.068 * 0.08).epsilon(1e-6));
+  check_bounds(wrl, {0, 0, -0.08}, {0.165, 0.068, 0}, 1e-7);
+  CHECK(mesh_signed_volume(wrl) == Approx(mesh_signed_volume(cao)).epsilon(1e-6));  // same winding
+
+  // The model transform applies to VRML as to .cao, and load_any_mesh dispatches to ViSP.
+  const Pose T = Pose::from_rotation_vector({0, 0, 0}, {0.1, 0.2, 0.3});
+  check_bounds(icgp::load_cao_mesh((folder / "teabox.wrl").string(), T), {0.1, 0.2, 0.22}, {0.265, 0.268, 0.3}, 1e-6);
+  check_bounds(icgp::load_any_mesh((folder / "teabox.wrl").string(), 1.0, T), {0.1, 0.2, 0.22}, {0.265, 0.268, 0.3},
+               1e-6);
+}
+
 TEST_CASE("teabox-blender teabox.cao: a slanted prism with the file's dimensions") {
   const Mesh mesh = icgp::load_cao_mesh((kData / "teabox-blender" / "teabox.cao").string());
   // The file's 8 points and its 6 quads.

@@ -25,7 +25,8 @@ struct CaoTessellation {
 /// * circles (`radius p1 p2 p3` in the file): a disc around the centre p1 in the plane of
 ///   p1, p2, p3, facing along (p2 - p1) x (p3 - p1);
 /// * lone 3D lines are skipped: they have no surface.
-/// Vertices are T * X for the file's points X (ViSP's optional model transform).
+/// Vertices are T * X for the file's points X (ViSP's optional model transform; for .wrl,
+/// to which ViSP applies none, icgp applies it after ViSP's parse).
 ///
 /// Throws std::invalid_argument for a tessellation below 3 segments, and std::runtime_error
 /// naming the file when it is missing, cannot be parsed (the message includes what ViSP
