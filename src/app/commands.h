@@ -18,6 +18,7 @@ void register_compare_command(CLI::App& app);
 void register_model_command(CLI::App& app);
 void register_config_command(CLI::App& app);
 void register_servo_command(CLI::App& app);
+void register_stereo_command(CLI::App& app);
 
 /// Help of the flag that applies SequenceOptions::blender_principal_point.
 inline constexpr const char* kBlenderPrincipalPointHelp =

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   icgp::app::register_model_command(app);
   icgp::app::register_config_command(app);
   icgp::app::register_servo_command(app);
+  icgp::app::register_stereo_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

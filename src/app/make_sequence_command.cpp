@@ -18,6 +18,7 @@ struct MakeSequenceOptions {
   int width = 640, height = 480;
   double focal = 600.0;
   double baseline = 0.0;
+  double stereo_baseline = 0.0;
   double spin = 0.0;
   SequenceWriterOptions writer;
 };
@@ -25,13 +26,20 @@ struct MakeSequenceOptions {
 void run_make_sequence(MakeSequenceOptions o) {
   o.writer.color_intrinsics = o.writer.depth_intrinsics = Intrinsics::centred(o.width, o.height, o.focal);
   o.writer.depth_T_color = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0 - o.baseline, 0.0, 0.0));
+  if (o.stereo_baseline != 0.0) {
+    // A rectified pair: the same camera, moved along the colour camera's x axis.
+    o.writer.stereo = true;
+    o.writer.stereo_intrinsics = o.writer.color_intrinsics;
+    o.writer.stereo_T_color = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0 - o.stereo_baseline, 0.0, 0.0));
+  }
 
   const Mesh mesh = load_any_mesh(o.model, o.scale);
   SequenceWriter writer(o.writer);
   const std::string stem = std::filesystem::path(o.model).stem().string();
   writer.add_object(stem, mesh, Pose(), std::filesystem::absolute(o.model).string(), Eigen::Vector3d(0.0, o.spin, 0.0));
   writer.write(o.out);
-  std::cout << "wrote " << o.writer.frame_count << " frames of '" << stem << "' to " << o.out << "\n";
+  std::cout << "wrote " << o.writer.frame_count << " frames of '" << stem << "'"
+            << (o.writer.stereo ? " (stereo)" : "") << " to " << o.out << "\n";
 }
 
 }  // namespace
@@ -57,6 +65,10 @@ void register_make_sequence_command(CLI::App& app) {
   cmd->add_option("--focal", o->focal, "Focal length in pixels (colour and depth)")->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--baseline", o->baseline, "Depth camera offset along the colour camera's x axis, metres")
+      ->capture_default_str();
+  cmd->add_option("--stereo-baseline", o->stereo_baseline,
+                  "Second colour camera (color2/, same intrinsics) this far along the colour camera's x axis, "
+                  "metres (0: none)")
       ->capture_default_str();
   cmd->add_option("--spin", o->spin, "Object rotation about its y axis (the models' up axis), rad/s")
       ->capture_default_str();

@@ -232,6 +232,9 @@ struct Description {
   double frame_rate = 0.0;
   Intrinsics color_intrinsics, depth_intrinsics;
   Pose depth_T_color;
+  bool stereo = false;
+  Intrinsics stereo_intrinsics;
+  Pose stereo_T_color;
   std::vector<SequenceObject> objects;
   bool has_ground_truth = false;
 };
@@ -244,6 +247,8 @@ class Sequence::Layout {
   virtual ~Layout() = default;
   virtual fs::path color_file(int index) const = 0;
   virtual fs::path depth_file(int index) const = 0;
+  /// The second colour camera's image (layouts that have one).
+  virtual fs::path stereo_color_file(int) const { return {}; }
   /// Metres as stored, invalid values not yet cleared; CV_32FC1.
   virtual cv::Mat read_depth(int index) const = 0;
   virtual std::map<std::string, Pose> read_ground_truth(int index) const = 0;
@@ -474,6 +479,7 @@ class IcgpLayout : public Sequence::Layout {
  public:
   fs::path color_file(int i) const override { return dir_ / "color" / numbered("", i, 6, ".png"); }
   fs::path depth_file(int i) const override { return dir_ / "depth" / numbered("", i, 6, ".png"); }
+  fs::path stereo_color_file(int i) const override { return dir_ / "color2" / numbered("", i, 6, ".png"); }
   cv::Mat read_depth(int i) const override { return read_png_depth(depth_file(i), depth_scale_); }
   std::map<std::string, Pose> read_ground_truth(int i) const override {
     std::map<std::string, Pose> truth;
@@ -510,6 +516,14 @@ class IcgpLayout : public Sequence::Layout {
     const auto depth_T_color = yaml_value<std::vector<double>>(root, "depth_T_color", "", file);
     if (depth_T_color.size() != 16) fail(file, "'depth_T_color' must hold 16 numbers (4x4 row-major)");
     d.depth_T_color = pose_from_row_major(depth_T_color, file, "depth_T_color: ");
+    // The optional stereo camera: both keys or neither.
+    if (root["stereo_camera"] || root["stereo_T_color"]) {
+      d.stereo = true;
+      d.stereo_intrinsics = yaml_camera(root, "stereo_camera", file);
+      const auto stereo_T_color = yaml_value<std::vector<double>>(root, "stereo_T_color", "", file);
+      if (stereo_T_color.size() != 16) fail(file, "'stereo_T_color' must hold 16 numbers (4x4 row-major)");
+      d.stereo_T_color = pose_from_row_major(stereo_T_color, file, "stereo_T_color: ");
+    }
 
     const YAML::Node objects = root["objects"];
     if (objects && !objects.IsSequence()) fail(file, "'objects' must be a list");
@@ -528,6 +542,7 @@ class IcgpLayout : public Sequence::Layout {
     for (int i = 0; i < d.frame_count; ++i) {
       require_file(layout->color_file(i), "colour image of frame " + std::to_string(i));
       require_file(layout->depth_file(i), "depth image of frame " + std::to_string(i));
+      if (d.stereo) require_file(layout->stereo_color_file(i), "stereo colour image of frame " + std::to_string(i));
     }
     return {d, layout};
   }
@@ -600,6 +615,9 @@ Sequence Sequence::open(const std::string& dir_name, const SequenceOptions& opti
   s.color_intrinsics_ = d.color_intrinsics;
   s.depth_intrinsics_ = d.depth_intrinsics;
   s.depth_T_color_ = d.depth_T_color;
+  s.has_stereo_ = d.stereo;
+  s.stereo_intrinsics_ = d.stereo_intrinsics;
+  s.stereo_T_color_ = d.stereo_T_color;
   s.objects_ = d.objects;
   s.has_ground_truth_ = d.has_ground_truth;
   s.files_ = opened.second;
@@ -621,6 +639,17 @@ Frame Sequence::load(int index) const {
   check_size(color.image, color_intrinsics_, files_->color_file(index), "colour image", files_->size_origin());
   if (grey_without_depth_) cv::cvtColor(color.image, color.image, cv::COLOR_BGR2GRAY);
   frame.colors.push_back(std::move(color));
+  if (has_stereo_) {
+    ColorImage stereo;
+    stereo.camera = "Camera3";
+    stereo.intrinsics = stereo_intrinsics_;
+    stereo.camera_T_reference = stereo_T_color_;
+    stereo.image = read_color_image(files_->stereo_color_file(index));
+    check_size(stereo.image, stereo_intrinsics_, files_->stereo_color_file(index), "stereo colour image",
+               files_->size_origin());
+    if (grey_without_depth_) cv::cvtColor(stereo.image, stereo.image, cv::COLOR_BGR2GRAY);
+    frame.colors.push_back(std::move(stereo));
+  }
   frame.ground_truth = files_->read_ground_truth(index);
   if (grey_without_depth_) return frame;
 

@@ -40,7 +40,7 @@ class Random : public SplitMix64 {
 
 /// Separate generator streams per purpose (and per frame for noise): changing the noise
 /// must not move the camera, and each frame's noise must not depend on the others.
-enum Stream : std::uint64_t { kTrajectoryStream = 1, kBackgroundStream = 2, kNoiseStream = 3 };
+enum Stream : std::uint64_t { kTrajectoryStream = 1, kBackgroundStream = 2, kNoiseStream = 3, kStereoNoiseStream = 4 };
 Random stream(std::uint64_t seed, Stream purpose, std::uint64_t index = 0) {
   Random mixer(seed ^ (std::uint64_t(purpose) << 56));
   return Random(mixer.next() ^ (index * 0xD1B54A32D192ED03ull));
@@ -104,10 +104,14 @@ double background_half_extent(const SequenceWriterOptions& o) {
   const double far = m.distance + m.distance_variation;
   const double near = m.distance - m.distance_variation;
   const double wander = m.look_at_wander * std::sqrt(3.0);
-  const double fov = std::max(half_diagonal_fov(o.color_intrinsics), half_diagonal_fov(o.depth_intrinsics));
+  double fov = std::max(half_diagonal_fov(o.color_intrinsics), half_diagonal_fov(o.depth_intrinsics));
+  double offset = o.depth_T_color.translation().norm();  // of the other cameras from the colour one
+  if (o.stereo) {
+    fov = std::max(fov, half_diagonal_fov(o.stereo_intrinsics));
+    offset = std::max(offset, o.stereo_T_color.translation().norm());
+  }
   const double ray = std::min(tilt + fov + std::atan(wander / near), radians(80.0));
-  return far * std::sin(tilt) + o.depth_T_color.translation().norm() + wander +
-         (far + o.background.distance) * std::tan(ray);
+  return far * std::sin(tilt) + offset + wander + (far + o.background.distance) * std::tan(ray);
 }
 
 /// A square plane at world Z = z facing +Z, made of tiles that each map the whole texture,
@@ -190,17 +194,18 @@ std::string row_major(const Pose& pose, const std::string& separator) {
 
 /// Creates `dir`, or empties it when it holds an earlier icgp sequence; anything else is
 /// refused so a mistyped path cannot delete unrelated files.
-void prepare_folder(const fs::path& dir) {
+void prepare_folder(const fs::path& dir, bool stereo) {
   if (fs::exists(dir)) {
     if (!fs::is_directory(dir)) throw std::runtime_error(dir.string() + ": exists and is not a folder");
     if (!fs::is_empty(dir)) {
       if (!fs::is_regular_file(dir / "sequence.yaml"))
         throw std::runtime_error(dir.string() + ": refusing to write into a non-empty folder that does not hold an "
                                                "icgp sequence (no sequence.yaml)");
-      for (const char* name : {"sequence.yaml", "color", "depth", "poses"}) fs::remove_all(dir / name);
+      for (const char* name : {"sequence.yaml", "color", "color2", "depth", "poses"}) fs::remove_all(dir / name);
     }
   }
   for (const char* name : {"color", "depth", "poses"}) fs::create_directories(dir / name);
+  if (stereo) fs::create_directories(dir / "color2");
 }
 
 bool is_file_name_safe(const std::string& name) {
@@ -296,6 +301,7 @@ SequenceWriter::SequenceWriter(SequenceWriterOptions options)
   require(o.depth_scale > 0.0, "depth_scale must be positive");
   o.color_intrinsics.validate("SequenceWriter: color_intrinsics");
   o.depth_intrinsics.validate("SequenceWriter: depth_intrinsics");
+  if (o.stereo) o.stereo_intrinsics.validate("SequenceWriter: stereo_intrinsics");
   require(o.noise.color_sigma >= 0.0 && o.noise.depth_sigma_at_1m >= 0.0, "noise sigmas must not be negative");
   require(o.noise.depth_dropout >= 0.0 && o.noise.depth_dropout < 1.0, "depth_dropout must be in [0, 1)");
   require(o.noise.grazing_angle_deg > 0.0, "grazing_angle_deg must be positive (90 or more: no grazing holes)");
@@ -340,7 +346,7 @@ void SequenceWriter::write(const std::string& dir_name) const {
   const SequenceWriterOptions& o = options_;
   require(!objects_.empty(), "add at least one object before writing");
   const fs::path dir(dir_name);
-  prepare_folder(dir);
+  prepare_folder(dir, o.stereo);
 
   Renderer renderer;
   std::vector<Renderer::BodyHandle> bodies;
@@ -363,8 +369,12 @@ void SequenceWriter::write(const std::string& dir_name) const {
        << "\ndepth_scale: " << exact(o.depth_scale) << "\nseed: " << o.seed << "\n"
        << "color_camera: " << yaml_camera("Camera1", o.color_intrinsics) << "\n"
        << "depth_camera: " << yaml_camera("Camera2", o.depth_intrinsics) << "\n"
-       << "depth_T_color: [" << row_major(o.depth_T_color, ", ") << "]\n"
-       << "objects:\n";
+       << "depth_T_color: [" << row_major(o.depth_T_color, ", ") << "]\n";
+  if (o.stereo)
+    yaml << "# stereo: color2/%06d.png, a second colour camera at stereo_T_color * color_T_world.\n"
+         << "stereo_camera: " << yaml_camera("Camera3", o.stereo_intrinsics) << "\n"
+         << "stereo_T_color: [" << row_major(o.stereo_T_color, ", ") << "]\n";
+  yaml << "objects:\n";
   for (const Object& object : objects_) {
     yaml << "  - name: " << object.name << "\n";
     if (!object.mesh_path.empty()) yaml << "    mesh: " << yaml_quoted(object.mesh_path) << "\n";
@@ -388,6 +398,14 @@ void SequenceWriter::write(const std::string& dir_name) const {
       place_objects(t);
       return renderer.render(o.color_intrinsics, trajectory_.camera_T_world(t), kRenderColor).color;
     });
+    // The stereo camera's exposure is the colour camera's (a synchronised pair).
+    cv::Mat stereo_color;
+    if (o.stereo)
+      stereo_color = average_color_renders(o.motion_blur.samples, [&](int sample) {
+        const double t = exposure_time(seconds, sample);
+        place_objects(t);
+        return renderer.render(o.stereo_intrinsics, o.stereo_T_color * trajectory_.camera_T_world(t), kRenderColor).color;
+      });
 
     // Depth and ground truth at the frame's time, the middle of the exposure.
     const Pose camera_T_world = color_T_world(i);
@@ -402,9 +420,14 @@ void SequenceWriter::write(const std::string& dir_name) const {
     Random noise = stream(o.seed, kNoiseStream, std::uint64_t(i));
     if (o.noise.color_sigma > 0.0) add_color_noise(color, o.noise.color_sigma, noise);
     add_depth_noise(depth, o.noise, noise);
+    if (o.stereo && o.noise.color_sigma > 0.0) {
+      Random stereo_noise = stream(o.seed, kStereoNoiseStream, std::uint64_t(i));
+      add_color_noise(stereo_color, o.noise.color_sigma, stereo_noise);
+    }
 
     std::snprintf(name, sizeof name, "%06d.png", i);
     write_image(dir / "color" / name, color);
+    if (o.stereo) write_image(dir / "color2" / name, stereo_color);
     write_image(dir / "depth" / name, quantise_depth(depth, o.depth_scale));
     for (std::size_t k = 0; k < objects_.size(); ++k)
       pose_files[k] << row_major(camera_T_world * world_T_objects[k], " ") << "\n";

@@ -43,7 +43,8 @@ struct SequenceObject {
 ///
 /// Layouts, detected from the files in the folder (in this order):
 ///  * "icgp" — `sequence.yaml` (see SequenceWriter): color/%06d.png, depth/%06d.png
-///    (uint16, Z = value * depth_scale), ground truth poses/<object>.txt.
+///    (uint16, Z = value * depth_scale), ground truth poses/<object>.txt; when the YAML has
+///    stereo_camera and stereo_T_color, a second colour camera's color2/%06d.png.
 ///  * "visp-blender" — images/%04d.jpg from 0001, depth/Image%04d.exr (channel 0 = Z),
 ///    ground truth camera_poses/Camera_%03d.txt (cMo, 4x4) named after the single
 ///    top-level .cao file, depth_M_color.txt.
@@ -60,7 +61,9 @@ struct SequenceObject {
 ///
 /// Frames: colour camera "Camera1" (the reference, identity pose), depth camera "Camera2"
 /// with camera_T_reference = depth_T_color, depth CV_32F metres with 0 where there is no
-/// valid measurement (0, NaN, inf, or > max_depth). Every bad input throws
+/// valid measurement (0, NaN, inf, or > max_depth); in a stereo sequence a second colour
+/// camera "Camera3" after "Camera1" in Frame::colors, with camera_T_reference =
+/// stereo_T_color (grey too with grey_without_depth). Every bad input throws
 /// std::runtime_error naming the file and what was expected.
 class Sequence {
  public:
@@ -75,6 +78,12 @@ class Sequence {
   const Intrinsics& depth_intrinsics() const { return depth_intrinsics_; }
   /// Colour camera -> depth camera (ViSP depth_M_color).
   const Pose& depth_T_color() const { return depth_T_color_; }
+  /// Whether frames have the second colour camera "Camera3" (icgp layout with color2/).
+  bool has_stereo() const { return has_stereo_; }
+  /// Its calibration and pose (colour camera -> stereo camera, ViSP c3_M_c1); only
+  /// meaningful with has_stereo().
+  const Intrinsics& stereo_intrinsics() const { return stereo_intrinsics_; }
+  const Pose& stereo_T_color() const { return stereo_T_color_; }
   const std::vector<SequenceObject>& objects() const { return objects_; }
   bool has_ground_truth() const { return has_ground_truth_; }
 
@@ -97,6 +106,9 @@ class Sequence {
   Intrinsics color_intrinsics_;
   Intrinsics depth_intrinsics_;
   Pose depth_T_color_;
+  bool has_stereo_ = false;
+  Intrinsics stereo_intrinsics_;
+  Pose stereo_T_color_;
   std::vector<SequenceObject> objects_;
   bool has_ground_truth_ = false;
   std::shared_ptr<const Layout> files_;

@@ -105,6 +105,13 @@ struct SequenceWriterOptions {
   Intrinsics color_intrinsics;  ///< required: size and calibration of the colour images
   Intrinsics depth_intrinsics;  ///< required: size and calibration of the depth images
   Pose depth_T_color;           ///< colour camera -> depth camera
+  /// An optional second colour camera, a stereo pair with the first: rendered exactly as
+  /// the colour camera is (same background, lighting, noise model, antialiasing and motion
+  /// blur) from stereo_T_color * color_T_world, written to color2/. Off: the sequence is
+  /// byte-identical to one written without these fields.
+  bool stereo = false;
+  Intrinsics stereo_intrinsics;  ///< required when `stereo`: size and calibration of color2/
+  Pose stereo_T_color;           ///< colour camera -> stereo camera (ViSP c2_M_c1)
   /// Metres per unit of the 16-bit depth PNGs. 0.1 mm quantises Z to within 0.05 mm, far
   /// below real sensor noise and the tracker's sub-millimetre target, while 16 bits still
   /// reach 6.5 m; depth beyond 65535 units is stored as 0 (out of range, as on a sensor).
@@ -125,12 +132,16 @@ struct SequenceWriterOptions {
 ///   sequence.yaml       format, frame count and rate, depth_scale, both cameras'
 ///                       intrinsics and image sizes, depth_T_color, object names and meshes
 ///   color/%06d.png      8-bit BGR, from 000000 (lossless, so added noise is kept exactly)
+///   color2/%06d.png     with `stereo`: the second colour camera's images, same format;
+///                       sequence.yaml then also records stereo_camera and stereo_T_color
 ///   depth/%06d.png      16-bit, Z = value * depth_scale metres, 0 = no measurement
 ///   poses/<object>.txt  one line per frame: color_T_object (cMo), 16 numbers row-major,
 ///                       each in the shortest decimal form that reads back bit-exactly
 ///
 /// The colour camera follows OrbitTrajectory(motion, seed); depth is rendered with the
-/// depth intrinsics at depth_T_color * color_T_world. The same options and seed give
+/// depth intrinsics at depth_T_color * color_T_world, the stereo camera's colour at
+/// stereo_T_color * color_T_world (its noise from a generator stream of its own, so adding
+/// it changes none of the other files). The same options and seed give
 /// byte-identical files (own random generators, independent of the standard library's
 /// distributions); changing the noise does not change the trajectory or background.
 class SequenceWriter {
