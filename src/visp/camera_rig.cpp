@@ -40,7 +40,7 @@ CameraRig::CameraRig(const std::vector<std::string>& names, const std::vector<in
     if (!cameras_.emplace(names[i], Camera{types[i]}).second)
       throw vpException(vpException::badValue, "vpMbIcgTracker: camera '" + names[i] + "' is named twice");
   }
-  reference_ = names.front();
+  reference_ = cameras_.begin()->first;  // as ViSP: the first of its sorted map
 }
 
 void CameraRig::set_reference(const std::string& name) {

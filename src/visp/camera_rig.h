@@ -33,7 +33,8 @@ class CameraRig {
   /// ViSP's names for n cameras: "Camera" for one, "Camera1" ... "CameraN" otherwise.
   static std::vector<std::string> visp_names(std::size_t n);
 
-  /// Cameras `names` with `types`; the first name is the reference camera.
+  /// Cameras `names` with `types`; the reference camera is the first name in sorted order,
+  /// as in ViSP ("Camera" or "Camera1" for its own names).
   CameraRig(const std::vector<std::string>& names, const std::vector<int>& types);
 
   const std::string& reference() const { return reference_; }

@@ -30,19 +30,17 @@ void require_file(const std::string& path, const std::string& what) {
     throw vpException(vpException::ioError, "vpMbIcgTracker: " + what + " '" + path + "' does not exist");
 }
 
-/// The <camera> block of a ViSP tracker XML file, read by ViSP's own parser. The parser
-/// reads <camera> only for the cue types: PROJECTION_ERROR_PARSER alone skips it and leaves
-/// ViSP's default camera (600, 600, 192, 144).
-vpCameraParameters camera_of_visp_xml(const std::string& path, bool verbose) {
+/// A ViSP tracker XML file read by ViSP's own parser, for every cue type: the parser reads
+/// <camera> only for them (PROJECTION_ERROR_PARSER alone skips it and leaves ViSP's default
+/// camera, 600, 600, 192, 144).
+std::unique_ptr<vpMbtXmlGenericParser> parse_visp_xml(const std::string& path, bool verbose) {
   require_file(path, "configuration file");
-  vpMbtXmlGenericParser parser(static_cast<vpMbtXmlGenericParser::vpParserType>(
+  auto parser = std::make_unique<vpMbtXmlGenericParser>(static_cast<vpMbtXmlGenericParser::vpParserType>(
       vpMbtXmlGenericParser::EDGE_PARSER | vpMbtXmlGenericParser::KLT_PARSER |
       vpMbtXmlGenericParser::DEPTH_NORMAL_PARSER | vpMbtXmlGenericParser::DEPTH_DENSE_PARSER));
-  parser.setVerbose(verbose);
-  parser.parse(path);
-  vpCameraParameters camera;
-  parser.getCameraParameters(camera);
-  return camera;
+  parser->setVerbose(verbose);
+  parser->parse(path);
+  return parser;
 }
 
 icgp::Mesh load_model_file(const std::string& path, const vpHomogeneousMatrix& T) {
@@ -117,8 +115,14 @@ void vpMbIcgTracker::loadConfigFile(const std::map<std::string, std::string>& ma
       }
       if (verbose) std::cout << "vpMbIcgTracker: parameters from " << file << "\n";
     } else if (extension == ".xml") {
-      setCameraParameters(std::map<std::string, vpCameraParameters>{{camera, camera_of_visp_xml(file, verbose)}});
-      if (verbose) std::cout << "vpMbIcgTracker: camera \"" << camera << "\" from " << file << "\n";
+      const std::unique_ptr<vpMbtXmlGenericParser> parser = parse_visp_xml(file, verbose);
+      vpCameraParameters parameters;
+      parser->getCameraParameters(parameters);
+      setCameraParameters(std::map<std::string, vpCameraParameters>{{camera, parameters}});
+      store_visp_xml_settings(camera, *parser);
+      if (verbose)
+        std::cout << "vpMbIcgTracker: camera \"" << camera << "\" from " << file
+                  << " (its settings of ViSP's own cues are kept for their getters only)\n";
     } else {
       throw vpException(vpException::badValue, "vpMbIcgTracker::loadConfigFile: '" + file +
                                                    "' must be icgp's YAML (.yaml, .yml) or a ViSP tracker XML (.xml)");
@@ -212,6 +216,18 @@ void vpMbIcgTracker::loadModel(const std::map<std::string, std::string>& mapOfMo
   loadModel(main->second, verbose, transform(main->first));
 }
 
+namespace {
+
+/// Every camera named in the maps is one of the rig's (checked before anything changes).
+template <typename... Maps>
+void require_known_cameras(const icgp::CameraRig& rig, const std::string& call, const Maps&... maps) {
+  (..., [&] {
+    for (const auto& entry : maps) rig.at(entry.first, call);
+  }());
+}
+
+}  // namespace
+
 void vpMbIcgTracker::clear_model() {
   impl_->mesh = icgp::Mesh();
   impl_->has_visp_model_part = false;
@@ -258,6 +274,7 @@ void vpMbIcgTracker::reInitModel(const std::map<std::string, const vpImage<unsig
                                  const std::map<std::string, std::string>& mapOfModelFiles,
                                  const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses, bool verbose,
                                  const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  require_known_cameras(impl_->rig, "reInitModel", mapOfImages, mapOfModelFiles, mapOfCameraPoses, mapOfT);
   clear_model();
   loadModel(mapOfModelFiles, verbose, mapOfT);
   initFromPose(mapOfImages, mapOfCameraPoses);
@@ -267,6 +284,7 @@ void vpMbIcgTracker::reInitModel(const std::map<std::string, const vpImage<vpRGB
                                  const std::map<std::string, std::string>& mapOfModelFiles,
                                  const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses, bool verbose,
                                  const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  require_known_cameras(impl_->rig, "reInitModel", mapOfColorImages, mapOfModelFiles, mapOfCameraPoses, mapOfT);
   clear_model();
   loadModel(mapOfModelFiles, verbose, mapOfT);
   initFromPose(mapOfColorImages, mapOfCameraPoses);
@@ -401,7 +419,7 @@ template <typename Image>
 void vpMbIcgTracker::init_from_poses(const std::map<std::string, const Image*>& images,
                                      const std::map<std::string, vpHomogeneousMatrix>& poses,
                                      const std::string& call) {
-  for (const auto& [camera, image] : images) impl_->rig.at(camera, call);
+  require_known_cameras(impl_->rig, call, images, poses);
   // As ViSP: the reference camera's pose if given, else the first camera's, moved into it.
   auto it = poses.find(impl_->rig.reference());
   if (it == poses.end()) it = poses.begin();
@@ -413,6 +431,7 @@ void vpMbIcgTracker::init_from_poses(const std::map<std::string, const Image*>& 
 template <typename Image>
 void vpMbIcgTracker::init_from_pose_files(const std::map<std::string, const Image*>& images,
                                           const std::map<std::string, std::string>& files, const std::string& call) {
+  require_known_cameras(impl_->rig, call, images, files);
   auto it = files.find(impl_->rig.reference());
   if (it == files.end()) it = files.begin();
   if (it == files.end()) throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no pose file given");
@@ -603,13 +622,17 @@ void vpMbIcgTracker::setPose(const vpImage<vpRGBa>& I_color, const vpHomogeneous
 void vpMbIcgTracker::setPose(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
                              const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo) {
   impl_->require_initialised("setPose");
-  initFromPose(I1, I2, c1Mo, c2Mo);
+  const auto [first, second] = impl_->rig.pair("setPose");
+  init_from_poses(std::map<std::string, const vpImage<unsigned char>*>{{first, &I1}, {second, &I2}},
+                  {{first, c1Mo}, {second, c2Mo}}, "setPose");
 }
 
 void vpMbIcgTracker::setPose(const vpImage<vpRGBa>& I_color1, const vpImage<vpRGBa>& I_color2,
                              const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo) {
   impl_->require_initialised("setPose");
-  initFromPose(I_color1, I_color2, c1Mo, c2Mo);
+  const auto [first, second] = impl_->rig.pair("setPose");
+  init_from_poses(std::map<std::string, const vpImage<vpRGBa>*>{{first, &I_color1}, {second, &I_color2}},
+                  {{first, c1Mo}, {second, c2Mo}}, "setPose");
 }
 
 void vpMbIcgTracker::setPose(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,

@@ -88,20 +88,33 @@ void vpMbIcgTracker::display(const vpImage<vpRGBa>& I, const vpHomogeneousMatrix
   if (displayFeatures) draw_features(I, getFeaturesForDisplay(), thickness);
 }
 
+// As vpMbGenericTracker's TrackerWrapper::display, each camera's image gets the model and
+// that camera's own features (the single-image forms above draw the reference camera's).
+
 void vpMbIcgTracker::display(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
                              const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo,
                              const vpCameraParameters& cam1, const vpCameraParameters& cam2, const vpColor& color,
                              unsigned int thickness, bool displayFullModel) {
-  display(I1, c1Mo, cam1, color, thickness, displayFullModel);
-  display(I2, c2Mo, cam2, color, thickness, displayFullModel);
+  const auto [first, second] = impl_->rig.pair("display");
+  draw_lines(I1, getModelForDisplay(I1.getWidth(), I1.getHeight(), c1Mo, cam1, displayFullModel), color, thickness);
+  draw_lines(I2, getModelForDisplay(I2.getWidth(), I2.getHeight(), c2Mo, cam2, displayFullModel), color, thickness);
+  if (displayFeatures) {
+    draw_features(I1, features_for_display(first), thickness);
+    draw_features(I2, features_for_display(second), thickness);
+  }
 }
 
 void vpMbIcgTracker::display(const vpImage<vpRGBa>& I1, const vpImage<vpRGBa>& I2, const vpHomogeneousMatrix& c1Mo,
                              const vpHomogeneousMatrix& c2Mo, const vpCameraParameters& cam1,
                              const vpCameraParameters& cam2, const vpColor& color, unsigned int thickness,
                              bool displayFullModel) {
-  display(I1, c1Mo, cam1, color, thickness, displayFullModel);
-  display(I2, c2Mo, cam2, color, thickness, displayFullModel);
+  const auto [first, second] = impl_->rig.pair("display");
+  draw_lines(I1, getModelForDisplay(I1.getWidth(), I1.getHeight(), c1Mo, cam1, displayFullModel), color, thickness);
+  draw_lines(I2, getModelForDisplay(I2.getWidth(), I2.getHeight(), c2Mo, cam2, displayFullModel), color, thickness);
+  if (displayFeatures) {
+    draw_features(I1, features_for_display(first), thickness);
+    draw_features(I2, features_for_display(second), thickness);
+  }
 }
 
 namespace {
@@ -114,7 +127,7 @@ void display_each(const std::map<std::string, const Image*>& images,
   for (const auto& [name, image] : images) {
     const auto pose = poses.find(name);
     const auto camera = cameras.find(name);
-    if (image && pose != poses.end() && camera != cameras.end()) draw(*image, pose->second, camera->second);
+    if (image && pose != poses.end() && camera != cameras.end()) draw(name, *image, pose->second, camera->second);
   }
 }
 
@@ -126,8 +139,11 @@ void vpMbIcgTracker::display(const std::map<std::string, const vpImage<unsigned 
                              const vpColor& col, unsigned int thickness, bool displayFullModel) {
   for (const auto& [name, image] : mapOfImages) impl_->rig.at(name, "display");
   display_each(mapOfImages, mapOfCameraPoses, mapOfCameraParameters,
-               [&](const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cMo, const vpCameraParameters& cam) {
-                 display(I, cMo, cam, col, thickness, displayFullModel);
+               [&](const std::string& name, const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cMo,
+                   const vpCameraParameters& cam) {
+                 draw_lines(I, getModelForDisplay(I.getWidth(), I.getHeight(), cMo, cam, displayFullModel), col,
+                            thickness);
+                 if (displayFeatures) draw_features(I, features_for_display(name), thickness);
                });
 }
 
@@ -137,7 +153,10 @@ void vpMbIcgTracker::display(const std::map<std::string, const vpImage<vpRGBa>*>
                              const vpColor& col, unsigned int thickness, bool displayFullModel) {
   for (const auto& [name, image] : mapOfImages) impl_->rig.at(name, "display");
   display_each(mapOfImages, mapOfCameraPoses, mapOfCameraParameters,
-               [&](const vpImage<vpRGBa>& I, const vpHomogeneousMatrix& cMo, const vpCameraParameters& cam) {
-                 display(I, cMo, cam, col, thickness, displayFullModel);
+               [&](const std::string& name, const vpImage<vpRGBa>& I, const vpHomogeneousMatrix& cMo,
+                   const vpCameraParameters& cam) {
+                 draw_lines(I, getModelForDisplay(I.getWidth(), I.getHeight(), cMo, cam, displayFullModel), col,
+                            thickness);
+                 if (displayFeatures) draw_features(I, features_for_display(name), thickness);
                });
 }

@@ -32,6 +32,9 @@ struct vpMbIcgTracker::Impl {
   bool start_pending = false;
 
   icgp::FrameAssembler assembler;
+  /// Channels of each camera's last image (1 grey, 3 colour): the colour statistics of the
+  /// region cue are of one kind, so a switch restarts the cues at the current pose.
+  std::map<std::string, int> image_channels;
   double quality = 0.0;
   std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
 
@@ -41,7 +44,7 @@ struct vpMbIcgTracker::Impl {
     std::map<std::string, vpMe> moving_edges;
     std::map<std::string, vpKltOpencv> klts;
     std::map<std::string, unsigned int> klt_mask_borders, clipping_flags;
-    double klt_threshold_acceptation = 0.0;
+    double klt_threshold_acceptation = 0.5;  ///< ViSP's default
     double good_moving_edges_ratio = 0.4;  ///< ViSP's default
   } visp;
   std::list<vpMbtDistanceCircle*> no_circles;
@@ -91,7 +94,9 @@ struct DepthInput {
 /// sensor's cloud de-projected with its distortion). A 9 x 9 grid of pixels, corners and
 /// edges included where distortion is largest, decides; 0.05 px is far below what lens
 /// distortion moves an edge pixel.
-inline void read_cloud(DepthInput& depth, FrameAssembler::PointReader point_at, const vpCameraParameters& camera) {
+/// `depth_at` reads Z alone, faster than the whole point.
+inline void read_cloud(DepthInput& depth, FrameAssembler::PointReader point_at, FrameAssembler::DepthReader depth_at,
+                       const vpCameraParameters& camera) {
   constexpr int kGrid = 9;
   bool pinhole = true;
   for (int i = 0; i < kGrid && pinhole; ++i)
@@ -105,7 +110,7 @@ inline void read_cloud(DepthInput& depth, FrameAssembler::PointReader point_at, 
       pinhole = std::abs(u - col) <= 0.05 && std::abs(v - row) <= 0.05;
     }
   if (pinhole)
-    depth.depth = [point_at](int row, int col) { return point_at(row, col).z(); };
+    depth.depth = std::move(depth_at);
   else
     depth.points = std::move(point_at);
 }

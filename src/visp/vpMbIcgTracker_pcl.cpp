@@ -33,7 +33,10 @@ icgp::visp_detail::DepthInput depth_of_cloud(const std::string& camera, const st
   if (!cloud) throw vpException(vpException::badValue, "vpMbIcgTracker::track: the point cloud of camera '" + camera + "' is null");
   require_organised(*cloud, camera);
   icgp::visp_detail::DepthInput depth{camera, cloud->width, cloud->height};
-  icgp::visp_detail::read_cloud(depth, [cloud](int row, int col) { return cloud_point(*cloud, row, col); }, parameters);
+  icgp::visp_detail::read_cloud(
+      depth, [cloud](int row, int col) { return cloud_point(*cloud, row, col); },
+      [cloud](int row, int col) { return cloud->points[static_cast<std::size_t>(row) * cloud->width + col].z; },
+      parameters);
   return depth;
 }
 

@@ -2,6 +2,10 @@
 // vpMbIcgTracker: the settings of ViSP's own cues (moving edges, KLT, depth features,
 // visibility, clipping). Each is stored for its getter; where icgp has a parameter of that
 // meaning it is set, otherwise the first call says once on std::cerr that it has no effect.
+#include <visp3/core/vpPolygon3D.h>
+
+#include <visp3/mbt/vpMbtXmlGenericParser.h>
+
 #include "vpMbIcgTracker_impl.h"
 
 namespace {
@@ -19,7 +23,56 @@ std::map<std::string, T> as_map(const std::pair<std::string, std::string>& camer
   return {{cameras.first, first}, {cameras.second, second}};
 }
 
+/// A camera's clipping flags: as set, else vpMbGenericTracker's default (none).
+unsigned int clipping_flags_of(const std::map<std::string, unsigned int>& flags, const std::string& camera) {
+  const auto it = flags.find(camera);
+  return it == flags.end() ? static_cast<unsigned int>(vpPolygon3D::NO_CLIPPING) : it->second;
+}
+
+/// vpMbKltTracker's KLT settings, what vpMbGenericTracker::getKltOpencv returns before any
+/// setKltOpencv.
+vpKltOpencv visp_default_klt() {
+  vpKltOpencv klt;
+  klt.setTrackerId(1);
+  klt.setUseHarris(1);
+  klt.setMaxFeatures(10000);
+  klt.setWindowSize(5);
+  klt.setQuality(0.01);
+  klt.setMinDistance(5);
+  klt.setHarrisFreeParameter(0.01);
+  klt.setBlockSize(3);
+  klt.setPyramidLevels(3);
+  return klt;
+}
+
 }  // namespace
+
+void vpMbIcgTracker::store_visp_xml_settings(const std::string& camera, const vpMbtXmlGenericParser& parser) {
+  // What vpMbGenericTracker's loadConfigFile sets from <ecm>, <klt> and <face>, quietly:
+  // loading ViSP's files is the expected way in, none of it changes icgp's cues.
+  Impl::VispSettings& s = impl_->visp;
+  parser.getEdgeMe(s.moving_edges[camera]);
+  vpKltOpencv klt = visp_default_klt();
+  klt.setMaxFeatures(static_cast<int>(parser.getKltMaxFeatures()));
+  klt.setWindowSize(static_cast<int>(parser.getKltWindowSize()));
+  klt.setQuality(parser.getKltQuality());
+  klt.setMinDistance(parser.getKltMinDistance());
+  klt.setHarrisFreeParameter(parser.getKltHarrisParam());
+  klt.setBlockSize(static_cast<int>(parser.getKltBlockSize()));
+  klt.setPyramidLevels(static_cast<int>(parser.getKltPyramidLevels()));
+  s.klts[camera] = klt;
+  s.klt_mask_borders[camera] = parser.getKltMaskBorder();
+  unsigned int& flags = s.clipping_flags[camera];
+  if (parser.hasNearClippingDistance()) flags |= vpPolygon3D::NEAR_CLIPPING;
+  if (parser.hasFarClippingDistance()) flags |= vpPolygon3D::FAR_CLIPPING;
+  if (parser.getFovClipping()) flags |= vpPolygon3D::FOV_CLIPPING;
+  if (camera != impl_->rig.reference()) return;
+  // As vpMbGenericTracker: the reference camera's angles and clipping flags become
+  // vpMbTracker's own; its clipping distances do not.
+  vpMbTracker::setAngleAppear(vpMath::rad(parser.getAngleAppear()));
+  vpMbTracker::setAngleDisappear(vpMath::rad(parser.getAngleDisappear()));
+  vpMbTracker::setClipping(flags);
+}
 
 // --------------------------------------------------------------- visibility and clipping
 
@@ -86,15 +139,21 @@ void vpMbIcgTracker::getClipping(unsigned int& clippingFlag1, unsigned int& clip
 
 void vpMbIcgTracker::getClipping(std::map<std::string, unsigned int>& mapOfClippingFlags) const {
   mapOfClippingFlags.clear();
-  for (const std::string& camera : impl_->rig.names()) {
-    const auto it = impl_->visp.clipping_flags.find(camera);
-    mapOfClippingFlags[camera] = it == impl_->visp.clipping_flags.end() ? getClipping() : it->second;
-  }
+  for (const std::string& camera : impl_->rig.names())
+    mapOfClippingFlags[camera] = clipping_flags_of(impl_->visp.clipping_flags, camera);
 }
 
+// As in vpMbGenericTracker, a near or far distance a camera accepts adds NEAR_CLIPPING or
+// FAR_CLIPPING to that camera's flags; vpMbTracker's rule refuses a negative distance and a
+// near distance at or beyond the far one (or a far one at or before the near one). The
+// reference camera's distances are vpMbTracker's; the other cameras' are not kept, so
+// their distances are checked against the reference camera's (the same when, as usual,
+// every camera is given the same distances).
+
 void vpMbIcgTracker::setNearClippingDistance(const double& dist) {
-  vpMbTracker::setNearClippingDistance(dist);
-  impl_->report_without_effect("setNearClippingDistance", kVisibility);
+  std::map<std::string, double> all;
+  for (const std::string& camera : impl_->rig.names()) all[camera] = dist;
+  setNearClippingDistance(all);
 }
 
 void vpMbIcgTracker::setNearClippingDistance(const double& dist1, const double& dist2) {
@@ -102,16 +161,21 @@ void vpMbIcgTracker::setNearClippingDistance(const double& dist1, const double& 
 }
 
 void vpMbIcgTracker::setNearClippingDistance(const std::map<std::string, double>& mapOfDists) {
+  for (const auto& [camera, dist] : mapOfDists) impl_->rig.at(camera, "setNearClippingDistance");
   for (const auto& [camera, dist] : mapOfDists) {
-    impl_->rig.at(camera, "setNearClippingDistance");
-    if (camera == impl_->rig.reference()) setNearClippingDistance(dist);
+    unsigned int& flags = impl_->visp.clipping_flags[camera];  // NO_CLIPPING when new
+    const bool far_set = (flags & vpPolygon3D::FAR_CLIPPING) != 0;
+    if (dist >= 0.0 && !(far_set && dist >= getFarClippingDistance())) flags |= vpPolygon3D::NEAR_CLIPPING;
   }
+  const auto reference = mapOfDists.find(impl_->rig.reference());
+  if (reference != mapOfDists.end()) vpMbTracker::setNearClippingDistance(reference->second);
   impl_->report_without_effect("setNearClippingDistance", kVisibility);
 }
 
 void vpMbIcgTracker::setFarClippingDistance(const double& dist) {
-  vpMbTracker::setFarClippingDistance(dist);
-  impl_->report_without_effect("setFarClippingDistance", kVisibility);
+  std::map<std::string, double> all;
+  for (const std::string& camera : impl_->rig.names()) all[camera] = dist;
+  setFarClippingDistance(all);
 }
 
 void vpMbIcgTracker::setFarClippingDistance(const double& dist1, const double& dist2) {
@@ -119,10 +183,14 @@ void vpMbIcgTracker::setFarClippingDistance(const double& dist1, const double& d
 }
 
 void vpMbIcgTracker::setFarClippingDistance(const std::map<std::string, double>& mapOfClippingDists) {
+  for (const auto& [camera, dist] : mapOfClippingDists) impl_->rig.at(camera, "setFarClippingDistance");
   for (const auto& [camera, dist] : mapOfClippingDists) {
-    impl_->rig.at(camera, "setFarClippingDistance");
-    if (camera == impl_->rig.reference()) setFarClippingDistance(dist);
+    unsigned int& flags = impl_->visp.clipping_flags[camera];
+    const bool near_set = (flags & vpPolygon3D::NEAR_CLIPPING) != 0;
+    if (dist >= 0.0 && !(near_set && dist <= getNearClippingDistance())) flags |= vpPolygon3D::FAR_CLIPPING;
   }
+  const auto reference = mapOfClippingDists.find(impl_->rig.reference());
+  if (reference != mapOfClippingDists.end()) vpMbTracker::setFarClippingDistance(reference->second);
   impl_->report_without_effect("setFarClippingDistance", kVisibility);
 }
 
@@ -223,11 +291,12 @@ void vpMbIcgTracker::setKltOpencv(const std::map<std::string, vpKltOpencv>& mapO
     impl_->rig.at(camera, "setKltOpencv");
     impl_->visp.klts[camera] = klt;
   }
+  if (mapOfKlts.empty()) return;
   // The one KLT setting with an icgp meaning: how many keypoints to detect. The texture
   // cue's parameters are shared by every camera; the reference camera's count wins.
   const auto reference = mapOfKlts.find(impl_->rig.reference());
   const auto& klt = reference != mapOfKlts.end() ? reference->second : mapOfKlts.begin()->second;
-  if (!mapOfKlts.empty() && klt.getMaxFeatures() > 0 && klt.getMaxFeatures() != impl_->config.texture.orb_n_features) {
+  if (klt.getMaxFeatures() > 0 && klt.getMaxFeatures() != impl_->config.texture.orb_n_features) {
     icgp::TrackerConfig config = impl_->config;
     config.texture.orb_n_features = klt.getMaxFeatures();
     setTrackerConfig(config);
@@ -236,7 +305,7 @@ void vpMbIcgTracker::setKltOpencv(const std::map<std::string, vpKltOpencv>& mapO
 
 vpKltOpencv vpMbIcgTracker::getKltOpencv() const {
   const auto it = impl_->visp.klts.find(impl_->rig.reference());
-  return it == impl_->visp.klts.end() ? vpKltOpencv() : it->second;
+  return it == impl_->visp.klts.end() ? visp_default_klt() : it->second;
 }
 
 void vpMbIcgTracker::getKltOpencv(vpKltOpencv& klt1, vpKltOpencv& klt2) const {
@@ -251,7 +320,7 @@ void vpMbIcgTracker::getKltOpencv(std::map<std::string, vpKltOpencv>& mapOfKlts)
   mapOfKlts.clear();
   for (const std::string& camera : impl_->rig.names()) {
     const auto it = impl_->visp.klts.find(camera);
-    mapOfKlts[camera] = it == impl_->visp.klts.end() ? vpKltOpencv() : it->second;
+    mapOfKlts[camera] = it == impl_->visp.klts.end() ? visp_default_klt() : it->second;
   }
 }
 

@@ -18,6 +18,14 @@ void vpMbIcgTracker::track_frame(const std::map<std::string, const Image*>& imag
                                  const std::vector<DepthInput>& depths, const std::string& call) {
   Impl& d = *impl_;
   d.require_initialised(call);
+  const vpImage<unsigned char>* reference_grey = guarded(call, [&] { return assemble_frame(images, depths, call); });
+  track_step(reference_grey, call);
+}
+
+template <typename Image>
+const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std::string, const Image*>& images,
+                                    const std::vector<DepthInput>& depths, const std::string& call) {
+  Impl& d = *impl_;
   const icgp::CameraRig& rig = d.rig;
   const std::vector<std::string>& modalities = d.config.modalities;
   d.assembler.begin_frame();
@@ -27,6 +35,12 @@ void vpMbIcgTracker::track_frame(const std::map<std::string, const Image*>& imag
     // ViSP programs also pass a depth camera's image: only colour cues read one.
     if (!image || !rig.reads_color(name, modalities)) continue;
     d.assembler.set_color(name, *image, camera.parameters, camera.parameters_set, camera.camera_M_reference);
+    const int channels = std::is_same_v<Image, vpImage<unsigned char>> ? 1 : 3;
+    const auto [last, first_image] = d.image_channels.emplace(name, channels);
+    if (!first_image && last->second != channels) {
+      last->second = channels;
+      d.start_pending = true;  // ViSP takes grey or colour on any frame
+    }
     if constexpr (std::is_same_v<Image, vpImage<unsigned char>>)
       if (name == rig.reference()) reference_grey = image;
   }
@@ -58,7 +72,7 @@ void vpMbIcgTracker::track_frame(const std::map<std::string, const Image*>& imag
                       "vpMbIcgTracker::" + call + ": nothing to track: the tracker's cues read depth only, and this "
                                                   "call gives none (track with the maps of point clouds, or with a raw "
                                                   "depth image)");
-  track_step(reference_grey, call);
+  return reference_grey;
 }
 
 template void vpMbIcgTracker::track_frame(const std::map<std::string, const vpImage<unsigned char>*>&,
@@ -161,7 +175,12 @@ void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& imag
                                                    " (an organised cloud has one point per pixel)");
     const unsigned int width = depth.width;
     icgp::visp_detail::read_cloud(
-        depth, [cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); }, camera.parameters);
+        depth, [cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); },
+        [cloud, width](int row, int col) {
+          const vpColVector& point = (*cloud)[static_cast<std::size_t>(row) * width + col];
+          return point.size() >= 3 ? static_cast<float>(point[2]) : 0.f;
+        },
+        camera.parameters);
     depths.push_back(std::move(depth));
   }
   track_frame(images, depths, "track");

@@ -36,6 +36,7 @@ class PointCloud;
 namespace icgp::visp_detail {
 struct DepthInput;
 }  // namespace icgp::visp_detail
+class vpMbtXmlGenericParser;
 
 /*!
   The ICG+ tracker (region, depth and texture cues fused in one regularised Newton
@@ -46,7 +47,8 @@ struct DepthInput;
   Cameras are vpMbGenericTracker's: named, each with tracker types that say which cues
   read it, EDGE_TRACKER → region (the contour), KLT_TRACKER → texture (keypoints),
   DEPTH_NORMAL_TRACKER or DEPTH_DENSE_TRACKER → depth. The cues of every camera are fused
-  in one Newton step; cMo is the reference camera's (the first name, as in ViSP), the
+  in one Newton step; cMo is the reference camera's (the first name in sorted order, as
+  in ViSP), the
   others placed with setCameraTransformationMatrix (c_M_reference). The default
   constructor gives one camera "Camera" with every cue (ICG+ on a colour image, and on a
   registered depth image when one is given); vpMbIcgTracker({EDGE_TRACKER | KLT_TRACKER,
@@ -493,6 +495,10 @@ class vpMbIcgTracker : public vpMbTracker {
   template <typename Image>
   void track_frame(const std::map<std::string, const Image*>& images, const std::vector<DepthInput>& depths,
                    const std::string& call);
+  /// The frame's images and depth by camera; the reference camera's grey image, if given.
+  template <typename Image>
+  const vpImage<unsigned char>* assemble_frame(const std::map<std::string, const Image*>& images,
+                                               const std::vector<DepthInput>& depths, const std::string& call);
   template <typename Image>
   void init_from_poses(const std::map<std::string, const Image*>& images,
                        const std::map<std::string, vpHomogeneousMatrix>& poses, const std::string& call);
@@ -518,6 +524,8 @@ class vpMbIcgTracker : public vpMbTracker {
   unsigned int depth_feature_count(int type) const;
   /// ViSP's getFeaturesForDisplay format for one camera.
   std::vector<std::vector<double>> features_for_display(const std::string& camera) const;
+  /// Keeps a ViSP XML file's settings of ViSP's own cues for their getters.
+  void store_visp_xml_settings(const std::string& camera, const vpMbtXmlGenericParser& parser);
   /// Forgets the model (reInitModel loads another).
   void clear_model();
   std::unique_ptr<Impl> impl_;

@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// vpMbIcgTracker's cameras as vpMbGenericTracker's: named and typed as its constructors do,
+// depth-only rigs that need no colour image, colour cues that need one, ViSP's pixel mask,
+// and one object described by different model files for different cameras.
+#include <catch2/catch.hpp>
+#include <visp3/core/vpException.h>
+#include <visp3/mbt/vpMbGenericTracker.h>
+
+#include "icgp/eval/metrics.h"
+#include "icgp/visp/conversions.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
+#include "vpmbicgtracker_test_setup.h"
+
+using namespace icgp;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const std::string kTeaboxCao = (test::kTeaboxBlender / "teabox.cao").string();
+const std::filesystem::path kRealsenseModels =
+    std::filesystem::path(ICGP_TEST_DATA_DIR) / "realsense-cube" / "models" / "teabox";
+
+template <class Call>
+vpException vp_exception_of(Call&& call) {
+  try {
+    call();
+  } catch (const vpException& e) {
+    return e;
+  }
+  FAIL("no exception was thrown");
+  return vpException(vpException::fatalError, "");
+}
+
+/// The depth camera's organised cloud of a frame, in ViSP's map form under `camera`.
+struct CloudMaps {
+  std::map<std::string, const std::vector<vpColVector>*> clouds;
+  std::map<std::string, unsigned int> widths, heights;
+
+  CloudMaps(const std::string& camera, const VispRgbdFrame& input)
+      : clouds{{camera, &input.point_cloud}},
+        widths{{camera, input.depth_width}},
+        heights{{camera, input.depth_height}} {}
+};
+
+}  // namespace
+
+TEST_CASE("vpMbIcgTracker tracks depth alone with one camera under ViSP's default name \"Camera\"") {
+  const std::vector<Frame> frames = test::teabox_frames(8);
+  const DepthImage& depth = frames.front().depths.front();
+  vpMbIcgTracker tracker(1, vpMbIcgTracker::DEPTH_DENSE_TRACKER);
+  CHECK(tracker.getCameraNames() == vpMbGenericTracker(1, vpMbGenericTracker::DEPTH_DENSE_TRACKER).getCameraNames());
+  test::configure_for_tests(tracker);
+  tracker.loadModel(kTeaboxCao);
+  tracker.setCameraParameters(to_camera_parameters(depth.intrinsics));
+  // The depth camera is the reference: its pose of the object is depth_M_color * cMo.
+  const vpHomogeneousMatrix depth_M_color = to_homogeneous_matrix(depth.camera_T_reference);
+  tracker.initFromPose(vpImage<unsigned char>(), depth_M_color * to_homogeneous_matrix(*frames.front().truth()));
+  VispRgbdFrame input;
+  std::map<std::string, const vpImage<unsigned char>*> no_images;
+  for (const Frame& frame : frames) {
+    input.convert(frame);
+    CloudMaps maps("Camera", input);
+    REQUIRE_NOTHROW(tracker.track(no_images, maps.clouds, maps.widths, maps.heights));
+    const Pose depth_T_object = depth.camera_T_reference * *frame.truth();
+    INFO("frame " << frame.index);
+    CHECK(translation_error_mm(to_pose(tracker.getPose()), depth_T_object) < 0.5);
+    CHECK(rotation_error_deg(to_pose(tracker.getPose()), depth_T_object) < 0.3);
+  }
+}
+
+TEST_CASE("vpMbIcgTracker: an RGB-D rig configured for the depth cue alone tracks without a colour image") {
+  const std::vector<Frame> frames = test::teabox_frames(6);
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
+  test::configure_for_tests(tracker);
+  tracker.setModalities({"depth"});
+  tracker.loadModel(kTeaboxCao);
+  tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics),
+                              to_camera_parameters(frames.front().depths.front().intrinsics));
+  tracker.setCameraTransformationMatrix(kVispDepthCamera,
+                                        to_homogeneous_matrix(frames.front().depths.front().camera_T_reference));
+  tracker.initFromPose(vpImage<unsigned char>(), to_homogeneous_matrix(*frames.front().truth()));
+  VispRgbdFrame input;
+  std::map<std::string, const vpImage<unsigned char>*> no_images;
+  for (const Frame& frame : frames) {
+    input.convert(frame);
+    CloudMaps maps(kVispDepthCamera, input);
+    REQUIRE_NOTHROW(tracker.track(no_images, maps.clouds, maps.widths, maps.heights));
+    INFO("frame " << frame.index);
+    CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 0.5);
+  }
+}
+
+TEST_CASE("vpMbIcgTracker: a colour cue without its camera's image is refused, naming the camera") {
+  const std::vector<Frame> frames = test::teabox_frames(1);
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
+  test::configure_for_tests(tracker);
+  tracker.loadModel(kTeaboxCao);
+  tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics),
+                              to_camera_parameters(frames.front().depths.front().intrinsics));
+  tracker.initFromPose(vpImage<unsigned char>(), to_homogeneous_matrix(*frames.front().truth()));
+  VispRgbdFrame input;
+  input.convert(frames.front());
+  CloudMaps maps(kVispDepthCamera, input);
+  std::map<std::string, const vpImage<unsigned char>*> no_images;
+  const vpException e = vp_exception_of([&] { tracker.track(no_images, maps.clouds, maps.widths, maps.heights); });
+  CHECK(e.getCode() == vpException::badValue);
+  CHECK_THAT(e.getStringMessage(), Contains("no image of camera 'Camera1'"));
+}
+
+TEST_CASE("vpMbIcgTracker: ViSP's tutorial set-up, default constructor and setTrackerType, tracks grey images") {
+  const std::vector<Frame> frames = test::teabox_frames(6);
+  vpMbIcgTracker tracker;
+  tracker.setTrackerType(vpMbIcgTracker::EDGE_TRACKER | vpMbIcgTracker::KLT_TRACKER);
+  test::configure_for_tests(tracker);
+  tracker.loadConfigFile((test::kTeaboxBlender / "teabox.xml").string(), false);
+  tracker.loadModel(kTeaboxCao);
+  VispRgbdFrame input;
+  input.convert(frames.front(), false);
+  tracker.initFromPose(input.grey, to_homogeneous_matrix(*frames.front().truth()));
+  for (const Frame& frame : frames) {
+    input.convert(frame, false);
+    REQUIRE_NOTHROW(tracker.track(input.grey));
+    INFO("frame " << frame.index);
+    // teabox.xml's principal point is Blender's less half a pixel: a few mm along the line
+    // of sight for a monocular tracker.
+    CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 10.0);
+    CHECK(rotation_error_deg(to_pose(tracker.getPose()), *frame.truth()) < 1.0);
+  }
+}
+
+TEST_CASE("vpMbIcgTracker::setMask: every cue ignores the pixels the mask excludes") {
+  const std::vector<Frame> frames = test::teabox_frames(1);
+  const Frame& frame = frames.front();
+  const auto tracked = [&](const vpImage<bool>* mask) {
+    auto tracker = std::make_unique<vpMbIcgTracker>(kRgbdTrackerTypes);
+    test::configure_for_tests(*tracker);
+    tracker->loadModel(kTeaboxCao);
+    tracker->setCameraParameters(to_camera_parameters(frame.colors.front().intrinsics),
+                                 to_camera_parameters(frame.depths.front().intrinsics));
+    tracker->setCameraTransformationMatrix(kVispDepthCamera,
+                                           to_homogeneous_matrix(frame.depths.front().camera_T_reference));
+    if (mask) tracker->setMask(*mask);
+    VispRgbdFrame input;
+    input.convert(frame);
+    tracker->initFromPose(input.grey, to_homogeneous_matrix(*frame.truth()));
+    std::map<std::string, const vpImage<unsigned char>*> images{{kVispColorCamera, &input.grey}};
+    CloudMaps maps(kVispDepthCamera, input);
+    // Two frames: texture measures from the second, after its first keyframe.
+    tracker->track(images, maps.clouds, maps.widths, maps.heights);
+    tracker->track(images, maps.clouds, maps.widths, maps.heights);
+    return tracker;
+  };
+  const unsigned int width = static_cast<unsigned int>(frame.colors.front().intrinsics.width);
+  const unsigned int height = static_cast<unsigned int>(frame.colors.front().intrinsics.height);
+  const double half = width / 2.0;
+
+  const auto unmasked = tracked(nullptr);
+  const auto left_columns = [&](const vpMbIcgTracker& t, double type) {
+    int n = 0;
+    for (const std::vector<double>& f : const_cast<vpMbIcgTracker&>(t).getFeaturesForDisplay())
+      n += f[0] == type && f[2] < half ? 1 : 0;
+    return n;
+  };
+  REQUIRE(left_columns(*unmasked, 0.0) > 10);  // the box spans both halves of the image
+  REQUIRE(left_columns(*unmasked, 1.0) > 10);
+  REQUIRE(unmasked->getNbFeaturesDepthDense() > 50);
+
+  vpImage<bool> right_half(height, width, false);
+  for (unsigned int r = 0; r < height; ++r)
+    for (unsigned int c = width / 2; c < width; ++c) right_half[r][c] = true;
+  const auto masked = tracked(&right_half);
+  // Region lines start from allowed pixels; their contour lies within the line's length of
+  // it. Texture keypoints must lie on allowed pixels.
+  for (const std::vector<double>& f : masked->getFeaturesForDisplay()) {
+    INFO("feature type " << f[0] << " at column " << f[2]);
+    if (f[0] == 0.0) CHECK(f[2] >= half - 20.0);
+    if (f[0] == 1.0) CHECK(f[2] >= half - 0.5);
+  }
+  CHECK(masked->getNbFeaturesEdge() > 10);
+  CHECK(masked->getNbFeaturesEdge() < unmasked->getNbFeaturesEdge());
+
+  // The depth image has the mask's size here: none of its points are used under an all-false mask.
+  const vpImage<bool> nothing(height, width, false);
+  REQUIRE(frame.depths.front().intrinsics.width == static_cast<int>(width));
+  CHECK(tracked(&nothing)->getNbFeaturesDepthDense() == 0);
+}
+
+TEST_CASE("vpMbIcgTracker::loadModel: a .wrl and a .cao of one object for two cameras, as ViSP's RGB-D test loads them") {
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
+  const std::string wrl = (kRealsenseModels / "teabox.wrl").string();
+  const std::string cao = (kRealsenseModels / "teabox.cao").string();
+  REQUIRE_NOTHROW(tracker.loadModel(wrl, cao));
+  // ViSP's faces of the .wrl (its projection-error model) are there, as in vpMbGenericTracker.
+  CHECK(tracker.getNbPolygon() == 6);
+
+  // Another object for the second camera is refused, naming both files.
+  vpMbIcgTracker other(kRgbdTrackerTypes);
+  const std::string cube = (kRealsenseModels.parent_path() / "cube" / "cube.cao").string();
+  const vpException e = vp_exception_of([&] { other.loadModel(cao, cube); });
+  CHECK(e.getCode() == vpException::badValue);
+  CHECK_THAT(e.getStringMessage(), Contains("cube.cao") && Contains("teabox.cao"));
+}

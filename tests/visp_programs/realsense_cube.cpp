@@ -1,0 +1,234 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+//! \example realsense_cube.cpp
+//! RGB-D model-based tracking of real Intel RealSense frames (ViSP's generic-rgbd tutorial
+//! data: color_image_%04d.jpg, depth_image_%04d.bin) of a 42 mm cube: colour camera
+//! "Camera1" (edges + KLT) and depth camera "Camera2" (dense depth), settings from the
+//! tutorial's .xml files, the model loaded as .wrl for the colour camera and .cao for the
+//! depth camera, initialised from a saved pose, testTracking() after every frame. There is
+//! no ground truth: prints the final pose and saves it (4x4) for comparison.
+//!
+//! Written against vpMbGenericTracker's API only: TRACKER_HEADER / TRACKER_CLASS name the
+//! tracker class (vpMbGenericTracker or a drop-in replacement) at compile time.
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpConfig.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImageConvert.h>
+#include <visp3/core/vpIoTools.h>
+#include <visp3/core/vpPixelMeterConversion.h>
+#include <visp3/io/vpImageIo.h>
+
+#ifndef TRACKER_HEADER
+#define TRACKER_HEADER <visp3/mbt/vpMbGenericTracker.h>
+#define TRACKER_CLASS vpMbGenericTracker
+#endif
+#include TRACKER_HEADER
+
+#define VP_STRINGIFY_(x) #x
+#define VP_STRINGIFY(x) VP_STRINGIFY_(x)
+
+typedef TRACKER_CLASS Tracker;
+
+namespace
+{
+std::string numbered(const std::string &format, unsigned int index)
+{
+  char buffer[FILENAME_MAX];
+  snprintf(buffer, sizeof(buffer), format.c_str(), index);
+  return std::string(buffer);
+}
+
+//! Reads frame `cpt`: the colour image converted to grey, and the raw depth (uint32 height,
+//! uint32 width, then height x width uint16 in mm, little endian) as a point cloud in the
+//! depth camera's frame (0: no measurement).
+bool read_data(unsigned int cpt, const std::string &input_directory, const vpCameraParameters &cam_depth,
+               vpImage<unsigned char> &I, vpImage<uint16_t> &I_depth_raw, std::vector<vpColVector> &pointcloud)
+{
+  std::string filename_color = numbered(input_directory + "/color_image_%04d.jpg", cpt);
+  if (!vpIoTools::checkFilename(filename_color)) {
+    return false;
+  }
+  vpImage<vpRGBa> I_color;
+  vpImageIo::read(I_color, filename_color);
+  vpImageConvert::convert(I_color, I);
+
+  std::string filename_depth = numbered(input_directory + "/depth_image_%04d.bin", cpt);
+  std::ifstream file_depth(filename_depth.c_str(), std::ios::in | std::ios::binary);
+  if (!file_depth.is_open()) {
+    std::cerr << "Cannot read: " << filename_depth << std::endl;
+    return false;
+  }
+  unsigned int height = 0, width = 0;
+  vpIoTools::readBinaryValueLE(file_depth, height);
+  vpIoTools::readBinaryValueLE(file_depth, width);
+  I_depth_raw.resize(height, width);
+  uint16_t depth_value = 0;
+  for (unsigned int i = 0; i < height; i++) {
+    for (unsigned int j = 0; j < width; j++) {
+      vpIoTools::readBinaryValueLE(file_depth, depth_value);
+      I_depth_raw[i][j] = depth_value;
+    }
+  }
+  if (!file_depth) {
+    std::cerr << "Truncated depth file: " << filename_depth << std::endl;
+    return false;
+  }
+
+  const double depth_scale = 0.001;
+  pointcloud.resize(static_cast<size_t>(width) * height);
+  for (unsigned int i = 0; i < height; i++) {
+    for (unsigned int j = 0; j < width; j++) {
+      double Z = I_depth_raw[i][j] * depth_scale;
+      double x = 0.0, y = 0.0;
+      vpPixelMeterConversion::convertPoint(cam_depth, j, i, x, y);
+      vpColVector &point = pointcloud[static_cast<size_t>(i) * width + j];
+      point.resize(3, false);
+      point[0] = x * Z;
+      point[1] = y * Z;
+      point[2] = Z;
+    }
+  }
+  return true;
+}
+} // namespace
+
+int main(int argc, char *argv[])
+{
+  std::string input_directory = ".";
+  std::string config_color = "model/cube/cube.xml", config_depth = "model/cube/cube_depth.xml";
+  std::string model_color = "model/cube/cube.wrl", model_depth = "model/cube/cube.cao";
+  std::string init_pose_file = "cube_init_cMo.txt";
+  std::string final_pose_file;
+  unsigned int first_frame = 0, nb_frames = 0; // 0: to the end of the sequence
+
+  for (int i = 1; i < argc; i++) {
+    if (std::string(argv[i]) == "--input_directory" && i + 1 < argc) {
+      input_directory = std::string(argv[++i]);
+    } else if (std::string(argv[i]) == "--config_color" && i + 1 < argc) {
+      config_color = std::string(argv[++i]);
+    } else if (std::string(argv[i]) == "--config_depth" && i + 1 < argc) {
+      config_depth = std::string(argv[++i]);
+    } else if (std::string(argv[i]) == "--model_color" && i + 1 < argc) {
+      model_color = std::string(argv[++i]);
+    } else if (std::string(argv[i]) == "--model_depth" && i + 1 < argc) {
+      model_depth = std::string(argv[++i]);
+    } else if (std::string(argv[i]) == "--init_pose" && i + 1 < argc) {
+      init_pose_file = std::string(argv[++i]);
+    } else if (std::string(argv[i]) == "--final_pose" && i + 1 < argc) {
+      final_pose_file = std::string(argv[++i]);
+    } else if (std::string(argv[i]) == "--frames" && i + 1 < argc) {
+      nb_frames = static_cast<unsigned int>(atoi(argv[++i]));
+    } else if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
+      std::cout << "Usage: " << argv[0]
+                << " [--input_directory <folder of color_image_%04d.jpg, depth_image_%04d.bin, depth_M_color.txt>]"
+                   " [--config_color <cube.xml>] [--config_depth <cube_depth.xml>]"
+                   " [--model_color <cube.wrl>] [--model_depth <cube.cao>] [--init_pose <cMo 4x4 file>]"
+                   " [--frames <n> (default: all)] [--final_pose <output file>]"
+                << std::endl;
+      return EXIT_SUCCESS;
+    }
+  }
+
+  std::cout << "Tracker: " << VP_STRINGIFY(TRACKER_CLASS) << std::endl;
+  std::cout << "input_directory: " << input_directory << std::endl;
+  std::cout << "config: " << config_color << ", " << config_depth << std::endl;
+  std::cout << "model: " << model_color << ", " << model_depth << std::endl;
+
+  try {
+    std::vector<int> trackerTypes;
+    trackerTypes.push_back(Tracker::EDGE_TRACKER | Tracker::KLT_TRACKER);
+    trackerTypes.push_back(Tracker::DEPTH_DENSE_TRACKER);
+    Tracker tracker(trackerTypes);
+    tracker.loadConfigFile(config_color, config_depth);
+    tracker.loadModel(model_color, model_depth);
+    std::cout << "Model: " << tracker.getNbPolygon() << " faces" << std::endl;
+
+    vpCameraParameters cam_color, cam_depth;
+    tracker.getCameraParameters(cam_color, cam_depth);
+    std::cout << "cam_color:\n" << cam_color << std::endl;
+    std::cout << "cam_depth:\n" << cam_depth << std::endl;
+
+    vpHomogeneousMatrix depth_M_color;
+    {
+      std::ifstream file((input_directory + "/depth_M_color.txt").c_str());
+      if (!file.is_open()) {
+        std::cerr << "Cannot read: " << input_directory << "/depth_M_color.txt" << std::endl;
+        return EXIT_FAILURE;
+      }
+      depth_M_color.load(file);
+    }
+    std::map<std::string, vpHomogeneousMatrix> mapOfCameraTransformations;
+    mapOfCameraTransformations["Camera1"] = vpHomogeneousMatrix();
+    mapOfCameraTransformations["Camera2"] = depth_M_color;
+    tracker.setCameraTransformationMatrix(mapOfCameraTransformations);
+
+    vpHomogeneousMatrix cMo_init;
+    {
+      std::ifstream file(init_pose_file.c_str());
+      if (!file.is_open()) {
+        std::cerr << "Cannot read: " << init_pose_file << std::endl;
+        return EXIT_FAILURE;
+      }
+      cMo_init.load(file);
+    }
+
+    vpImage<unsigned char> I;
+    vpImage<uint16_t> I_depth_raw;
+    std::vector<vpColVector> pointcloud;
+    if (!read_data(first_frame, input_directory, cam_depth, I, I_depth_raw, pointcloud)) {
+      std::cerr << "Cannot read the first frame in " << input_directory << std::endl;
+      return EXIT_FAILURE;
+    }
+    tracker.initFromPose(I, cMo_init);
+
+    vpHomogeneousMatrix cMo;
+    unsigned int nb_tracked = 0;
+    for (unsigned int frame = first_frame; nb_frames == 0 || frame < first_frame + nb_frames; frame++) {
+      if (!read_data(frame, input_directory, cam_depth, I, I_depth_raw, pointcloud)) {
+        break;
+      }
+      std::map<std::string, const vpImage<unsigned char> *> mapOfImages;
+      std::map<std::string, const std::vector<vpColVector> *> mapOfPointClouds;
+      std::map<std::string, unsigned int> mapOfPointCloudWidths;
+      std::map<std::string, unsigned int> mapOfPointCloudHeights;
+      mapOfImages["Camera1"] = &I;
+      mapOfPointClouds["Camera2"] = &pointcloud;
+      mapOfPointCloudWidths["Camera2"] = I_depth_raw.getWidth();
+      mapOfPointCloudHeights["Camera2"] = I_depth_raw.getHeight();
+      tracker.track(mapOfImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
+      tracker.testTracking();
+
+      tracker.getPose(cMo);
+      nb_tracked++;
+      std::cout << "Frame " << frame << ": t = " << cMo.getTranslationVector().t() << " m, tu = "
+                << vpThetaUVector(cMo.getRotationMatrix()).t() << " rad; features: edge "
+                << tracker.getNbFeaturesEdge() << ", klt " << tracker.getNbFeaturesKlt() << ", depth "
+                << tracker.getNbFeaturesDepthDense() << std::endl;
+    }
+    if (nb_tracked == 0) {
+      std::cerr << "No frame tracked" << std::endl;
+      return EXIT_FAILURE;
+    }
+
+    std::cout << VP_STRINGIFY(TRACKER_CLASS) << " tracked " << nb_tracked << " frames; final cMo:\n"
+              << cMo << std::endl;
+    if (!final_pose_file.empty()) {
+      std::ofstream f(final_pose_file.c_str());
+      f.precision(12);
+      cMo.save(f);
+    }
+  } catch (const vpException &e) {
+    std::cerr << "Catch a ViSP exception: " << e.what() << std::endl;
+    return EXIT_FAILURE;
+  } catch (const std::exception &e) {
+    std::cerr << "Catch an exception: " << e.what() << std::endl;
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}
