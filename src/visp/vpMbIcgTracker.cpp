@@ -305,6 +305,17 @@ vpMbtPolygon* vpMbIcgTracker::getPolygon(const std::string& cameraName, unsigned
   return getPolygon(index);
 }
 
+std::pair<std::vector<vpPolygon>, std::vector<std::vector<vpPoint>>> vpMbIcgTracker::getPolygonFaces(
+    bool orderPolygons, bool useVisibility, bool clipPolygon) {
+  // icgp's cues need no face visibility (the viewpoint models have it), so it is computed
+  // only when asked for.
+  if (useVisibility) {
+    bool changed = false;
+    faces.setVisible(m_cMo, angleAppears, angleDisappears, changed);
+  }
+  return vpMbTracker::getPolygonFaces(orderPolygons, useVisibility, clipPolygon);
+}
+
 void vpMbIcgTracker::getPolygonFaces(std::map<std::string, std::vector<vpPolygon>>& mapOfPolygons,
                                      std::map<std::string, std::vector<std::vector<vpPoint>>>& mapOfPoints,
                                      bool orderPolygons, bool useVisibility, bool clipPolygon) {

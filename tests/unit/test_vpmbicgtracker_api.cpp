@@ -11,8 +11,6 @@
 //    settings are cheap), or against geometry; the settings without effect round-trip,
 //    are reported once, and leave the tracked pose bit-identical; every refused call is a
 //    vpException naming the call and the offending value, never a std:: exception.
-// Known differences from ViSP that this test documents rather than hides are tagged
-// [!mayfail]: they are reported by Catch, not counted as failures.
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -1161,11 +1159,9 @@ TEST_CASE("loadModel's two-camera and map forms describe one object: faces and p
   });
 }
 
-TEST_CASE("getPolygonFaces with ViSP's visibility test gives ViSP's visible faces", "[!mayfail]") {
-  // vpMbTracker::getPolygonFaces(useVisibility = true) keeps the faces whose isvisible flag
-  // the tracker computed; vpMbIcgTracker never computes it (its cues' visibility comes from
-  // the viewpoint models), so the default call returns no face where ViSP returns the
-  // visible ones.
+TEST_CASE("getPolygonFaces with ViSP's visibility test gives ViSP's visible faces") {
+  // vpMbTracker::getPolygonFaces(useVisibility = true) keeps the faces whose visibility flag
+  // the tracker computed; vpMbIcgTracker computes it for the call (its cues need none).
   Rig rig(1);
   vpMbIcgTracker ours(kRgbdTrackerTypes);
   vpMbGenericTracker visp(kRgbdTrackerTypes);
@@ -1694,12 +1690,10 @@ TEST_CASE("every map overload refuses an unknown camera with a vpException namin
   check_refused("loadModel", u, [&] { t.loadModel(FileMap{{u, kTeaboxCao}}); });
   check_refused("loadModel", u, [&] { t.loadModel(FileMap{{kCamera1, kTeaboxCao}}, false, PoseMap{{u, a}}); });
   {
-    // reInitModel refuses it from its loadModel step, whose name the message has (see the
-    // [!mayfail] case below).
     vpMbIcgTracker victim(kRgbdTrackerTypes);
     rig.setup(victim);
-    check_refused("", u, [&] { victim.reInitModel(unknown_grey, FileMap{{u, kTeaboxCao}}, PoseMap{{u, a}}); });
-    check_refused("", u, [&] { victim.reInitModel(unknown_rgba, FileMap{{u, kTeaboxCao}}, PoseMap{{u, a}}); });
+    check_refused("reInitModel", u, [&] { victim.reInitModel(unknown_grey, FileMap{{u, kTeaboxCao}}, PoseMap{{u, a}}); });
+    check_refused("reInitModel", u, [&] { victim.reInitModel(unknown_rgba, FileMap{{u, kTeaboxCao}}, PoseMap{{u, a}}); });
   }
   check_refused("getFaces", u, [&] { t.getFaces(u); });
   check_refused("getPolygon", u, [&] { t.getPolygon(u, 0); });

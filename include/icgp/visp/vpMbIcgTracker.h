@@ -166,7 +166,10 @@ class vpMbIcgTracker : public vpMbTracker {
   virtual void getNbPolygon(std::map<std::string, unsigned int>& mapOfNbPolygons) const;
   using vpMbTracker::getPolygon;
   virtual vpMbtPolygon* getPolygon(const std::string& cameraName, unsigned int index);
-  using vpMbTracker::getPolygonFaces;
+  /// vpMbTracker's faces at the current pose; with useVisibility, ViSP's visibility test
+  /// (angles appear/disappear) decides which, as ViSP's trackers compute it each frame.
+  std::pair<std::vector<vpPolygon>, std::vector<std::vector<vpPoint>>> getPolygonFaces(
+      bool orderPolygons = true, bool useVisibility = true, bool clipPolygon = false) override;
   virtual void getPolygonFaces(std::map<std::string, std::vector<vpPolygon>>& mapOfPolygons,
                                std::map<std::string, std::vector<std::vector<vpPoint>>>& mapOfPoints,
                                bool orderPolygons = true, bool useVisibility = true, bool clipPolygon = false);
