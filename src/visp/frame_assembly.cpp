@@ -2,6 +2,7 @@
 #include "frame_assembly.h"
 
 #include <cmath>
+#include <iostream>
 #include <opencv2/imgproc.hpp>
 #include <visp3/core/vpException.h>
 
@@ -38,14 +39,13 @@ void FrameAssembler::begin_frame() {
   }
 }
 
-cv::Mat FrameAssembler::mask_for(const std::string& camera, int width, int height) const {
-  if (mask_.empty()) return mask_;
-  if (mask_.cols != width || mask_.rows != height)
-    throw vpException(vpException::dimensionError,
-                      "vpMbIcgTracker::setMask: the mask is " + std::to_string(mask_.cols) + "x" +
-                          std::to_string(mask_.rows) + " but camera \"" + camera + "\" delivers " +
-                          std::to_string(width) + "x" + std::to_string(height) + " images");
-  return mask_;
+cv::Mat FrameAssembler::mask_for(const std::string& camera, int width, int height) {
+  if (mask_.empty() || (mask_.cols == width && mask_.rows == height)) return mask_;
+  // ViSP applies one mask to every camera; one of another size cannot use it.
+  if (cameras_without_mask_.insert(camera).second)
+    std::cerr << "vpMbIcgTracker::setMask: the mask is " << mask_.cols << "x" << mask_.rows << " but camera \""
+              << camera << "\" delivers " << width << "x" << height << " images; that camera uses every pixel\n";
+  return cv::Mat();
 }
 
 void FrameAssembler::set_mask(const vpImage<bool>& mask) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 #include <visp3/core/vpCameraParameters.h>
@@ -56,7 +57,8 @@ class FrameAssembler {
   void end_depth_reads();
 
   /// ViSP's setMask: the pixels every camera's cues may use (true), for every image of the
-  /// mask's size; an empty mask allows all. A camera of another size throws when it delivers.
+  /// mask's size; an empty mask allows all. A camera of another size uses every pixel, and
+  /// says so once on std::cerr.
   void set_mask(const vpImage<bool>& mask);
 
   const Frame& frame() const { return frame_; }
@@ -69,12 +71,14 @@ class FrameAssembler {
                          const vpHomogeneousMatrix& camera_M_reference, unsigned int width, unsigned int height);
   DepthImage& depth_slot(const std::string& camera, const vpCameraParameters& parameters, bool camera_set,
                          const vpHomogeneousMatrix& camera_M_reference, unsigned int width, unsigned int height);
-  cv::Mat mask_for(const std::string& camera, int width, int height) const;
+  /// The mask for a camera's image of width x height: none when the sizes differ.
+  cv::Mat mask_for(const std::string& camera, int width, int height);
 
   Frame frame_;
   std::map<std::string, ColorImage> color_slots_;  ///< buffers kept across frames
   std::map<std::string, cv::Mat> depth_buffers_, ray_buffers_;
   cv::Mat mask_;
+  std::set<std::string> cameras_without_mask_;  ///< already told their size differs
   vpImage<unsigned char> grey_;
 };
 

@@ -124,9 +124,9 @@ class vpMbIcgTracker : public vpMbTracker {
   /// (model frame points X become T X).
   void loadModel(const std::string& modelFile, bool verbose = false,
                  const vpHomogeneousMatrix& T = vpHomogeneousMatrix()) override;
-  /// One rigid object is tracked by every camera: the reference camera's file is loaded;
-  /// the others' files must describe the same object (as ViSP's .wrl + .cao of one object):
-  /// their bounding boxes must agree to 1 % of the object's size.
+  /// One rigid object is tracked by every camera: the reference camera's file is loaded.
+  /// The others' files should describe the same object (as ViSP's .wrl + .cao of one
+  /// object); bounding boxes that differ by more than 1 % of its size are said on std::cerr.
   virtual void loadModel(const std::string& modelFile1, const std::string& modelFile2, bool verbose = false,
                          const vpHomogeneousMatrix& T1 = vpHomogeneousMatrix(),
                          const vpHomogeneousMatrix& T2 = vpHomogeneousMatrix());
