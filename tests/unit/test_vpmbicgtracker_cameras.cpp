@@ -211,3 +211,21 @@ TEST_CASE("vpMbIcgTracker::loadModel: a .wrl and a .cao of one object for two ca
   std::cerr.rdbuf(stderr_buffer);
   CHECK(quiet.str().find("does not describe") == std::string::npos);
 }
+
+TEST_CASE("vpMbIcgTracker with KLT_TRACKER alone: the texture cue's first frame, keyframe only, is not a loss") {
+  const std::vector<Frame> frames = test::teabox_frames(6);
+  vpMbIcgTracker tracker(1, vpMbIcgTracker::KLT_TRACKER);
+  test::configure_for_tests(tracker);
+  tracker.loadModel(kTeaboxCao);
+  tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics));
+  VispRgbdFrame input;
+  input.convert(frames.front(), false);
+  tracker.initFromPose(input.grey, to_homogeneous_matrix(*frames.front().truth()));
+  for (const Frame& frame : frames) {
+    input.convert(frame, false);
+    tracker.track(input.grey);
+    INFO("frame " << frame.index);
+    CHECK_NOTHROW(tracker.testTracking());
+    CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 10.0);
+  }
+}
