@@ -421,6 +421,30 @@ void vpMbIcgTracker::initFromPose(const vpImage<vpRGBa>&, const vpHomogeneousMat
   init(m_I);  // init() reads no image: the cues start on the next tracked frame
 }
 
+namespace {
+
+/// The camera whose file ViSP's multi-camera initialisations use: the reference camera's
+/// if given, else the first.
+template <typename Map>
+typename Map::const_iterator reference_or_first(const Map& files, const std::string& reference,
+                                                const std::string& call) {
+  auto it = files.find(reference);
+  if (it == files.end()) it = files.begin();
+  if (it == files.end()) throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no file given");
+  return it;
+}
+
+template <typename Image>
+const Image& image_of(const std::map<std::string, const Image*>& images, const std::string& camera,
+                      const std::string& call) {
+  const auto it = images.find(camera);
+  if (it == images.end() || !it->second)
+    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no image of camera '" + camera + "'");
+  return *it->second;
+}
+
+}  // namespace
+
 vpHomogeneousMatrix vpMbIcgTracker::reference_pose(const std::string& camera, const vpHomogeneousMatrix& cMo,
                                                    const std::string& call) const {
   // c_M_reference * referenceMo = cMo
@@ -433,10 +457,8 @@ void vpMbIcgTracker::init_from_poses(const std::map<std::string, const Image*>& 
                                      const std::string& call) {
   require_known_cameras(impl_->rig, call, images, poses);
   // As ViSP: the reference camera's pose if given, else the first camera's, moved into it.
-  auto it = poses.find(impl_->rig.reference());
-  if (it == poses.end()) it = poses.begin();
-  if (it == poses.end()) throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no pose given");
-  m_cMo = reference_pose(it->first, it->second, call);
+  const auto pose = reference_or_first(poses, impl_->rig.reference(), call);
+  m_cMo = reference_pose(pose->first, pose->second, call);
   init(m_I);
 }
 
@@ -444,16 +466,11 @@ template <typename Image>
 void vpMbIcgTracker::init_from_pose_files(const std::map<std::string, const Image*>& images,
                                           const std::map<std::string, std::string>& files, const std::string& call) {
   require_known_cameras(impl_->rig, call, images, files);
-  auto it = files.find(impl_->rig.reference());
-  if (it == files.end()) it = files.begin();
-  if (it == files.end()) throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no pose file given");
-  const auto image = images.find(it->first);
-  if (image == images.end() || !image->second)
-    throw vpException(vpException::badValue,
-                      "vpMbIcgTracker::" + call + ": no image of camera '" + it->first + "', whose pose file is given");
+  const auto file = reference_or_first(files, impl_->rig.reference(), call);
+  const Image& I = image_of(images, file->first, call);
   // vpMbTracker reads the file (its format and its ".pos" rule) and calls initFromPose(I, cMo).
-  vpMbTracker::initFromPose(*image->second, it->second);
-  if (it->first != impl_->rig.reference()) initFromPose(*image->second, reference_pose(it->first, m_cMo, call));
+  vpMbTracker::initFromPose(I, file->second);
+  if (file->first != impl_->rig.reference()) initFromPose(I, reference_pose(file->first, m_cMo, call));
 }
 
 void vpMbIcgTracker::initFromPose(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
@@ -503,30 +520,6 @@ void vpMbIcgTracker::initFromPose(const std::map<std::string, const vpImage<vpRG
                                   const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses) {
   init_from_poses(mapOfColorImages, mapOfCameraPoses, "initFromPose");
 }
-
-namespace {
-
-/// The camera whose file ViSP's multi-camera initialisations use: the reference camera's
-/// if given, else the first.
-template <typename Map>
-typename Map::const_iterator reference_or_first(const Map& files, const std::string& reference,
-                                                const std::string& call) {
-  auto it = files.find(reference);
-  if (it == files.end()) it = files.begin();
-  if (it == files.end()) throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no file given");
-  return it;
-}
-
-template <typename Image>
-const Image& image_of(const std::map<std::string, const Image*>& images, const std::string& camera,
-                      const std::string& call) {
-  const auto it = images.find(camera);
-  if (it == images.end() || !it->second)
-    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no image of camera '" + camera + "'");
-  return *it->second;
-}
-
-}  // namespace
 
 void vpMbIcgTracker::initClick(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
                                const std::string& initFile1, const std::string& initFile2, bool displayHelp,
