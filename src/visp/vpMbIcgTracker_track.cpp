@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <visp3/core/vpImageConvert.h>
 
 #include "icgp/visp/conversions.h"
@@ -25,7 +26,8 @@ void vpMbIcgTracker::track_frame(const std::map<std::string, const Image*>& imag
 
 template <typename Image>
 const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std::string, const Image*>& images,
-                                    const std::vector<DepthInput>& depths, const std::string& call) {
+                                                             const std::vector<DepthInput>& depths,
+                                                             const std::string& call) {
   Impl& d = *impl_;
   const icgp::CameraRig& rig = d.rig;
   const std::vector<std::string>& modalities = d.config.modalities;
