@@ -9,20 +9,14 @@
 //!
 //! Written against vpMbGenericTracker's API only: TRACKER_HEADER / TRACKER_CLASS name the
 //! tracker class (vpMbGenericTracker or a drop-in replacement) at compile time.
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
-#include <iostream>
 #include <map>
 #include <string>
 #include <vector>
 
-#include <visp3/core/vpConfig.h>
-#include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImageConvert.h>
-#include <visp3/core/vpIoTools.h>
-#include <visp3/core/vpPixelMeterConversion.h>
-#include <visp3/io/vpImageIo.h>
+
+#include "program_support.h"
 
 #ifndef TRACKER_HEADER
 #define TRACKER_HEADER <visp3/mbt/vpMbGenericTracker.h>
@@ -30,27 +24,17 @@
 #endif
 #include TRACKER_HEADER
 
-#define VP_STRINGIFY_(x) #x
-#define VP_STRINGIFY(x) VP_STRINGIFY_(x)
-
 typedef TRACKER_CLASS Tracker;
 
 namespace
 {
-std::string numbered(const std::string &format, unsigned int index)
-{
-  char buffer[FILENAME_MAX];
-  snprintf(buffer, sizeof(buffer), format.c_str(), index);
-  return std::string(buffer);
-}
-
 //! Reads frame `cpt`: the colour image converted to grey, and the raw depth (uint32 height,
 //! uint32 width, then height x width uint16 in mm, little endian) as a point cloud in the
 //! depth camera's frame (0: no measurement).
 bool read_data(unsigned int cpt, const std::string &input_directory, const vpCameraParameters &cam_depth,
                vpImage<unsigned char> &I, vpImage<uint16_t> &I_depth_raw, std::vector<vpColVector> &pointcloud)
 {
-  std::string filename_color = numbered(input_directory + "/color_image_%04d.jpg", cpt);
+  std::string filename_color = program::numbered(input_directory + "/color_image_%04d.jpg", cpt);
   if (!vpIoTools::checkFilename(filename_color)) {
     return false;
   }
@@ -58,7 +42,7 @@ bool read_data(unsigned int cpt, const std::string &input_directory, const vpCam
   vpImageIo::read(I_color, filename_color);
   vpImageConvert::convert(I_color, I);
 
-  std::string filename_depth = numbered(input_directory + "/depth_image_%04d.bin", cpt);
+  std::string filename_depth = program::numbered(input_directory + "/depth_image_%04d.bin", cpt);
   std::ifstream file_depth(filename_depth.c_str(), std::ios::in | std::ios::binary);
   if (!file_depth.is_open()) {
     std::cerr << "Cannot read: " << filename_depth << std::endl;
@@ -81,19 +65,10 @@ bool read_data(unsigned int cpt, const std::string &input_directory, const vpCam
   }
 
   const double depth_scale = 0.001;
-  pointcloud.resize(static_cast<size_t>(width) * height);
-  for (unsigned int i = 0; i < height; i++) {
-    for (unsigned int j = 0; j < width; j++) {
-      double Z = I_depth_raw[i][j] * depth_scale;
-      double x = 0.0, y = 0.0;
-      vpPixelMeterConversion::convertPoint(cam_depth, j, i, x, y);
-      vpColVector &point = pointcloud[static_cast<size_t>(i) * width + j];
-      point.resize(3, false);
-      point[0] = x * Z;
-      point[1] = y * Z;
-      point[2] = Z;
-    }
-  }
+  program::to_point_cloud(
+      height, width, cam_depth,
+      [&I_depth_raw, depth_scale](unsigned int i, unsigned int j) { return I_depth_raw[i][j] * depth_scale; },
+      pointcloud);
   return true;
 }
 } // namespace
@@ -107,40 +82,28 @@ int main(int argc, char *argv[])
   std::string final_pose_file;
   unsigned int first_frame = 0, nb_frames = 0; // 0: to the end of the sequence
 
-  for (int i = 1; i < argc; i++) {
-    if (std::string(argv[i]) == "--input_directory" && i + 1 < argc) {
-      input_directory = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--config_color" && i + 1 < argc) {
-      config_color = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--config_depth" && i + 1 < argc) {
-      config_depth = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--model_color" && i + 1 < argc) {
-      model_color = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--model_depth" && i + 1 < argc) {
-      model_depth = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--init_pose" && i + 1 < argc) {
-      init_pose_file = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--final_pose" && i + 1 < argc) {
-      final_pose_file = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--frames" && i + 1 < argc) {
-      nb_frames = static_cast<unsigned int>(atoi(argv[++i]));
-    } else if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
-      std::cout << "Usage: " << argv[0]
-                << " [--input_directory <folder of color_image_%04d.jpg, depth_image_%04d.bin, depth_M_color.txt>]"
-                   " [--config_color <cube.xml>] [--config_depth <cube_depth.xml>]"
-                   " [--model_color <cube.wrl>] [--model_depth <cube.cao>] [--init_pose <cMo 4x4 file>]"
-                   " [--frames <n> (default: all)] [--final_pose <output file>]"
-                << std::endl;
-      return EXIT_SUCCESS;
-    }
-  }
+  if (!program::Options()
+           .add("--input_directory", input_directory)
+           .add("--config_color", config_color)
+           .add("--config_depth", config_depth)
+           .add("--model_color", model_color)
+           .add("--model_depth", model_depth)
+           .add("--init_pose", init_pose_file)
+           .add("--final_pose", final_pose_file)
+           .add("--frames", nb_frames)
+           .parse(argc, argv,
+                  "[--input_directory <folder of color_image_%04d.jpg, depth_image_%04d.bin, depth_M_color.txt>]"
+                  " [--config_color <cube.xml>] [--config_depth <cube_depth.xml>]"
+                  " [--model_color <cube.wrl>] [--model_depth <cube.cao>] [--init_pose <cMo 4x4 file>]"
+                  " [--frames <n> (default: all)] [--final_pose <output file>]"))
+    return EXIT_SUCCESS;
 
   std::cout << "Tracker: " << VP_STRINGIFY(TRACKER_CLASS) << std::endl;
   std::cout << "input_directory: " << input_directory << std::endl;
   std::cout << "config: " << config_color << ", " << config_depth << std::endl;
   std::cout << "model: " << model_color << ", " << model_depth << std::endl;
 
-  try {
+  return program::run([&] {
     std::vector<int> trackerTypes;
     trackerTypes.push_back(Tracker::EDGE_TRACKER | Tracker::KLT_TRACKER);
     trackerTypes.push_back(Tracker::DEPTH_DENSE_TRACKER);
@@ -155,28 +118,16 @@ int main(int argc, char *argv[])
     std::cout << "cam_depth:\n" << cam_depth << std::endl;
 
     vpHomogeneousMatrix depth_M_color;
-    {
-      std::ifstream file((input_directory + "/depth_M_color.txt").c_str());
-      if (!file.is_open()) {
-        std::cerr << "Cannot read: " << input_directory << "/depth_M_color.txt" << std::endl;
-        return EXIT_FAILURE;
-      }
-      depth_M_color.load(file);
-    }
+    if (!program::read_matrix(input_directory + "/depth_M_color.txt", depth_M_color))
+      return EXIT_FAILURE;
     std::map<std::string, vpHomogeneousMatrix> mapOfCameraTransformations;
     mapOfCameraTransformations["Camera1"] = vpHomogeneousMatrix();
     mapOfCameraTransformations["Camera2"] = depth_M_color;
     tracker.setCameraTransformationMatrix(mapOfCameraTransformations);
 
     vpHomogeneousMatrix cMo_init;
-    {
-      std::ifstream file(init_pose_file.c_str());
-      if (!file.is_open()) {
-        std::cerr << "Cannot read: " << init_pose_file << std::endl;
-        return EXIT_FAILURE;
-      }
-      cMo_init.load(file);
-    }
+    if (!program::read_matrix(init_pose_file, cMo_init))
+      return EXIT_FAILURE;
 
     vpImage<unsigned char> I;
     vpImage<uint16_t> I_depth_raw;
@@ -223,12 +174,6 @@ int main(int argc, char *argv[])
       f.precision(12);
       cMo.save(f);
     }
-  } catch (const vpException &e) {
-    std::cerr << "Catch a ViSP exception: " << e.what() << std::endl;
-    return EXIT_FAILURE;
-  } catch (const std::exception &e) {
-    std::cerr << "Catch an exception: " << e.what() << std::endl;
-    return EXIT_FAILURE;
-  }
-  return EXIT_SUCCESS;
+    return EXIT_SUCCESS;
+  });
 }

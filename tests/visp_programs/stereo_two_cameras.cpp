@@ -10,20 +10,12 @@
 //! Written against vpMbGenericTracker's API only: TRACKER_HEADER / TRACKER_CLASS name the
 //! tracker class (vpMbGenericTracker or a drop-in replacement) at compile time.
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
-#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <visp3/core/vpConfig.h>
-#include <visp3/core/vpHomogeneousMatrix.h>
-#include <visp3/core/vpIoTools.h>
-#include <visp3/core/vpMath.h>
-#include <visp3/io/vpImageIo.h>
+#include "program_support.h"
 
 #ifndef TRACKER_HEADER
 #define TRACKER_HEADER <visp3/mbt/vpMbGenericTracker.h>
@@ -31,20 +23,10 @@
 #endif
 #include TRACKER_HEADER
 
-#define VP_STRINGIFY_(x) #x
-#define VP_STRINGIFY(x) VP_STRINGIFY_(x)
-
 typedef TRACKER_CLASS Tracker;
 
 namespace
 {
-std::string numbered(const std::string &format, unsigned int index)
-{
-  char buffer[FILENAME_MAX];
-  snprintf(buffer, sizeof(buffer), format.c_str(), index);
-  return std::string(buffer);
-}
-
 //! The text after "key:" on the line of sequence.yaml that starts with it ("" if none).
 std::string yaml_value(const std::string &yaml_file, const std::string &key)
 {
@@ -96,19 +78,6 @@ vpHomogeneousMatrix matrix_of(std::string text)
   }
   return M;
 }
-
-double translation_error_mm(const vpHomogeneousMatrix &cMo, const vpHomogeneousMatrix &cMo_truth)
-{
-  vpTranslationVector dt = cMo.getTranslationVector() - cMo_truth.getTranslationVector();
-  return 1000.0 * dt.frobeniusNorm();
-}
-
-double rotation_error_deg(const vpHomogeneousMatrix &cMo, const vpHomogeneousMatrix &cMo_truth)
-{
-  vpRotationMatrix dR = cMo.getRotationMatrix() * cMo_truth.getRotationMatrix().t();
-  vpThetaUVector tu(dR);
-  return vpMath::deg(std::sqrt(tu.sumSquare()));
-}
 } // namespace
 
 int main(int argc, char *argv[])
@@ -119,33 +88,23 @@ int main(int argc, char *argv[])
   unsigned int nb_frames = 30;
   double max_mean_translation_mm = 5.0;
 
-  for (int i = 1; i < argc; i++) {
-    if (std::string(argv[i]) == "--input_directory" && i + 1 < argc) {
-      input_directory = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--config" && i + 1 < argc) {
-      config_file = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--model" && i + 1 < argc) {
-      model_file = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--errors" && i + 1 < argc) {
-      errors_file = std::string(argv[++i]);
-    } else if (std::string(argv[i]) == "--frames" && i + 1 < argc) {
-      nb_frames = static_cast<unsigned int>(atoi(argv[++i]));
-    } else if (std::string(argv[i]) == "--max_mean_translation_mm" && i + 1 < argc) {
-      max_mean_translation_mm = atof(argv[++i]);
-    } else if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
-      std::cout << "Usage: " << argv[0]
-                << " [--input_directory <stereo sequence of icgp make-sequence --stereo-baseline>]"
-                   " [--config <tracker .xml>] [--model <object .cao>] [--errors <output file>]"
-                   " [--frames <n> (default: 30)] [--max_mean_translation_mm <bound> (default: 5)]"
-                << std::endl;
-      return EXIT_SUCCESS;
-    }
-  }
+  if (!program::Options()
+           .add("--input_directory", input_directory)
+           .add("--config", config_file)
+           .add("--model", model_file)
+           .add("--errors", errors_file)
+           .add("--frames", nb_frames)
+           .add("--max_mean_translation_mm", max_mean_translation_mm)
+           .parse(argc, argv,
+                  "[--input_directory <stereo sequence of icgp make-sequence --stereo-baseline>]"
+                  " [--config <tracker .xml>] [--model <object .cao>] [--errors <output file>]"
+                  " [--frames <n> (default: 30)] [--max_mean_translation_mm <bound> (default: 5)]"))
+    return EXIT_SUCCESS;
 
   std::cout << "Tracker: " << VP_STRINGIFY(TRACKER_CLASS) << std::endl;
   std::cout << "input_directory: " << input_directory << std::endl;
 
-  try {
+  return program::run([&] {
     // The stereo rig and the object's ground truth, as the sequence records them.
     const std::string yaml = input_directory + "/sequence.yaml";
     if (!vpIoTools::checkFilename(yaml)) {
@@ -184,52 +143,22 @@ int main(int argc, char *argv[])
     std::cout << "cam1:\n" << cam1 << "\ncam2:\n" << cam2 << "\nc2_M_c1:\n" << c2_M_c1 << std::endl;
 
     vpImage<unsigned char> I1, I2;
-    vpImageIo::read(I1, numbered(input_directory + "/color/%06d.png", 0));
-    vpImageIo::read(I2, numbered(input_directory + "/color2/%06d.png", 0));
+    vpImageIo::read(I1, program::numbered(input_directory + "/color/%06d.png", 0));
+    vpImageIo::read(I2, program::numbered(input_directory + "/color2/%06d.png", 0));
     tracker.initFromPose(I1, I2, c1Mo_truth[0], c2_M_c1 * c1Mo_truth[0]);
 
-    double sum_t = 0.0, sum_r = 0.0, max_t = 0.0, max_r = 0.0;
-    unsigned int nb_tracked = 0;
+    program::PoseErrors errors;
     for (unsigned int frame = 0; frame < nb_frames; frame++) {
-      vpImageIo::read(I1, numbered(input_directory + "/color/%06d.png", frame));
-      vpImageIo::read(I2, numbered(input_directory + "/color2/%06d.png", frame));
+      vpImageIo::read(I1, program::numbered(input_directory + "/color/%06d.png", frame));
+      vpImageIo::read(I2, program::numbered(input_directory + "/color2/%06d.png", frame));
       tracker.track(I1, I2);
 
       vpHomogeneousMatrix c1Mo, c2Mo;
       tracker.getPose(c1Mo, c2Mo);
-      double t_err = translation_error_mm(c1Mo, c1Mo_truth[frame]), r_err = rotation_error_deg(c1Mo, c1Mo_truth[frame]);
-      double rig_err = translation_error_mm(c2Mo, c2_M_c1 * c1Mo);
-      sum_t += t_err;
-      sum_r += r_err;
-      max_t = std::max(max_t, t_err);
-      max_r = std::max(max_r, r_err);
-      nb_tracked++;
-      std::cout << "Frame " << frame << ": " << t_err << " mm, " << r_err << " deg, " << tracker.getError().size()
-                << " features" << (rig_err > 1e-6 ? " (c2Mo is not c2_M_c1 * c1Mo)" : "") << std::endl;
+      const double rig_err = program::translation_error_mm(c2Mo, c2_M_c1 * c1Mo);
+      errors.add(frame, c1Mo, c1Mo_truth[frame], tracker.getError().size(),
+                 rig_err > 1e-6 ? " (c2Mo is not c2_M_c1 * c1Mo)" : "");
     }
-
-    double mean_t = sum_t / nb_tracked, mean_r = sum_r / nb_tracked;
-    std::cout << VP_STRINGIFY(TRACKER_CLASS) << " over " << nb_tracked << " frames: translation mean " << mean_t
-              << " mm, max " << max_t << " mm; rotation mean " << mean_r << " deg, max " << max_r << " deg"
-              << std::endl;
-    if (!errors_file.empty()) {
-      std::ofstream f(errors_file.c_str());
-      f.precision(9);
-      f << "tracker " << VP_STRINGIFY(TRACKER_CLASS) << "\nframes " << nb_tracked << "\nmean_translation_mm " << mean_t
-        << "\nmax_translation_mm " << max_t << "\nmean_rotation_deg " << mean_r << "\nmax_rotation_deg " << max_r
-        << "\n";
-    }
-    if (!(mean_t <= max_mean_translation_mm)) {
-      std::cerr << "Mean translation error " << mean_t << " mm exceeds the sanity bound of " << max_mean_translation_mm
-                << " mm" << std::endl;
-      return EXIT_FAILURE;
-    }
-  } catch (const vpException &e) {
-    std::cerr << "Catch a ViSP exception: " << e.what() << std::endl;
-    return EXIT_FAILURE;
-  } catch (const std::exception &e) {
-    std::cerr << "Catch an exception: " << e.what() << std::endl;
-    return EXIT_FAILURE;
-  }
-  return EXIT_SUCCESS;
+    return errors.report(VP_STRINGIFY(TRACKER_CLASS), errors_file, max_mean_translation_mm);
+  });
 }
