@@ -104,11 +104,7 @@ void run_bench(const BenchOptions& o) {
     JsonObject().add("rows", json_rows).write(o.summary);
     std::cout << "wrote " << o.summary << "\n";
   }
-  if (!failures.empty()) {
-    std::string names;
-    for (const std::string& name : failures) names += (names.empty() ? "" : ", ") + name;
-    throw std::runtime_error(std::to_string(failures.size()) + " configuration(s) failed: " + names);
-  }
+  throw_if_failed(failures);
 }
 
 }  // namespace

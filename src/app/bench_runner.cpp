@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "bench_runner.h"
 
+#include <stdexcept>
 #include <optional>
 
 namespace icgp::app {
@@ -38,6 +39,13 @@ TrackingEvaluation evaluate_icgp(const std::vector<Frame>& frames, const std::st
         const BodyResult r = tracker.track(f, ms);
         return TrackedPose{r.reference_T_body, r.tracked};
       });
+}
+
+void throw_if_failed(const std::vector<std::string>& failures) {
+  if (failures.empty()) return;
+  std::string names;
+  for (const std::string& name : failures) names += (names.empty() ? "" : ", ") + name;
+  throw std::runtime_error(std::to_string(failures.size()) + " configuration(s) failed: " + names);
 }
 
 }  // namespace icgp::app

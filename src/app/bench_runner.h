@@ -34,4 +34,7 @@ TrackingSummary run_icgp(const std::vector<Frame>& frames, const std::string& bo
 TrackingEvaluation evaluate_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
                                  const TrackerConfig& config);
 
+/// After the table: throws naming the configurations that failed, if any.
+void throw_if_failed(const std::vector<std::string>& failures);
+
 }  // namespace icgp::app

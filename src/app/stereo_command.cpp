@@ -13,6 +13,7 @@
 #include <visp3/core/vpRGBa.h>
 #include <visp3/core/vpTrackingException.h>
 
+#include "bench_runner.h"
 #include "commands.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
@@ -282,11 +283,7 @@ void run_stereo(const StereoOptions& o) {
         .write(o.summary);
     std::cout << "wrote " << o.summary << "\n";
   }
-  if (!failures.empty()) {
-    std::string names;
-    for (const std::string& name : failures) names += (names.empty() ? "" : ", ") + name;
-    throw std::runtime_error(std::to_string(failures.size()) + " configuration(s) failed: " + names);
-  }
+  throw_if_failed(failures);
 }
 
 }  // namespace

@@ -70,6 +70,30 @@ private:
   std::map<std::string, std::function<void(const char *)> > setters_;
 };
 
+//! The options of the programs on ViSP's rendered teabox sequence (teabox-blender).
+struct TeaboxOptions
+{
+  std::string input_directory = ".";
+  std::string errors_file;
+  unsigned int first_frame = 1, nb_frames = 30;
+  double max_mean_translation_mm = 5.0;
+
+  //! False when the usage was asked for (and printed).
+  bool parse(int argc, char *argv[])
+  {
+    return Options()
+        .add("--input_directory", input_directory)
+        .add("--errors", errors_file)
+        .add("--first_frame", first_frame)
+        .add("--frames", nb_frames)
+        .add("--max_mean_translation_mm", max_mean_translation_mm)
+        .parse(argc, argv,
+               "[--input_directory <teabox-blender folder> (default: .)] [--errors <output file>]"
+               " [--first_frame <index> (default: 1)] [--frames <n> (default: 30)]"
+               " [--max_mean_translation_mm <bound> (default: 5)]");
+  }
+};
+
 //! Runs a program's body, reporting an exception as ViSP's examples do.
 inline int run(const std::function<int()> &body)
 {

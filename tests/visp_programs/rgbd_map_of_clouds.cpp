@@ -44,21 +44,12 @@ bool read_data(unsigned int cpt, const std::string &input_directory, const vpCam
 
 int main(int argc, char *argv[])
 {
-  std::string input_directory = ".";
-  std::string errors_file;
-  unsigned int first_frame = 1, nb_frames = 30;
-  double max_mean_translation_mm = 5.0;
-  if (!program::Options()
-           .add("--input_directory", input_directory)
-           .add("--errors", errors_file)
-           .add("--first_frame", first_frame)
-           .add("--frames", nb_frames)
-           .add("--max_mean_translation_mm", max_mean_translation_mm)
-           .parse(argc, argv,
-                  "[--input_directory <teabox-blender folder> (default: .)] [--errors <output file>]"
-                  " [--first_frame <index> (default: 1)] [--frames <n> (default: 30)]"
-                  " [--max_mean_translation_mm <bound> (default: 5)]"))
+  program::TeaboxOptions options;
+  if (!options.parse(argc, argv))
     return EXIT_SUCCESS;
+  const std::string &input_directory = options.input_directory, &errors_file = options.errors_file;
+  const unsigned int first_frame = options.first_frame, nb_frames = options.nb_frames;
+  const double max_mean_translation_mm = options.max_mean_translation_mm;
 
   std::cout << "Tracker: " << VP_STRINGIFY(TRACKER_CLASS) << std::endl;
   std::cout << "input_directory: " << input_directory << std::endl;
