@@ -89,19 +89,16 @@ void vpMbIcgTracker::display(const vpImage<vpRGBa>& I, const vpHomogeneousMatrix
 }
 
 // As vpMbGenericTracker's TrackerWrapper::display, each camera's image gets the model and
-// that camera's own features (the single-image forms above draw the reference camera's).
+// that camera's own features (the single-image forms above draw the reference camera's);
+// the two-camera forms are the map forms of the first and second camera.
 
 void vpMbIcgTracker::display(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
                              const vpHomogeneousMatrix& c1Mo, const vpHomogeneousMatrix& c2Mo,
                              const vpCameraParameters& cam1, const vpCameraParameters& cam2, const vpColor& color,
                              unsigned int thickness, bool displayFullModel) {
   const auto [first, second] = impl_->rig.pair("display");
-  draw_lines(I1, getModelForDisplay(I1.getWidth(), I1.getHeight(), c1Mo, cam1, displayFullModel), color, thickness);
-  draw_lines(I2, getModelForDisplay(I2.getWidth(), I2.getHeight(), c2Mo, cam2, displayFullModel), color, thickness);
-  if (displayFeatures) {
-    draw_features(I1, features_for_display(first), thickness);
-    draw_features(I2, features_for_display(second), thickness);
-  }
+  display(std::map<std::string, const vpImage<unsigned char>*>{{first, &I1}, {second, &I2}},
+          {{first, c1Mo}, {second, c2Mo}}, {{first, cam1}, {second, cam2}}, color, thickness, displayFullModel);
 }
 
 void vpMbIcgTracker::display(const vpImage<vpRGBa>& I1, const vpImage<vpRGBa>& I2, const vpHomogeneousMatrix& c1Mo,
@@ -109,12 +106,8 @@ void vpMbIcgTracker::display(const vpImage<vpRGBa>& I1, const vpImage<vpRGBa>& I
                              const vpCameraParameters& cam2, const vpColor& color, unsigned int thickness,
                              bool displayFullModel) {
   const auto [first, second] = impl_->rig.pair("display");
-  draw_lines(I1, getModelForDisplay(I1.getWidth(), I1.getHeight(), c1Mo, cam1, displayFullModel), color, thickness);
-  draw_lines(I2, getModelForDisplay(I2.getWidth(), I2.getHeight(), c2Mo, cam2, displayFullModel), color, thickness);
-  if (displayFeatures) {
-    draw_features(I1, features_for_display(first), thickness);
-    draw_features(I2, features_for_display(second), thickness);
-  }
+  display(std::map<std::string, const vpImage<vpRGBa>*>{{first, &I1}, {second, &I2}}, {{first, c1Mo}, {second, c2Mo}},
+          {{first, cam1}, {second, cam2}}, color, thickness, displayFullModel);
 }
 
 namespace {
