@@ -89,15 +89,6 @@ bool CameraRig::is_depth_camera(const std::string& name) const {
   return (cameras_.at(name).types & (kDepthNormal | kDepthDense)) != 0;
 }
 
-bool CameraRig::reads_color(const std::string& name, const std::vector<std::string>& modalities) const {
-  const int types = cameras_.at(name).types;
-  return ((types & kEdge) && names_cue(modalities, "region")) || ((types & kKlt) && names_cue(modalities, "texture"));
-}
-
-bool CameraRig::reads_depth(const std::string& name, const std::vector<std::string>& modalities) const {
-  return is_depth_camera(name) && names_cue(modalities, "depth");
-}
-
 std::vector<CameraCues> CameraRig::cues(const std::vector<std::string>& modalities) const {
   std::string first_depth_camera;
   for (const auto& [name, camera] : cameras_)
@@ -107,7 +98,7 @@ std::vector<CameraCues> CameraRig::cues(const std::vector<std::string>& modaliti
     CameraCues c{name};
     c.region = (camera.types & kEdge) && names_cue(modalities, "region");
     c.texture = (camera.types & kKlt) && names_cue(modalities, "texture");
-    c.depth = reads_depth(name, modalities);
+    c.depth = is_depth_camera(name) && names_cue(modalities, "depth");
     c.occlusion_depth_camera = is_depth_camera(name) ? name : first_depth_camera;
     out.push_back(c);
   }

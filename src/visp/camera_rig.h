@@ -57,9 +57,6 @@ class CameraRig {
   /// DEPTH_DENSE → depth, each only if `modalities` names it. A colour camera looks for
   /// occlusions in its own depth when it has a depth type, else in the first depth camera.
   std::vector<CameraCues> cues(const std::vector<std::string>& modalities) const;
-  /// The camera's cues read its colour image / its depth.
-  bool reads_color(const std::string& name, const std::vector<std::string>& modalities) const;
-  bool reads_depth(const std::string& name, const std::vector<std::string>& modalities) const;
   /// Has a depth type (its depth may serve for occlusions even if the depth cue is off).
   bool is_depth_camera(const std::string& name) const;
 

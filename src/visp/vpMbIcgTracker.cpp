@@ -401,10 +401,10 @@ void vpMbIcgTracker::init(const vpImage<unsigned char>&) {
   if (d.mesh.parts.empty())
     throw vpTrackingException(vpTrackingException::initializationError,
                               "vpMbIcgTracker: no model; call loadModel() before initialising");
-  if (!d.tracker)
-    d.tracker = guarded("init", [&] {
-      return icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.rig.cues(d.config.modalities));
-    });
+  if (!d.tracker) {
+    d.cues = d.rig.cues(d.config.modalities);
+    d.tracker = guarded("init", [&] { return icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues); });
+  }
   d.tracker->body(Impl::kBody).reference_T_body = icgp::to_pose(m_cMo);
   d.start_pending = true;
   d.quality = 0.0;

@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 #include <visp3/core/vpTrackingException.h>
 
 #include "icgp/render/model_edges.h"
@@ -29,6 +30,7 @@ struct vpMbIcgTracker::Impl {
   icgp::Mesh mesh;
   bool has_visp_model_part = false;  ///< ViSP's projection-error model exists (.cao / .wrl)
   std::unique_ptr<icgp::Tracker> tracker;  ///< for the current mesh, config and rig, built by init()
+  std::vector<icgp::CameraCues> cues;      ///< which cues read which camera, as `tracker` was built
   bool start_pending = false;
 
   icgp::FrameAssembler assembler;
@@ -54,6 +56,14 @@ struct vpMbIcgTracker::Impl {
   std::unique_ptr<icgp::ModelEdges> edges;  ///< for display, made on first use
   std::unique_ptr<icgp::Renderer> renderer;
   icgp::Renderer::BodyHandle render_body{};
+
+  /// The cues of one of the rig's cameras.
+  const icgp::CameraCues& cues_of(const std::string& camera) const {
+    for (const icgp::CameraCues& c : cues)
+      if (c.camera == camera) return c;
+    // Every camera of the rig has an entry once the tracker is built.
+    throw vpException(vpException::fatalError, "vpMbIcgTracker: camera '" + camera + "' has no cues");
+  }
 
   void require_initialised(const std::string& call) const {
     if (!tracker)

@@ -30,13 +30,13 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
                                                              const std::string& call) {
   Impl& d = *impl_;
   const icgp::CameraRig& rig = d.rig;
-  const std::vector<std::string>& modalities = d.config.modalities;
   d.assembler.begin_frame();
   const vpImage<unsigned char>* reference_grey = nullptr;
   for (const auto& [name, image] : images) {
     const icgp::CameraRig::Camera& camera = rig.at(name, call);
     // ViSP programs also pass a depth camera's image: only colour cues read one.
-    if (!image || !rig.reads_color(name, modalities)) continue;
+    const icgp::CameraCues& cues = d.cues_of(name);
+    if (!image || !(cues.region || cues.texture)) continue;
     d.assembler.set_color(name, *image, camera.parameters, camera.parameters_set, camera.camera_M_reference);
     const int channels = std::is_same_v<Image, vpImage<unsigned char>> ? 1 : 3;
     const auto [last, first_image] = d.image_channels.emplace(name, channels);
@@ -58,12 +58,13 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     else
       d.assembler.set_depth(depth.camera, depth.width, depth.height, camera.parameters, camera.parameters_set,
                             camera.camera_M_reference, depth.depth);
-    any_depth = any_depth || rig.reads_depth(depth.camera, modalities);
+    any_depth = any_depth || d.cues_of(depth.camera).depth;
   }
   bool any_color = false;
-  for (const std::string& name : rig.names()) {
+  for (const icgp::CameraCues& cues : d.cues) {
+    const std::string& name = cues.camera;
     if (rig.is_depth_camera(name)) d.assembler.set_no_depth(name);  // unless delivered above
-    if (!rig.reads_color(name, modalities)) continue;
+    if (!(cues.region || cues.texture)) continue;
     if (!d.assembler.frame().find_color(name))
       throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no image of camera '" + name +
                                                    "', whose cues (EDGE_TRACKER: region, KLT_TRACKER: texture) "
