@@ -632,24 +632,20 @@ Frame Sequence::load(int index) const {
   frame.index = index;
   frame.timestamp = index / frame_rate_;
 
-  ColorImage color;
-  color.camera = "Camera1";
-  color.intrinsics = color_intrinsics_;
-  color.image = read_color_image(files_->color_file(index));
-  check_size(color.image, color_intrinsics_, files_->color_file(index), "colour image", files_->size_origin());
-  if (grey_without_depth_) cv::cvtColor(color.image, color.image, cv::COLOR_BGR2GRAY);
-  frame.colors.push_back(std::move(color));
-  if (has_stereo_) {
-    ColorImage stereo;
-    stereo.camera = "Camera3";
-    stereo.intrinsics = stereo_intrinsics_;
-    stereo.camera_T_reference = stereo_T_color_;
-    stereo.image = read_color_image(files_->stereo_color_file(index));
-    check_size(stereo.image, stereo_intrinsics_, files_->stereo_color_file(index), "stereo colour image",
-               files_->size_origin());
-    if (grey_without_depth_) cv::cvtColor(stereo.image, stereo.image, cv::COLOR_BGR2GRAY);
-    frame.colors.push_back(std::move(stereo));
-  }
+  const auto add_color = [&](const char* camera, const Intrinsics& intrinsics, const Pose& camera_T_color,
+                              const fs::path& file, const char* what) {
+    ColorImage color;
+    color.camera = camera;
+    color.intrinsics = intrinsics;
+    color.camera_T_reference = camera_T_color;
+    color.image = read_color_image(file);
+    check_size(color.image, intrinsics, file, what, files_->size_origin());
+    if (grey_without_depth_) cv::cvtColor(color.image, color.image, cv::COLOR_BGR2GRAY);
+    frame.colors.push_back(std::move(color));
+  };
+  add_color("Camera1", color_intrinsics_, Pose(), files_->color_file(index), "colour image");
+  if (has_stereo_)
+    add_color("Camera3", stereo_intrinsics_, stereo_T_color_, files_->stereo_color_file(index), "stereo colour image");
   frame.ground_truth = files_->read_ground_truth(index);
   if (grey_without_depth_) return frame;
 
