@@ -393,19 +393,17 @@ void SequenceWriter::write(const std::string& dir_name) const {
   char name[32];
   for (int i = 0; i < o.frame_count; ++i) {
     const double seconds = i / o.frame_rate;
-    cv::Mat color = average_color_renders(o.motion_blur.samples, [&](int sample) {
-      const double t = exposure_time(seconds, sample);
-      place_objects(t);
-      return renderer.render(o.color_intrinsics, trajectory_.camera_T_world(t), kRenderColor).color;
-    });
-    // The stereo camera's exposure is the colour camera's (a synchronised pair).
-    cv::Mat stereo_color;
-    if (o.stereo)
-      stereo_color = average_color_renders(o.motion_blur.samples, [&](int sample) {
+    // A colour camera's exposure; the stereo camera's is the colour camera's (a synchronised pair).
+    const auto expose = [&](const Intrinsics& intrinsics, const Pose& camera_T_color) {
+      return average_color_renders(o.motion_blur.samples, [&](int sample) {
         const double t = exposure_time(seconds, sample);
         place_objects(t);
-        return renderer.render(o.stereo_intrinsics, o.stereo_T_color * trajectory_.camera_T_world(t), kRenderColor).color;
+        return renderer.render(intrinsics, camera_T_color * trajectory_.camera_T_world(t), kRenderColor).color;
       });
+    };
+    cv::Mat color = expose(o.color_intrinsics, Pose());
+    cv::Mat stereo_color;
+    if (o.stereo) stereo_color = expose(o.stereo_intrinsics, o.stereo_T_color);
 
     // Depth and ground truth at the frame's time, the middle of the exposure.
     const Pose camera_T_world = color_T_world(i);
