@@ -36,6 +36,7 @@
 #include "vpmbicgtracker_test_setup.h"
 
 using namespace icgp;
+using icgp::test::vp_exception_of;
 using Catch::Matchers::Contains;
 
 // =====================================================================================
@@ -526,19 +527,6 @@ const std::string& kCamera2 = kVispDepthCamera;  // "Camera2": DEPTH_DENSE_TRACK
 constexpr int kEdge = vpMbGenericTracker::EDGE_TRACKER, kKlt = vpMbGenericTracker::KLT_TRACKER,
               kDepthNormal = vpMbGenericTracker::DEPTH_NORMAL_TRACKER,
               kDepthDense = vpMbGenericTracker::DEPTH_DENSE_TRACKER;
-
-/// The vpException that `call` throws; a failed check (and code -1) when it throws none.
-/// Any other exception reaches Catch and fails the test: vpMbIcgTracker throws ViSP's only.
-template <class Call>
-vpException vp_exception_of(Call&& call) {
-  try {
-    call();
-  } catch (const vpException& e) {
-    return e;
-  }
-  FAIL_CHECK("no exception was thrown");
-  return vpException(-1, "no exception was thrown");
-}
 
 /// `call` is refused with a vpException of `code` whose message names the call and `value`.
 template <class Call>

@@ -14,6 +14,7 @@
 #include "vpmbicgtracker_test_setup.h"
 
 using namespace icgp;
+using icgp::test::vp_exception_of;
 using Catch::Matchers::Contains;
 
 namespace {
@@ -22,16 +23,6 @@ const std::string kTeaboxCao = (test::kTeaboxBlender / "teabox.cao").string();
 const std::filesystem::path kRealsenseModels =
     std::filesystem::path(ICGP_TEST_DATA_DIR) / "realsense-cube" / "models" / "teabox";
 
-template <class Call>
-vpException vp_exception_of(Call&& call) {
-  try {
-    call();
-  } catch (const vpException& e) {
-    return e;
-  }
-  FAIL("no exception was thrown");
-  return vpException(vpException::fatalError, "");
-}
 
 /// The depth camera's organised cloud of a frame, in ViSP's map form under `camera`.
 struct CloudMaps {

@@ -16,22 +16,10 @@
 #include "vpmbicgtracker_test_setup.h"
 
 using namespace icgp;
+using icgp::test::vp_exception_of;
 using Catch::Matchers::Contains;
 
 namespace {
-
-/// The exception of type E (vpException or a subclass) that `call` throws; fails the test
-/// when it throws nothing (any other exception reaches Catch and fails it too).
-template <class E = vpException, class Call>
-E vp_exception_of(Call&& call) {
-  try {
-    call();
-  } catch (const E& e) {
-    return e;
-  }
-  FAIL("no exception was thrown");
-  return E(vpException::fatalError, "");
-}
 
 const std::string kTeaboxCao = (test::kTeaboxBlender / "teabox.cao").string();
 

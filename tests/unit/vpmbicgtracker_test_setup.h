@@ -3,6 +3,7 @@
 // a ViSP user would, with models coarse enough to be generated in about a second.
 #pragma once
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -34,6 +35,20 @@ inline void configure_for_tests(vpMbIcgTracker& tracker) {
   TrackerConfig config = tracker.getTrackerConfig();
   config.cache_dir = ICGP_TEST_CACHE_DIR;
   tracker.setTrackerConfig(config);
+}
+
+/// The exception of type E (vpException or a subclass) that `call` throws; a failed check
+/// (and code -1) when it throws none. Any other exception reaches Catch and fails the test:
+/// vpMbIcgTracker throws ViSP's only.
+template <class E = vpException, class Call>
+E vp_exception_of(Call&& call) {
+  try {
+    call();
+  } catch (const E& e) {
+    return e;
+  }
+  FAIL_CHECK("no exception was thrown");
+  return E(-1, "no exception was thrown");
 }
 
 }  // namespace icgp::test
