@@ -6,7 +6,7 @@
 #include <opencv2/videoio.hpp>
 #include <string>
 
-#include "icgp/eval/frame.h"
+#include "icgp/base/frame.h"
 #include "icgp/render/renderer.h"
 
 namespace icgp::app {

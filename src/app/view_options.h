@@ -4,8 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "icgp/geometry/intrinsics.h"
-#include "icgp/geometry/pose.h"
+#include "icgp/base/intrinsics.h"
+#include "icgp/base/pose.h"
 
 namespace icgp::app {
 

@@ -13,7 +13,7 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpRGBa.h>
 
-#include "icgp/eval/frame.h"
+#include "icgp/base/frame.h"
 
 namespace icgp {
 

@@ -9,8 +9,8 @@
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/core/vpTranslationVector.h>
 
-#include "icgp/geometry/intrinsics.h"
-#include "icgp/geometry/pose.h"
+#include "icgp/base/intrinsics.h"
+#include "icgp/base/pose.h"
 #include "icgp/visp/conversions.h"
 
 using Eigen::Matrix3d;

@@ -5,8 +5,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "icgp/geometry/intrinsics.h"
-#include "icgp/io/mesh.h"
+#include "icgp/base/intrinsics.h"
+#include "icgp/base/mesh.h"
 
 namespace icgp::test {
 

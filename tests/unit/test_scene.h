@@ -5,7 +5,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "icgp/eval/frame.h"
+#include "icgp/base/frame.h"
 #include "icgp/render/renderer.h"
 
 namespace icgp::test {

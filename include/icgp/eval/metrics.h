@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "icgp/eval/json_object.h"
-#include "icgp/geometry/pose.h"
-#include "icgp/io/mesh.h"
+#include "icgp/base/pose.h"
+#include "icgp/base/mesh.h"
 
 namespace icgp {
 

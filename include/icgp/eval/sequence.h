@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "icgp/eval/frame.h"
-#include "icgp/geometry/intrinsics.h"
-#include "icgp/geometry/pose.h"
+#include "icgp/base/frame.h"
+#include "icgp/base/intrinsics.h"
+#include "icgp/base/pose.h"
 
 namespace icgp {
 

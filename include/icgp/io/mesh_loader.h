@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "icgp/io/mesh.h"
+#include "icgp/base/mesh.h"
 
 namespace icgp {
 

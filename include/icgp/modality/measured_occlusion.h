@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "icgp/eval/frame.h"
+#include "icgp/base/frame.h"
 
 namespace icgp {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "icgp/eval/frame.h"
-#include "icgp/tracker/body.h"
+#include "icgp/base/frame.h"
+#include "icgp/base/body.h"
 
 namespace icgp {
 

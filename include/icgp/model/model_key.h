@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "icgp/io/mesh.h"
+#include "icgp/base/mesh.h"
 #include "icgp/model/viewpoint_model.h"
 #include "icgp/model/viewpoint_model_generator.h"
 

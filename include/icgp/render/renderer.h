@@ -6,9 +6,9 @@
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
-#include "icgp/geometry/intrinsics.h"
-#include "icgp/geometry/pose.h"
-#include "icgp/io/mesh.h"
+#include "icgp/base/intrinsics.h"
+#include "icgp/base/pose.h"
+#include "icgp/base/mesh.h"
 
 namespace icgp {
 

@@ -7,7 +7,7 @@
 #include <functional>
 #include <opencv2/core/mat.hpp>
 
-#include "icgp/geometry/intrinsics.h"
+#include "icgp/base/intrinsics.h"
 
 namespace icgp {
 

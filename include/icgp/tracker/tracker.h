@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "icgp/modality/modality.h"
-#include "icgp/tracker/body.h"
+#include "icgp/base/body.h"
 
 namespace icgp {
 

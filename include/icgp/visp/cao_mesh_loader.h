@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "icgp/geometry/pose.h"
-#include "icgp/io/mesh.h"
+#include "icgp/base/pose.h"
+#include "icgp/base/mesh.h"
 
 namespace icgp {
 

@@ -7,8 +7,8 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpRGBa.h>
 
-#include "icgp/geometry/intrinsics.h"
-#include "icgp/geometry/pose.h"
+#include "icgp/base/intrinsics.h"
+#include "icgp/base/pose.h"
 
 namespace icgp {
 

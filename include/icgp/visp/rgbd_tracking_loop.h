@@ -18,8 +18,8 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
-#include "icgp/eval/frame.h"
-#include "icgp/geometry/pose.h"
+#include "icgp/base/frame.h"
+#include "icgp/base/pose.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/visp/visp_baseline.h"
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "icgp/eval/frame.h"
-#include "icgp/geometry/pose.h"
+#include "icgp/base/frame.h"
+#include "icgp/base/pose.h"
 
 class vpMbGenericTracker;
 

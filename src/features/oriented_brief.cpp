@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "grey_image.h"
-#include "splitmix64.h"
+#include "icgp/base/splitmix64.h"
 
 namespace icgp {
 

@@ -15,7 +15,7 @@
 
 #include "icgp/render/renderer.h"
 #include "icgp/render/sensor_effects.h"
-#include "splitmix64.h"
+#include "icgp/base/splitmix64.h"
 
 namespace icgp {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "icgp/geometry/pose.h"
+#include "icgp/base/pose.h"
 
 namespace icgp {
 

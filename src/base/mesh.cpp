@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "icgp/io/mesh.h"
+#include "icgp/base/mesh.h"
 
 #include <stdexcept>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "icgp/geometry/intrinsics.h"
+#include "icgp/base/intrinsics.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "icgp/geometry/intrinsics.h"
-#include "icgp/geometry/pose.h"
+#include "icgp/base/intrinsics.h"
+#include "icgp/base/pose.h"
 
 namespace icgp {
 

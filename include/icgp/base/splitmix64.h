@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// Internal: the project's one pseudo-random generator.
+// The project's one pseudo-random generator.
 #pragma once
 
 #include <cstdint>

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "icgp/geometry/intrinsics.h"
-#include "icgp/geometry/pose.h"
+#include "icgp/base/intrinsics.h"
+#include "icgp/base/pose.h"
 
 namespace icgp::servo {
 

@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "icgp/io/mesh.h"
+#include "icgp/base/mesh.h"
 
 namespace icgp {
 

@@ -8,7 +8,7 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
-#include "splitmix64.h"
+#include "icgp/base/splitmix64.h"
 
 namespace icgp {
 namespace {
