@@ -16,6 +16,7 @@
 #include "icgp/io/mesh_loader.h"
 #include "icgp/model/model_cache.h"
 #include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/visp_camera_xml.h"
 #include "single_thread_scope.h"
 
 namespace icgp::app {
@@ -31,7 +32,7 @@ struct AblationSequence {
 struct AblationConfig {
   std::string name;
   std::vector<std::string> modalities;
-  std::string descriptor;
+  Descriptor descriptor;
   bool multi_region;
 };
 
@@ -39,13 +40,13 @@ struct AblationConfig {
 /// without each part. "ob" is oriented_brief, the defaults' descriptor.
 std::vector<AblationConfig> ablation_configs() {
   const std::vector<std::string> all = {"region", "depth", "texture"};
-  const std::string ob = "oriented_brief";
+  const Descriptor ob = Descriptor::kOrientedBrief;
   return {{"icg+ob (defaults)", all, ob, true},
-          {"icg+orb", all, "orb", true},
-          {"icg+brisk", all, "brisk", true},
-          {"icg+sift", all, "sift", true},
-          {"icg+freak", all, "freak", true},
-          {"icg+daisy", all, "daisy", true},
+          {"icg+orb", all, Descriptor::kOrb, true},
+          {"icg+brisk", all, Descriptor::kBrisk, true},
+          {"icg+sift", all, Descriptor::kSift, true},
+          {"icg+freak", all, Descriptor::kFreak, true},
+          {"icg+daisy", all, Descriptor::kDaisy, true},
           {"icg+ob-no-multiregion", all, ob, false},
           {"icg+ob-no-texture", {"region", "depth"}, ob, true},
           {"icg", {"region", "depth"}, ob, false},
@@ -102,7 +103,7 @@ void run_ablation(const std::string& summary_path, int frame_limit) {
   const SingleThreadScope single_thread;
   std::vector<JsonObject> json_rows;
   for (const AblationSequence& s : ablation_sequences()) {
-    const Sequence sequence = Sequence::open(s.directory);
+    const Sequence sequence = Sequence::open(s.directory, visp_sequence_options());
     const Mesh mesh = load_any_mesh(s.mesh_path);
     const std::string body = sequence.objects().front().name;
     const int n = frame_limit > 0 ? std::min(frame_limit, sequence.size()) : sequence.size();

@@ -9,6 +9,7 @@
 #include "icgp/eval/sequence.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/visp_baseline.h"
+#include "icgp/visp/visp_camera_xml.h"
 #include "single_thread_scope.h"
 #include "bench_runner.h"
 #include "timing_rounds.h"
@@ -29,7 +30,7 @@ struct BenchOptions {
   bool ablation = false;
   bool sweep = false;
   SweepOptions sweep_options;
-  SequenceOptions sequence_options;
+  SequenceOptions sequence_options = visp_sequence_options();
 };
 
 void print_table(const std::vector<TimedRow>& rows, int rounds) {

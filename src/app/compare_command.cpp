@@ -18,6 +18,7 @@
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/visp_baseline.h"
+#include "icgp/visp/visp_camera_xml.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 #include "single_thread_scope.h"
 #include "timing_rounds.h"
@@ -43,7 +44,7 @@ struct CompareOptions {
   std::string summary;
   int frames = 0;
   int rounds = 3;
-  SequenceOptions sequence_options;
+  SequenceOptions sequence_options = visp_sequence_options();
 };
 
 /// A row's tracker and configuration, the two columns of the table: its TimedJob name is

@@ -12,6 +12,7 @@
 #include <visp3/gui/vpDisplayX.h>
 
 #include "commands.h"
+#include "icgp/base/camera_names.h"
 #include "icgp/servo/servo_report.h"
 #include "icgp/servo/servo_run.h"
 #include "icgp/visp/cao_mesh_loader.h"
@@ -67,7 +68,7 @@ class RunViewer {
     std::snprintf(caption, sizeof caption, "t %.2f s  error %.2f mm %.2f deg%s", step.time, 1e3 * step.servo_t,
                   step.servo_r / servo::kDegree, step.safety_stop ? "  SAFETY STOP" : "");
     if (video_) {
-      ColorImage color{"Camera1", intrinsics_, Pose(), cv::Mat()};
+      ColorImage color{kColorCamera, intrinsics_, Pose(), cv::Mat()};
       vpImageConvert::convert(capture.color, color.image);  // BGR
       const Pose truth = to_pose(step.cMo_true);
       video_->write(color, to_pose(step.cMo_estimated), &truth, caption);

@@ -15,6 +15,7 @@
 
 #include "bench_runner.h"
 #include "commands.h"
+#include "icgp/base/camera_names.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
@@ -23,6 +24,7 @@
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
+#include "icgp/visp/visp_camera_xml.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 #include "single_thread_scope.h"
 
@@ -130,7 +132,7 @@ StereoRow run_configuration(const Sequence& sequence, int n_frames, const Sequen
   vpImage<vpRGBa> I1, I2;
   const auto convert = [&](const Frame& frame) {
     const cv::Mat& first = frame.colors.at(0).image;
-    const cv::Mat& second = frame.find_color("Camera3")->image;
+    const cv::Mat& second = frame.find_color(kStereoCamera)->image;
     to_vp_image(cameras == Cameras::kStereoAlone ? second : first, I1);
     if (stereo) to_vp_image(second, I2);
   };
@@ -204,7 +206,7 @@ void print_table(const std::vector<StereoRow>& rows) {
 
 void run_stereo(const StereoOptions& o) {
   const std::string dir = o.sequence.empty() ? default_stereo_sequence() : o.sequence;
-  const Sequence sequence = Sequence::open(dir);
+  const Sequence sequence = Sequence::open(dir, visp_sequence_options());
   if (!sequence.has_stereo())
     throw std::runtime_error(dir + ": not a stereo sequence (no color2/; render one with `icgp make-sequence "
                                    "--stereo-baseline B`)");

@@ -12,6 +12,7 @@
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/visp_camera_xml.h"
 #include "overlay_video.h"
 #include "single_thread_scope.h"
 #include "timed_icg_tracker.h"
@@ -28,7 +29,7 @@ struct TrackOptions {
   std::string summary;
   std::string csv;
   std::string video;
-  SequenceOptions sequence_options;
+  SequenceOptions sequence_options = visp_sequence_options();
   bool quiet = false;
 };
 

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/eval/sequence.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -11,9 +9,13 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "icgp/base/camera_names.h"
+#include "icgp/io/yaml_reader.h"
 
 namespace icgp {
 
@@ -199,29 +201,6 @@ cv::Mat read_png_depth(const fs::path& path, double depth_scale) {
   return z;
 }
 
-/// ViSP XML: a <camera> block with <px>, <py>, <u0>, <v0>. Comments are removed first so a
-/// commented-out block is not picked up.
-std::string strip_xml_comments(std::string text) {
-  for (std::size_t begin; (begin = text.find("<!--")) != std::string::npos;) {
-    const std::size_t end = text.find("-->", begin);
-    text.erase(begin, end == std::string::npos ? std::string::npos : end + 3 - begin);
-  }
-  return text;
-}
-
-double xml_number(const std::string& block, const std::string& tag, const fs::path& file) {
-  const std::string open = "<" + tag + ">", close = "</" + tag + ">";
-  const std::size_t begin = block.find(open);
-  if (begin == std::string::npos) fail(file, "<camera> block has no " + open);
-  const std::size_t end = block.find(close, begin);
-  if (end == std::string::npos) fail(file, open + " has no closing " + close);
-  const std::string text = block.substr(begin + open.size(), end - begin - open.size());
-  char* stop = nullptr;
-  const double value = std::strtod(text.c_str(), &stop);
-  if (stop == text.c_str() || !is_blank(stop)) fail(file, open + " is not a number: '" + text + "'");
-  return value;
-}
-
 // ---------------------------------------------------------------------------------------
 // Layouts
 
@@ -337,9 +316,13 @@ std::vector<SequenceObject> find_visp_objects(const fs::path& dir, const fs::pat
 /// from the first colour and depth images.
 void describe_visp_calibration(const fs::path& dir, const SequenceOptions& options, const Sequence::Layout& files,
                                Description& d) {
+  if (!options.read_camera_xml)
+    fail(dir, "a " + d.layout + " sequence keeps its intrinsics in ViSP XML files, which the core library does not "
+              "read: set SequenceOptions::read_camera_xml, e.g. to icgp::read_visp_camera_xml of icgp::visp "
+              "(icgp/visp/visp_camera_xml.h; icgp::visp_sequence_options() sets it)");
   const IntrinsicsFiles xml = find_intrinsics_files(dir, options);
-  d.color_intrinsics = read_visp_camera_xml(xml.color.string());
-  d.depth_intrinsics = read_visp_camera_xml(xml.depth.string());
+  d.color_intrinsics = options.read_camera_xml(xml.color.string());
+  d.depth_intrinsics = options.read_camera_xml(xml.depth.string());
   require_file(dir / "depth_M_color.txt", "colour-to-depth transform");
   d.depth_T_color = read_pose_matrix_file((dir / "depth_M_color.txt").string());
   const cv::Mat color = read_color_image(files.color_file(0));
@@ -429,33 +412,25 @@ class VispRealsenseLayout : public Sequence::Layout {
   fs::path dir_;
 };
 
-/// yaml-cpp accessors that name the file and the key on failure.
-YAML::Node yaml_child(const YAML::Node& node, const std::string& key, const std::string& path, const fs::path& file) {
-  if (!node.IsMap() || !node[key]) fail(file, "missing key '" + path + key + "'");
-  return node[key];
-}
-
-template <typename T>
-T yaml_value(const YAML::Node& node, const std::string& key, const std::string& path, const fs::path& file) {
-  try {
-    return yaml_child(node, key, path, file).as<T>();
-  } catch (const YAML::Exception&) {
-    fail(file, "key '" + path + key + "' has the wrong type");
-  }
-}
-
-Intrinsics yaml_camera(const YAML::Node& root, const std::string& key, const fs::path& file) {
-  const YAML::Node node = yaml_child(root, key, "", file);
-  const std::string path = key + ".";
+/// A camera of sequence.yaml: {fu, fv, pu, pv, width, height} (other keys, such as the
+/// writer's camera name, are not read).
+Intrinsics yaml_camera(const yaml::Value& value) {
+  const yaml::Map camera(value);
   Intrinsics k;
-  k.fu = yaml_value<double>(node, "fu", path, file);
-  k.fv = yaml_value<double>(node, "fv", path, file);
-  k.pu = yaml_value<double>(node, "pu", path, file);
-  k.pv = yaml_value<double>(node, "pv", path, file);
-  k.width = yaml_value<int>(node, "width", path, file);
-  k.height = yaml_value<int>(node, "height", path, file);
-  k.validate(file.string() + ": " + key);
+  k.fu = camera.required("fu").as(yaml::kPositive);
+  k.fv = camera.required("fv").as(yaml::kPositive);
+  k.pu = camera.required("pu").as(yaml::kNumber);
+  k.pv = camera.required("pv").as(yaml::kNumber);
+  k.width = camera.required("width").as(yaml::kPositiveInt);
+  k.height = camera.required("height").as(yaml::kPositiveInt);
   return k;
+}
+
+/// A rigid transform of sequence.yaml: 16 row-major numbers.
+Pose yaml_transform(const yaml::Value& value) {
+  const yaml::Rule<std::vector<double>> sixteen{"a list of 16 numbers (4x4 row-major)",
+                                                [](const std::vector<double>& v) { return v.size() == 16; }};
+  return pose_from_row_major(value.as(sixteen), value.at.file, value.at.key + ": ");
 }
 
 /// One line per frame of 16 row-major numbers (reference_T_object).
@@ -490,54 +465,42 @@ class IcgpLayout : public Sequence::Layout {
 
   static std::pair<Description, std::shared_ptr<const Sequence::Layout>> open(const fs::path& dir,
                                                                              const SequenceOptions&) {
-    const fs::path file = dir / "sequence.yaml";
-    YAML::Node root;
-    try {
-      root = YAML::LoadFile(file.string());
-    } catch (const YAML::Exception& e) {
-      fail(file, std::string("invalid YAML: ") + e.what());
-    }
-    if (yaml_value<std::string>(root, "format", "", file) != "icgp-sequence")
-      fail(file, "'format' must be icgp-sequence");
-    if (yaml_value<int>(root, "version", "", file) != 1) fail(file, "unsupported 'version' (this reader knows 1)");
+    // Any keys: the writer adds some (the seed, the cameras' names) that reading needs not.
+    const yaml::Map root(yaml::load_file((dir / "sequence.yaml").string()));
+    root.required("format").as(yaml::Rule<std::string>{
+        "icgp-sequence", [](const std::string& format) { return format == "icgp-sequence"; }});
+    root.required("version").as(
+        yaml::Rule<int>{"1 (the version this reader knows)", [](const int& version) { return version == 1; }});
 
     auto layout = std::make_shared<IcgpLayout>();
     layout->dir_ = dir;
     Description d;
     d.layout = "icgp";
-    d.frame_count = yaml_value<int>(root, "frame_count", "", file);
-    if (d.frame_count <= 0) fail(file, "'frame_count' must be positive");
-    d.frame_rate = yaml_value<double>(root, "frame_rate", "", file);
-    if (!(d.frame_rate > 0.0)) fail(file, "'frame_rate' must be positive");
-    layout->depth_scale_ = yaml_value<double>(root, "depth_scale", "", file);
-    if (!(layout->depth_scale_ > 0.0)) fail(file, "'depth_scale' must be positive");
-    d.color_intrinsics = yaml_camera(root, "color_camera", file);
-    d.depth_intrinsics = yaml_camera(root, "depth_camera", file);
-    const auto depth_T_color = yaml_value<std::vector<double>>(root, "depth_T_color", "", file);
-    if (depth_T_color.size() != 16) fail(file, "'depth_T_color' must hold 16 numbers (4x4 row-major)");
-    d.depth_T_color = pose_from_row_major(depth_T_color, file, "depth_T_color: ");
+    d.frame_count = root.required("frame_count").as(yaml::kPositiveInt);
+    d.frame_rate = root.required("frame_rate").as(yaml::kPositive);
+    layout->depth_scale_ = root.required("depth_scale").as(yaml::kPositive);
+    d.color_intrinsics = yaml_camera(root.required("color_camera"));
+    d.depth_intrinsics = yaml_camera(root.required("depth_camera"));
+    d.depth_T_color = yaml_transform(root.required("depth_T_color"));
     // The optional stereo camera: both keys or neither.
-    if (root["stereo_camera"] || root["stereo_T_color"]) {
+    if (root.get("stereo_camera") || root.get("stereo_T_color")) {
       d.stereo = true;
-      d.stereo_intrinsics = yaml_camera(root, "stereo_camera", file);
-      const auto stereo_T_color = yaml_value<std::vector<double>>(root, "stereo_T_color", "", file);
-      if (stereo_T_color.size() != 16) fail(file, "'stereo_T_color' must hold 16 numbers (4x4 row-major)");
-      d.stereo_T_color = pose_from_row_major(stereo_T_color, file, "stereo_T_color: ");
+      d.stereo_intrinsics = yaml_camera(root.required("stereo_camera"));
+      d.stereo_T_color = yaml_transform(root.required("stereo_T_color"));
     }
 
-    const YAML::Node objects = root["objects"];
-    if (objects && !objects.IsSequence()) fail(file, "'objects' must be a list");
-    for (std::size_t i = 0; objects && i < objects.size(); ++i) {
-      const std::string path = "objects[" + std::to_string(i) + "].";
-      SequenceObject object;
-      object.name = yaml_value<std::string>(objects[i], "name", path, file);
-      if (objects[i]["mesh"]) {
-        const fs::path mesh = yaml_value<std::string>(objects[i], "mesh", path, file);
-        object.mesh_path = (mesh.is_absolute() ? mesh : dir / mesh).string();
+    if (const std::optional<yaml::Value> objects = root.get("objects"))
+      for (const yaml::Value& entry : objects->elements("a list of objects")) {
+        const yaml::Map fields(entry);
+        SequenceObject object;
+        object.name = fields.required("name").as(yaml::kNonEmptyString);
+        if (const std::optional<yaml::Value> mesh = fields.get("mesh")) {
+          const fs::path mesh_path = mesh->as(yaml::kNonEmptyString);
+          object.mesh_path = (mesh_path.is_absolute() ? mesh_path : dir / mesh_path).string();
+        }
+        layout->poses_[object.name] = read_pose_lines(dir / "poses" / (object.name + ".txt"), d.frame_count);
+        d.objects.push_back(object);
       }
-      layout->poses_[object.name] = read_pose_lines(dir / "poses" / (object.name + ".txt"), d.frame_count);
-      d.objects.push_back(object);
-    }
     d.has_ground_truth = !d.objects.empty();
     for (int i = 0; i < d.frame_count; ++i) {
       require_file(layout->color_file(i), "colour image of frame " + std::to_string(i));
@@ -554,21 +517,6 @@ class IcgpLayout : public Sequence::Layout {
 };
 
 }  // namespace
-
-Intrinsics read_visp_camera_xml(const std::string& path) {
-  const std::string text = strip_xml_comments(read_text_file(path));
-  const std::size_t begin = text.find("<camera>");
-  if (begin == std::string::npos) fail(path, "no <camera> block");
-  const std::size_t end = text.find("</camera>", begin);
-  if (end == std::string::npos) fail(path, "<camera> block has no closing </camera>");
-  const std::string block = text.substr(begin, end - begin);
-  Intrinsics k;
-  k.fu = xml_number(block, "px", path);
-  k.fv = xml_number(block, "py", path);
-  k.pu = xml_number(block, "u0", path);
-  k.pv = xml_number(block, "v0", path);
-  return k;
-}
 
 Pose read_pose_matrix_file(const std::string& path) {
   std::ifstream in(path);
@@ -643,14 +591,14 @@ Frame Sequence::load(int index) const {
     if (grey_without_depth_) cv::cvtColor(color.image, color.image, cv::COLOR_BGR2GRAY);
     frame.colors.push_back(std::move(color));
   };
-  add_color("Camera1", color_intrinsics_, Pose(), files_->color_file(index), "colour image");
+  add_color(kColorCamera, color_intrinsics_, Pose(), files_->color_file(index), "colour image");
   if (has_stereo_)
-    add_color("Camera3", stereo_intrinsics_, stereo_T_color_, files_->stereo_color_file(index), "stereo colour image");
+    add_color(kStereoCamera, stereo_intrinsics_, stereo_T_color_, files_->stereo_color_file(index), "stereo colour image");
   frame.ground_truth = files_->read_ground_truth(index);
   if (grey_without_depth_) return frame;
 
   DepthImage depth;
-  depth.camera = "Camera2";
+  depth.camera = kDepthCamera;
   depth.intrinsics = depth_intrinsics_;
   depth.camera_T_reference = depth_T_color_;
   depth.depth = files_->read_depth(index);

@@ -13,6 +13,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "icgp/base/camera_names.h"
 #include "icgp/render/renderer.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/base/splitmix64.h"
@@ -22,9 +23,6 @@ namespace icgp {
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-double radians(double degrees) { return degrees * kPi / 180.0; }
 
 /// SplitMix64 with the distributions sequences draw from.
 class Random : public SplitMix64 {
@@ -99,7 +97,7 @@ double half_diagonal_fov(const Intrinsics& k) {
 /// unbounded plane and meet it beyond any depth range anyway).
 double background_half_extent(const SequenceWriterOptions& o) {
   const OrbitOptions& m = o.motion;
-  const double max_tilt = radians(m.max_tilt_deg);
+  const double max_tilt = deg_to_rad(m.max_tilt_deg);
   const double tilt = std::acos(std::cos(max_tilt) * std::cos(max_tilt));
   const double far = m.distance + m.distance_variation;
   const double near = m.distance - m.distance_variation;
@@ -110,7 +108,7 @@ double background_half_extent(const SequenceWriterOptions& o) {
     fov = std::max(fov, half_diagonal_fov(o.stereo_intrinsics));
     offset = std::max(offset, o.stereo_T_color.translation().norm());
   }
-  const double ray = std::min(tilt + fov + std::atan(wander / near), radians(80.0));
+  const double ray = std::min(tilt + fov + std::atan(wander / near), deg_to_rad(80.0));
   return far * std::sin(tilt) + offset + wander + (far + o.background.distance) * std::tan(ray);
 }
 
@@ -216,26 +214,6 @@ bool is_file_name_safe(const std::string& name) {
 
 }  // namespace
 
-SensorNoise SensorNoise::realsense_class() {
-  SensorNoise n;
-  n.color_sigma = 1.5;
-  n.depth_sigma_at_1m = 0.0015;
-  n.depth_dropout = 0.05;
-  n.grazing_angle_deg = 80.0;
-  n.depth_edge_holes_px = 1;
-  return n;
-}
-
-SensorNoise SensorNoise::kinect_class() {
-  SensorNoise n;
-  n.color_sigma = 4.0;
-  n.depth_sigma_at_1m = 0.005;
-  n.depth_dropout = 0.2;
-  n.grazing_angle_deg = 75.0;
-  n.depth_edge_holes_px = 2;
-  return n;
-}
-
 cv::Mat procedural_clutter_texture(std::uint64_t seed) {
   Random random = stream(seed, kBackgroundStream);
   return procedural_texture(random);
@@ -274,8 +252,8 @@ OrbitTrajectory::OrbitTrajectory(const OrbitOptions& options, std::uint64_t seed
 Pose OrbitTrajectory::camera_T_world(double seconds) const {
   const OrbitOptions& o = options_;
   const double distance = o.distance + o.distance_variation * distance_.at(seconds);
-  const double ax = radians(o.max_tilt_deg) * tilt_x_.at(seconds);
-  const double ay = radians(o.max_tilt_deg) * tilt_y_.at(seconds);
+  const double ax = deg_to_rad(o.max_tilt_deg) * tilt_x_.at(seconds);
+  const double ay = deg_to_rad(o.max_tilt_deg) * tilt_y_.at(seconds);
   const Eigen::Vector3d towards_camera(std::cos(ay) * std::sin(ax), std::sin(ay), std::cos(ay) * std::cos(ax));
   const Eigen::Vector3d position = o.target + distance * towards_camera;
   const Eigen::Vector3d look_at =
@@ -289,7 +267,7 @@ Pose OrbitTrajectory::camera_T_world(double seconds) const {
   Eigen::Matrix3d world_R_camera;
   world_R_camera << x, y, z;
   const Eigen::Matrix3d roll =
-      Eigen::AngleAxisd(radians(o.max_roll_deg) * roll_.at(seconds), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      Eigen::AngleAxisd(deg_to_rad(o.max_roll_deg) * roll_.at(seconds), Eigen::Vector3d::UnitZ()).toRotationMatrix();
   return Pose(world_R_camera * roll, position).inverse();
 }
 
@@ -367,12 +345,12 @@ void SequenceWriter::write(const std::string& dir_name) const {
        << "format: icgp-sequence\nversion: 1\n"
        << "frame_count: " << o.frame_count << "\nframe_rate: " << exact(o.frame_rate)
        << "\ndepth_scale: " << exact(o.depth_scale) << "\nseed: " << o.seed << "\n"
-       << "color_camera: " << yaml_camera("Camera1", o.color_intrinsics) << "\n"
-       << "depth_camera: " << yaml_camera("Camera2", o.depth_intrinsics) << "\n"
+       << "color_camera: " << yaml_camera(kColorCamera, o.color_intrinsics) << "\n"
+       << "depth_camera: " << yaml_camera(kDepthCamera, o.depth_intrinsics) << "\n"
        << "depth_T_color: [" << row_major(o.depth_T_color, ", ") << "]\n";
   if (o.stereo)
     yaml << "# stereo: color2/%06d.png, a second colour camera at stereo_T_color * color_T_world.\n"
-         << "stereo_camera: " << yaml_camera("Camera3", o.stereo_intrinsics) << "\n"
+         << "stereo_camera: " << yaml_camera(kStereoCamera, o.stereo_intrinsics) << "\n"
          << "stereo_T_color: [" << row_major(o.stereo_T_color, ", ") << "]\n";
   yaml << "objects:\n";
   for (const Object& object : objects_) {
@@ -389,7 +367,6 @@ void SequenceWriter::write(const std::string& dir_name) const {
   const auto place_objects = [&](double seconds) {
     for (std::size_t k = 0; k < objects_.size(); ++k) renderer.set_body_pose(bodies[k], objects_[k].world_T_object_at(seconds));
   };
-  const bool grazing_holes = o.noise.grazing_angle_deg < 90.0;
   char name[32];
   for (int i = 0; i < o.frame_count; ++i) {
     const double seconds = i / o.frame_rate;
@@ -409,12 +386,8 @@ void SequenceWriter::write(const std::string& dir_name) const {
     const Pose camera_T_world = color_T_world(i);
     place_objects(seconds);
     std::vector<Pose> world_T_objects;
-    for (const Renderer::BodyHandle body : bodies) world_T_objects.push_back(renderer.body_pose(body));
-    RenderOutput depth_render = renderer.render(o.depth_intrinsics, o.depth_T_color * camera_T_world,
-                                                kRenderDepth | (grazing_holes ? kRenderNormals : 0u));
-    cv::Mat& depth = depth_render.depth;
-    if (grazing_holes) remove_grazing_depth(depth, depth_render.normals, o.depth_intrinsics, o.noise.grazing_angle_deg);
-    remove_depth_edges(depth, o.noise.depth_edge_holes_px);
+    for (const Object& object : objects_) world_T_objects.push_back(object.world_T_object_at(seconds));
+    cv::Mat depth = render_sensor_depth(renderer, o.depth_intrinsics, o.depth_T_color * camera_T_world, o.noise);
     Random noise = stream(o.seed, kNoiseStream, std::uint64_t(i));
     if (o.noise.color_sigma > 0.0) add_color_noise(color, o.noise.color_sigma, noise);
     add_depth_noise(depth, o.noise, noise);

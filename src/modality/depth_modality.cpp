@@ -15,8 +15,8 @@ DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> m
     : Modality(body), model_(std::move(model)), params_(std::move(params)), noise_(params_.noise) {
   if (!model_ || model_->kind() != ViewpointModel::Kind::kDepth)
     throw std::invalid_argument("depth modality of '" + body.name + "' needs a depth viewpoint model");
-  occlusion_ = {params_.occlusion_radius, params_.occlusion_threshold};
-  occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion_radius);
+  occlusion_ = {params_.occlusion.radius, params_.occlusion.threshold};
+  occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion.radius);
   correspondences_.reserve(params_.n_points_max);
 }
 
@@ -38,7 +38,7 @@ const DepthImage* DepthModality::depth_image(const Frame& frame) const {
 
 Posef DepthModality::depth_T_body() const { return depth_T_reference_ * body().reference_T_body.cast<float>(); }
 
-void DepthModality::start(const Frame&) {
+void DepthModality::start(const Frame&, const Renders&) {
   frames_since_start_ = 0;
   noise_.reset();
   occlusions_.reset();
@@ -136,7 +136,7 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   return found;
 }
 
-void DepthModality::correspondences(const Frame& frame, int corr_iter) {
+void DepthModality::correspondences(const Frame& frame, const Renders&, int corr_iter) {
   const DepthImage* delivered = depth_image(frame);
   last_corr_iter_ = corr_iter;
   if (!delivered) {  // no depth this frame: no data, and the cue abstains
@@ -150,7 +150,7 @@ void DepthModality::correspondences(const Frame& frame, int corr_iter) {
   const Eigen::Vector3f camera_in_body = depth_T_body_now.inverse().translation();
   const int view = view_selector_.select(*model_, camera_in_body.normalized());
   const Search search = search_of_pass(depth, depth_T_body_now, corr_iter);
-  const bool test_occlusions = params_.measure_occlusions && frames_since_start_ >= params_.n_unoccluded_iterations;
+  const bool test_occlusions = params_.occlusion.measure && frames_since_start_ >= params_.n_unoccluded_iterations;
 
   n_considered_ = std::min(model_->view_point_count(view), params_.n_points_max);
   const ModelPoint* points = model_->points(view);
@@ -189,7 +189,7 @@ double DepthModality::sigma(int corr_iter) const {
   return noise_.sigma(iteration_value(params_.standard_deviations, corr_iter));
 }
 
-void DepthModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
+CueTerms DepthModality::gradient_hessian(int corr_iter, int) {
   const Posef body_T_depth = depth_T_body().inverse();
   const float sigma = static_cast<float>(this->sigma(corr_iter));
   Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
@@ -203,8 +203,7 @@ void DepthModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) 
     g_sum -= (w2 * residual) * J;
     H_sum.noalias() -= w2 * J * J.transpose();
   }
-  g += g_sum.cast<double>();
-  H += H_sum.cast<double>();
+  return {g_sum.cast<double>(), H_sum.cast<double>(), static_cast<int>(correspondences_.size())};
 }
 
 double DepthModality::log_likelihood(int corr_iter) const {
@@ -229,7 +228,7 @@ void DepthModality::append_residuals(std::vector<double>& residuals, std::vector
   }
 }
 
-void DepthModality::finish(const Frame&) {
+void DepthModality::finish(const Frame&, const Renders&) {
   update_quality();
   ++frames_since_start_;
 }

@@ -15,8 +15,8 @@ RegionModality::RegionModality(Body& body, std::shared_ptr<const ViewpointModel>
     : Modality(body), model_(std::move(model)), params_(std::move(params)), noise_(params_.noise) {
   if (!model_ || model_->kind() != ViewpointModel::Kind::kRegion)
     throw std::invalid_argument("region modality of '" + body.name + "' needs a region viewpoint model");
-  occlusion_ = {params_.occlusion_radius, params_.occlusion_threshold};
-  occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion_radius);
+  occlusion_ = {params_.occlusion.radius, params_.occlusion.threshold};
+  occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion.radius);
   n_segments_ = params_.function_length + params_.distribution_length - 1;
 
   // Smoothed step at the segment centres x_i = i − (function_length − 1)/2 (§4).
@@ -76,7 +76,7 @@ bool RegionModality::project(const ModelPoint& point, const Posef& camera_T_body
 }
 
 bool RegionModality::hidden(const Frame& frame, const Eigen::Vector3f& body_point, const float* depth_offsets) const {
-  if (!params_.measure_occlusions || params_.depth_camera.empty() ||
+  if (!params_.occlusion.measure || params_.depth_camera.empty() ||
       frames_since_start_ < params_.n_unoccluded_iterations)
     return false;
   const DepthImage* depth = frame.find_depth(params_.depth_camera);
@@ -119,7 +119,7 @@ void RegionModality::count_line_pixels(const Frame& frame) {
   }
 }
 
-void RegionModality::start(const Frame& frame) {
+void RegionModality::start(const Frame& frame, const Renders&) {
   frames_since_start_ = 0;
   noise_.reset();
   occlusions_.reset();
@@ -218,7 +218,7 @@ void RegionModality::compute_distribution(Line& line, float* distribution, float
     for (int d = 0; d < n_dist; ++d) log_distribution[d] = std::log(distribution[d]);
 }
 
-void RegionModality::correspondences(const Frame& frame, int corr_iter) {
+void RegionModality::correspondences(const Frame& frame, const Renders&, int corr_iter) {
   const ColorImage& image = color_image(frame);
   if (image.image.channels() != histograms_->channels())
     throw std::invalid_argument("region modality of '" + body().name + "': camera '" + params_.color_camera +
@@ -286,7 +286,7 @@ float RegionModality::line_position(const Line& line, const Posef& camera_T_body
   return line.normal_factor * (line.normal.dot(x - line.centre) - line.delta_r);
 }
 
-void RegionModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
+CueTerms RegionModality::gradient_hessian(int corr_iter, int) {
   const Posef pose = camera_T_reference_ * body().reference_T_body.cast<float>();
   const Eigen::Matrix3f R_t = pose.rotation().transpose();
   const float sigma_r = static_cast<float>(sigma(corr_iter));
@@ -324,8 +324,7 @@ void RegionModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H)
     g_sum += (weight * dloglikelihood) * J;
     H_sum.noalias() -= (weight / line.variance) * J * J.transpose();
   }
-  g += g_sum.cast<double>();
-  H += H_sum.cast<double>();
+  return {g_sum.cast<double>(), H_sum.cast<double>(), static_cast<int>(lines_.size())};
 }
 
 double RegionModality::log_likelihood(int corr_iter) const {
@@ -376,14 +375,14 @@ void RegionModality::append_image_features(std::vector<ImageFeature>& features) 
   }
 }
 
-void RegionModality::finish(const Frame& frame) {
-  update_quality(frame);
+void RegionModality::finish(const Frame& frame, const Renders&) {
+  update_quality();
   ++frames_since_start_;
   count_line_pixels(frame);
   histograms_->blend_counts(params_.learning_rate_f, params_.learning_rate_b);
 }
 
-void RegionModality::update_quality(const Frame&) {
+void RegionModality::update_quality() {
   // A line agrees with the pose when its contour-location distribution holds its mass
   // within ±1.5 segments of where the model's contour now projects. Lines the data could
   // not give count as disagreeing, so leaving the image or being hidden lowers the score;

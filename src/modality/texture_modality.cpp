@@ -18,7 +18,9 @@
 namespace icgp {
 namespace {
 
-bool uses_orb_detector(const std::string& descriptor) { return descriptor == "freak" || descriptor == "daisy"; }
+bool uses_orb_detector(Descriptor descriptor) {
+  return descriptor == Descriptor::kFreak || descriptor == Descriptor::kDaisy;
+}
 
 cv::Ptr<cv::Feature2D> make_orb(const TextureParams& p) {
   return cv::ORB::create(p.orb_n_features, static_cast<float>(p.orb_scale_factor), p.orb_n_levels);
@@ -84,17 +86,19 @@ __attribute__((target_clones("popcnt", "default"))) void two_nearest_hamming(con
 
 }  // namespace
 
-cv::Ptr<cv::Feature2D> make_descriptor(const std::string& name, const TextureParams& p) {
-  if (name == "orb") return make_orb(p);
-  if (name == "brisk") return cv::BRISK::create();
-  if (name == "akaze") return cv::AKAZE::create();
-  if (name == "sift")
-    return cv::SIFT::create(0, p.sift_n_octave_layers, p.sift_contrast_threshold, p.sift_edge_threshold, p.sift_sigma);
-  if (name == "freak") return Freak::create();
-  if (name == "daisy") return Daisy::create();
-  if (name == "oriented_brief") return OrientedBrief::create(p.orb_n_features);
-  throw std::invalid_argument("unknown texture descriptor '" + name +
-                              "' (known: orb, brisk, sift, akaze, freak, daisy, oriented_brief)");
+cv::Ptr<cv::Feature2D> make_descriptor(Descriptor descriptor, const TextureParams& p) {
+  switch (descriptor) {
+    case Descriptor::kOrb: return make_orb(p);
+    case Descriptor::kBrisk: return cv::BRISK::create();
+    case Descriptor::kAkaze: return cv::AKAZE::create();
+    case Descriptor::kSift:
+      return cv::SIFT::create(0, p.sift_n_octave_layers, p.sift_contrast_threshold, p.sift_edge_threshold, p.sift_sigma);
+    case Descriptor::kFreak: return Freak::create();
+    case Descriptor::kDaisy: return Daisy::create();
+    case Descriptor::kOrientedBrief: return OrientedBrief::create(p.orb_n_features);
+  }
+  throw std::invalid_argument("texture descriptor " + std::to_string(static_cast<int>(descriptor)) +
+                              " is not a Descriptor");
 }
 
 FeatureExtractor::FeatureExtractor(const TextureParams& params)
@@ -145,24 +149,16 @@ void FeatureExtractor::extract(const cv::Mat& image, const ImageSquare& square, 
   for (const cv::KeyPoint& kp : keypoints_) points.push_back(map.to_image(kp.pt));
 }
 
-KeyframeLifter::KeyframeLifter(const Mesh& mesh, MeasuredOcclusion occlusion)
-    : handle_(renderer_.add_body(mesh, 1)), occlusion_(occlusion) {}
-
-void KeyframeLifter::lift(const Intrinsics& k, const Pose& camera_T_body, const ImageSquare& square, int render_size,
-                          const std::vector<cv::Point2f>& points, const cv::Mat& descriptors, const DepthImage* depth,
-                          const Pose& depth_T_camera, Keyframe& keyframe) {
+void KeyframeLifter::lift(const Intrinsics& k, const Pose& camera_T_body, const FocusedRender& render,
+                          std::uint8_t body_id, const std::vector<cv::Point2f>& points, const cv::Mat& descriptors,
+                          const DepthImage* depth, const Pose& depth_T_camera, Keyframe& keyframe) const {
   keyframe.body_points.clear();
   keyframe.image_points.clear();
   keyframe.descriptors.release();
   keyframe.camera_R_body = camera_T_body.rotation();
   keyframe.age = 0;
   if (points.empty()) return;
-  renderer_.set_body_pose(handle_, camera_T_body);
-  Intrinsics crop_k;
-  const cv::Mat rendered = renderer_
-                               .render_focused(k, Pose(), square.u_min, square.v_min, square.size, render_size,
-                                               kRenderDepth, &crop_k)
-                               .depth;
+  const Intrinsics& crop_k = render.intrinsics;
   const double su = crop_k.fu / k.fu, sv = crop_k.fv / k.fv;
   const Pose body_T_camera = camera_T_body.inverse();
   const Posef depth_T_body = (depth_T_camera * camera_T_body).cast<float>();
@@ -175,9 +171,10 @@ void KeyframeLifter::lift(const Intrinsics& k, const Pose& camera_T_body, const 
     const cv::Point2f& x = points[i];
     const int col = round_to_int(static_cast<float>(crop_k.pu + (x.x - k.pu) * su));
     const int row = round_to_int(static_cast<float>(crop_k.pv + (x.y - k.pv) * sv));
-    if (col < 0 || row < 0 || col >= rendered.cols || row >= rendered.rows) continue;
-    const float z = rendered.at<float>(row, col);
-    if (z <= 0.f) continue;
+    if (col < 0 || row < 0 || col >= render.depth.cols || row >= render.depth.rows) continue;
+    const float z = render.depth.at<float>(row, col);
+    // Another tracked body in front hides the point: it is not on this body's surface.
+    if (z <= 0.f || render.ids.at<std::uint8_t>(row, col) != body_id) continue;
     const Eigen::Vector3d camera_X = k.back_project<double>(x.x, x.y, z);
     const Eigen::Vector3f body_X = (body_T_camera * camera_X).cast<float>();
     if (depth && occlusion_.occluded(*depth, depth_T_body * body_X, depth_offset)) continue;
@@ -193,7 +190,7 @@ TextureModality::TextureModality(Body& body, TextureParams params)
     : Modality(body),
       params_(std::move(params)),
       extractor_(params_),
-      lifter_(body.mesh, MeasuredOcclusion{params_.occlusion_radius, params_.occlusion_threshold}),
+      lifter_(MeasuredOcclusion{params_.occlusion.radius, params_.occlusion.threshold}),
       matcher_(extractor_.norm()),
       noise_(params_.noise) {
   Eigen::Vector3f lo, hi;
@@ -244,16 +241,39 @@ void TextureModality::drop_masked_points(const PixelMask& mask) {
   descriptors_ = descriptors_.rowRange(0, static_cast<int>(kept));
 }
 
-void TextureModality::make_keyframe(const Frame& frame) {
-  const Pose camera_T_body_now = camera_T_body();
-  const Eigen::Vector3d centre = camera_T_body_now * sphere_centre_;
-  if (!(centre.z() > sphere_radius_)) {
+std::optional<RenderRequest> TextureModality::keyframe_render(const Frame& frame) const {
+  const ColorImage& color = color_image(frame);
+  const Eigen::Vector3d centre = color.camera_T_reference * body().reference_T_body * sphere_centre_;
+  if (!(centre.z() > sphere_radius_)) return std::nullopt;
+  return RenderRequest{params_.color_camera, color.intrinsics, color.camera_T_reference,
+                       square_around_sphere(color.intrinsics, centre, sphere_radius_), params_.focused_image_size};
+}
+
+bool TextureModality::keyframe_due(const Pose& camera_T_body, int age) const {
+  const double angle = rotation_angle_between(keyframe_.camera_R_body, camera_T_body.rotation()) * 180.0 / M_PI;
+  const bool old = params_.keyframe_max_age > 0 && age >= params_.keyframe_max_age;
+  return angle > params_.keyframe_orientation_threshold_deg || old;
+}
+
+std::vector<RenderRequest> TextureModality::render_requests(const Frame& frame, Stage stage) const {
+  const bool keyframe = stage.kind == Stage::kStart ||
+                        (stage.kind == Stage::kFinish &&
+                         keyframe_due(color_image(frame).camera_T_reference * body().reference_T_body, keyframe_.age + 1));
+  if (!keyframe) return {};
+  if (auto request = keyframe_render(frame)) return {*request};
+  return {};
+}
+
+void TextureModality::make_keyframe(const Frame& frame, const Renders& renders) {
+  const std::optional<RenderRequest> request = keyframe_render(frame);
+  if (!request) {
     keyframe_ = Keyframe{};
     return;
   }
   // Measured occlusions need depth; a frame without it (a colour-only camera) keeps every
   // keypoint on the rendered silhouette, as the region modality keeps its lines.
-  const DepthImage* depth = params_.depth_camera.empty() ? nullptr : frame.find_depth(params_.depth_camera);
+  const bool measure = params_.occlusion.measure && !params_.depth_camera.empty();
+  const DepthImage* depth = measure ? frame.find_depth(params_.depth_camera) : nullptr;
   if (depth && !depth->delivered()) depth = nullptr;
   if (depth) {
     if (depth->depth.type() != CV_32FC1)
@@ -261,13 +281,13 @@ void TextureModality::make_keyframe(const Frame& frame) {
                                   "' must give a CV_32FC1 depth image");
   }
   const Pose depth_T_camera = depth ? depth->camera_T_reference * camera_T_reference_.inverse() : Pose();
-  lifter_.lift(intrinsics_, camera_T_body_now, square_around_sphere(intrinsics_, centre, sphere_radius_),
-               params_.focused_image_size, points_, descriptors_, depth, depth_T_camera, keyframe_);
+  lifter_.lift(intrinsics_, camera_T_body(), renders.at(*request), renders.id(body().name), points_, descriptors_,
+               depth, depth_T_camera, keyframe_);
 }
 
-void TextureModality::start(const Frame& frame) {
+void TextureModality::start(const Frame& frame, const Renders& renders) {
   detect(frame);
-  make_keyframe(frame);
+  make_keyframe(frame, renders);
   matches_.clear();
   noise_.reset();
   quality_ = {};
@@ -295,7 +315,7 @@ void TextureModality::match() {
   }
 }
 
-void TextureModality::correspondences(const Frame& frame, int corr_iter) {
+void TextureModality::correspondences(const Frame& frame, const Renders&, int corr_iter) {
   // Keypoints and matches do not depend on the pose: once per frame is enough.
   if (corr_iter == 0) {
     detect(frame);
@@ -337,7 +357,7 @@ void TextureModality::update_weights() {
   }
 }
 
-void TextureModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H) {
+CueTerms TextureModality::gradient_hessian(int corr_iter, int) {
   update_weights();
   const Posef T = camera_T_body().cast<float>();
   const float sigma = static_cast<float>(this->sigma(corr_iter));
@@ -354,8 +374,7 @@ void TextureModality::add_gradient_hessian(int corr_iter, int, Vec6& g, Mat66& H
     g_sum.noalias() -= w * J.transpose() * residual;
     H_sum.noalias() -= w * J.transpose() * J;
   }
-  g += g_sum.cast<double>();
-  H += H_sum.cast<double>();
+  return {g_sum.cast<double>(), H_sum.cast<double>(), static_cast<int>(matches_.size())};
 }
 
 double TextureModality::log_likelihood(int corr_iter) const {
@@ -386,13 +405,11 @@ void TextureModality::append_image_features(std::vector<ImageFeature>& features)
   for (const Match& m : matches_) features.push_back({m.image_point.cast<double>(), m.weight});
 }
 
-void TextureModality::finish(const Frame& frame) {
+void TextureModality::finish(const Frame& frame, const Renders& renders) {
   update_quality();
   ++frames_since_start_;
   ++keyframe_.age;
-  const double angle = rotation_angle_between(keyframe_.camera_R_body, camera_T_body().rotation()) * 180.0 / M_PI;
-  const bool old = params_.keyframe_max_age > 0 && keyframe_.age >= params_.keyframe_max_age;
-  if (angle > params_.keyframe_orientation_threshold_deg || old) make_keyframe(frame);
+  if (keyframe_due(camera_T_body(), keyframe_.age)) make_keyframe(frame, renders);
 }
 
 void TextureModality::update_quality() {

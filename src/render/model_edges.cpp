@@ -48,13 +48,12 @@ ModelEdges::ModelEdges(const Mesh& mesh, double crease_angle_deg) {
       for (int i = 0; i < 3; ++i)
         normals_of_edge[std::minmax(v[i], v[(i + 1) % 3])].push_back(n.normalized());
     }
-  const double cos_crease = std::cos(crease_angle_deg * M_PI / 180.0);
+  const double cos_crease = std::cos(deg_to_rad(crease_angle_deg));
   for (const auto& [ends, normals] : normals_of_edge) {
     Edge e{welder.position(ends.first), welder.position(ends.second), normals.front(),
            normals.size() > 1 ? normals[1] : normals.front(), false};
     // Borders and edges shared by more than two faces always show.
     e.crease = normals.size() != 2 || e.normal_1.dot(e.normal_2) < cos_crease;
-    if (e.crease) creases_.push_back(edges_.size());
     edges_.push_back(e);
   }
 }

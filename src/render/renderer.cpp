@@ -539,7 +539,6 @@ Renderer::BodyHandle Renderer::add_body(const Mesh& mesh, std::uint8_t id) {
 }
 
 void Renderer::set_body_pose(BodyHandle body, const Pose& world_T_body) { impl_->body(body).world_T_body = world_T_body; }
-const Pose& Renderer::body_pose(BodyHandle body) const { return impl_->body(body).world_T_body; }
 void Renderer::set_body_visible(BodyHandle body, bool visible) { impl_->body(body).visible = visible; }
 void Renderer::set_lighting(const Lighting& lighting) { impl_->lighting = lighting; }
 

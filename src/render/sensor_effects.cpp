@@ -8,10 +8,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "icgp/render/renderer.h"
+
 namespace icgp {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// A depth step this large (relative to Z) between neighbours is a discontinuity.
 constexpr float kDiscontinuity = 0.03f;
 
@@ -19,7 +20,7 @@ constexpr float kDiscontinuity = 0.03f;
 
 void remove_grazing_depth(cv::Mat& depth, const cv::Mat& normals, const Intrinsics& k, double max_angle_deg) {
   if (max_angle_deg >= 90.0) return;
-  const double min_cos = std::cos(max_angle_deg * kPi / 180.0);
+  const double min_cos = std::cos(deg_to_rad(max_angle_deg));
   for (int r = 0; r < depth.rows; ++r) {
     float* z = depth.ptr<float>(r);
     const cv::Vec3f* normal = normals.ptr<cv::Vec3f>(r);
@@ -46,6 +47,35 @@ void remove_depth_edges(cv::Mat& depth, int radius_px) {
   cv::dilate(edges, edges,
              cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius_px + 1, 2 * radius_px + 1)));
   depth.setTo(0.f, edges);
+}
+
+SensorNoise SensorNoise::realsense_class() {
+  SensorNoise n;
+  n.color_sigma = 1.5;
+  n.depth_sigma_at_1m = 0.0015;
+  n.depth_dropout = 0.05;
+  n.grazing_angle_deg = 80.0;
+  n.depth_edge_holes_px = 1;
+  return n;
+}
+
+SensorNoise SensorNoise::kinect_class() {
+  SensorNoise n;
+  n.color_sigma = 4.0;
+  n.depth_sigma_at_1m = 0.005;
+  n.depth_dropout = 0.2;
+  n.grazing_angle_deg = 75.0;
+  n.depth_edge_holes_px = 2;
+  return n;
+}
+
+cv::Mat render_sensor_depth(Renderer& renderer, const Intrinsics& intrinsics, const Pose& camera_T_world,
+                            const SensorNoise& noise) {
+  const bool grazing_holes = noise.grazing_angle_deg < 90.0;
+  RenderOutput out = renderer.render(intrinsics, camera_T_world, kRenderDepth | (grazing_holes ? kRenderNormals : 0u));
+  if (grazing_holes) remove_grazing_depth(out.depth, out.normals, intrinsics, noise.grazing_angle_deg);
+  remove_depth_edges(out.depth, noise.depth_edge_holes_px);
+  return out.depth;
 }
 
 cv::Mat average_color_renders(int samples, const std::function<cv::Mat(int sample)>& render) {

@@ -7,6 +7,7 @@
 #include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
+#include "icgp/base/camera_names.h"
 #include "icgp/tracker/tracker_config.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/visp_baseline.h"
@@ -39,7 +40,7 @@ class IcgpEstimator : public PoseEstimator {
     tracker_.setTrackerConfig(config);
     tracker_.loadModel(scenario.object.model);
     tracker_.setCameraParameters(simulator.color_camera(), simulator.depth_camera());
-    tracker_.setCameraTransformationMatrix("Camera2", simulator.depth_M_color());
+    tracker_.setCameraTransformationMatrix(kDepthCamera, simulator.depth_M_color());
   }
 
   void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo) override {
@@ -91,7 +92,7 @@ class VispEstimator : public PoseEstimator {
     if (configuration_.dense_depth) {
       tracker_->setCameraParameters(simulator.color_camera(), simulator.depth_camera());
       tracker_->setCameraTransformationMatrix(std::map<std::string, vpHomogeneousMatrix>{
-          {kVispColorCamera, vpHomogeneousMatrix()}, {kVispDepthCamera, simulator.depth_M_color()}});
+          {kColorCamera, vpHomogeneousMatrix()}, {kDepthCamera, simulator.depth_M_color()}});
     } else {
       tracker_->setCameraParameters(simulator.color_camera());
     }
@@ -109,10 +110,10 @@ class VispEstimator : public PoseEstimator {
     const auto begin = Clock::now();
     try {
       if (configuration_.dense_depth) {
-        std::map<std::string, const vpImage<unsigned char>*> images{{kVispColorCamera, &capture.grey}};
-        std::map<std::string, const std::vector<vpColVector>*> clouds{{kVispDepthCamera, &cloud_}};
-        std::map<std::string, unsigned int> widths{{kVispDepthCamera, capture.depth_raw.getWidth()}};
-        std::map<std::string, unsigned int> heights{{kVispDepthCamera, capture.depth_raw.getHeight()}};
+        std::map<std::string, const vpImage<unsigned char>*> images{{kColorCamera, &capture.grey}};
+        std::map<std::string, const std::vector<vpColVector>*> clouds{{kDepthCamera, &cloud_}};
+        std::map<std::string, unsigned int> widths{{kDepthCamera, capture.depth_raw.getWidth()}};
+        std::map<std::string, unsigned int> heights{{kDepthCamera, capture.depth_raw.getHeight()}};
         tracker_->track(images, clouds, widths, heights);
       } else {
         tracker_->track(capture.grey);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <visp3/core/vpImageConvert.h>
 
+#include "icgp/base/pose.h"
 #include "icgp/eval/sequence_writer.h"
 #include "icgp/render/renderer.h"
 #include "icgp/render/sensor_effects.h"
@@ -17,7 +18,6 @@
 namespace icgp::servo {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// Renders averaged for motion blur.
 constexpr int kBlurSamples = 4;
 
@@ -123,11 +123,7 @@ struct RgbdSimulator::Impl {
     const NoiseSpec& n = scenario.camera.noise;
     const Intrinsics& k = scenario.camera.depth;
     const Pose depth_T_world = scenario.camera.depth_T_color * to_pose(wMc.inverse());
-    const bool grazing = n.grazing_angle_deg < 90.0;
-    RenderOutput out = renderer.render(k, depth_T_world, kRenderDepth | (grazing ? kRenderNormals : 0u));
-    cv::Mat& depth = out.depth;
-    if (grazing) remove_grazing_depth(depth, out.normals, k, n.grazing_angle_deg);
-    remove_depth_edges(depth, n.edge_dropout_px);
+    cv::Mat depth = render_sensor_depth(renderer, k, depth_T_world, n);
     if (n.depth_dropout > 0.0) {
       cv::Mat u(depth.size(), CV_32FC1);
       rng.fill(u, cv::RNG::UNIFORM, 0.0, 1.0);

@@ -15,6 +15,7 @@
 #include <system_error>
 #include <utility>
 
+#include "icgp/base/pose.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 
@@ -22,7 +23,6 @@ namespace icgp::servo {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMm = 1000.0;            // metres -> millimetres
 constexpr double kDeg = 180.0 / kPi;      // radians -> degrees
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -5,6 +5,7 @@
 
 #include "icgp/io/mesh_loader.h"
 #include "icgp/model/model_cache.h"
+#include "icgp/modality/cue_kind.h"
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
 #include "icgp/modality/texture_modality.h"
@@ -36,7 +37,7 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   // The cameras the parameters name: the colour cues' camera, which looks for occlusions
   // in the region cue's depth camera (the texture cue's when region is off), and the depth
   // cue's camera.
-  const bool region_on = std::find(config.modalities.begin(), config.modalities.end(), "region") != config.modalities.end();
+  const bool region_on = names_cue(config.modalities, CueKind::kRegion);
   std::vector<CameraCues> cameras;
   auto camera = [&](const std::string& name) -> CameraCues& {
     for (CameraCues& c : cameras)
@@ -53,19 +54,17 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
 }
 
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
-                                       const std::vector<CameraCues>& cameras) {
-  auto uses = [&](const std::string& name) {
-    return std::find(config.modalities.begin(), config.modalities.end(), name) != config.modalities.end();
-  };
+                                       const std::vector<CameraCues>& cameras,
+                                       std::shared_ptr<SceneRenderer> renderer) {
   for (const std::string& name : config.modalities)
-    if (name != "region" && name != "depth" && name != "texture")
-      throw std::invalid_argument("modality '" + name + "' is not available (available: region, depth, texture)");
+    if (!parse_cue_kind(name))
+      throw std::invalid_argument("modality '" + name + "' is not available (available: " + cue_kind_names() + ")");
   auto any_camera = [&](bool CameraCues::*cue) {
     return std::any_of(cameras.begin(), cameras.end(), [cue](const CameraCues& c) { return c.*cue; });
   };
-  const bool region = uses("region") && any_camera(&CameraCues::region);
-  const bool depth = uses("depth") && any_camera(&CameraCues::depth);
-  const bool texture = uses("texture") && any_camera(&CameraCues::texture);
+  const bool region = names_cue(config.modalities, CueKind::kRegion) && any_camera(&CameraCues::region);
+  const bool depth = names_cue(config.modalities, CueKind::kDepth) && any_camera(&CameraCues::depth);
+  const bool texture = names_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture);
 
   const bool multi_region = region && !config.regions.empty();
   std::vector<ModelRequest> requests;
@@ -77,7 +76,7 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   if (multi_region)
     for (ViewpointModel& model : multi_region_models(config, body_name)) models.push_back(std::move(model));
 
-  auto tracker = std::make_unique<Tracker>(config.tracker);
+  auto tracker = std::make_unique<Tracker>(config.tracker, std::move(renderer));
   Body& body = tracker->add_body({body_name, mesh, Pose()});
   std::vector<std::shared_ptr<const ViewpointModel>> shared;
   for (ViewpointModel& model : models) shared.push_back(std::make_shared<const ViewpointModel>(std::move(model)));

@@ -6,72 +6,43 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
-#include <set>
 #include <stdexcept>
-#include <type_traits>
+
+#include "icgp/io/yaml_reader.h"
+#include "icgp/modality/cue_kind.h"
 
 namespace icgp {
 namespace {
 
-/// Where a value sits, for error messages: the file and the dotted key path.
-struct Location {
-  std::string file;
-  std::string key;  ///< empty: the whole document
+using yaml::any;
+using yaml::kBool;
+using yaml::kFraction;
+using yaml::kNonEmptyString;
+using yaml::kNonNegative;
+using yaml::kNonNegativeInt;
+using yaml::kPositive;
+using yaml::kPositiveInt;
+using yaml::kString;
+using yaml::Rule;
 
-  Location child(const std::string& name) const { return {file, key.empty() ? name : key + "." + name}; }
-  [[noreturn]] void fail(const std::string& message) const {
-    throw std::runtime_error(file + ": " + (key.empty() ? "" : key + ": ") + message);
-  }
-};
-
-/// What a value must be; `expected` completes the error message "expected ...".
-template <typename T>
-struct Rule {
-  const char* expected;
-  bool (*ok)(const T&);
-};
-
-template <typename T>
-bool any(const T&) {
-  return true;
-}
+/// The tracker configuration's wording, which docs/configuration.md quotes: "expected …"
+/// without the value, unknown keys listed as "valid keys of <section>".
+const yaml::Wording kWording{"file", /*echo_value=*/false, yaml::KeyListWording::kValidKeysOf};
 
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }
 
-const Rule<int> kPositiveInt{"a positive integer", [](const int& v) { return v > 0; }};
-const Rule<int> kNonNegativeInt{"a non-negative integer", [](const int& v) { return v >= 0; }};
-const Rule<double> kPositive{"a positive number", [](const double& v) { return positive(v); }};
-const Rule<double> kNonNegative{"a non-negative number", [](const double& v) { return std::isfinite(v) && v >= 0.0; }};
-const Rule<double> kFraction{"a number in [0, 1]", [](const double& v) { return v >= 0.0 && v <= 1.0; }};
 const Rule<std::vector<int>> kPositiveInts{"a non-empty list of positive integers", [](const std::vector<int>& v) {
   return !v.empty() && std::all_of(v.begin(), v.end(), [](int x) { return x > 0; });
 }};
 const Rule<std::vector<double>> kPositives{"a non-empty list of positive numbers", [](const std::vector<double>& v) {
   return !v.empty() && std::all_of(v.begin(), v.end(), positive);
 }};
-const Rule<bool> kBool{"true or false", any<bool>};
-const Rule<std::string> kString{"a string", any<std::string>};
-const Rule<std::string> kName{"a non-empty string", [](const std::string& v) { return !v.empty(); }};
-
-template <typename T>
-T decode(const YAML::Node& node, const Rule<T>& rule, const Location& at) {
-  T value{};
-  try {
-    // `key:` and `key: ~` mean an empty string (yaml-cpp would give "null").
-    if (!std::is_same_v<T, std::string> || !node.IsNull()) value = node.as<T>();
-  } catch (const YAML::Exception&) {
-    at.fail(std::string("expected ") + rule.expected);
-  }
-  if (!rule.ok(value)) at.fail(std::string("expected ") + rule.expected);
-  return value;
-}
 
 /// Shortest text that reads back as the same double, with a ".0" on whole numbers.
 void emit(YAML::Emitter& out, double v) {
@@ -97,34 +68,21 @@ void emit(YAML::Emitter& out, const std::vector<T>& v) {
 template <typename S>
 struct Field {
   std::string name;
-  std::function<void(const YAML::Node&, S&, const Location&)> read;
+  std::function<void(const yaml::Value&, S&)> read;
   std::function<void(YAML::Emitter&, const S&)> write;
 };
 
 template <typename S>
 using Fields = std::vector<Field<S>>;
 
+/// Reads the keys of a section the file gives, each by its field, in the file's order.
 template <typename S>
-std::string key_list(const Fields<S>& fields) {
-  std::string list;
-  for (const Field<S>& f : fields) list += (list.empty() ? "" : ", ") + f.name;
-  return list;
-}
-
-template <typename S>
-void read_map(const YAML::Node& node, const Fields<S>& fields, S& s, const Location& at) {
-  if (node.IsNull()) return;
-  if (!node.IsMap()) at.fail("expected a map with the keys " + key_list(fields));
-  std::set<std::string> seen;
-  for (const auto& entry : node) {
-    const std::string name = entry.first.Scalar();
-    const Location key = at.child(name);
-    const auto field = std::find_if(fields.begin(), fields.end(), [&](const Field<S>& f) { return f.name == name; });
-    if (field == fields.end())
-      key.fail("unknown key (valid keys" + (at.key.empty() ? "" : " of " + at.key) + ": " + key_list(fields) + ")");
-    if (!seen.insert(name).second) key.fail("duplicate key");
-    field->read(entry.second, s, key);
-  }
+void read_map(const yaml::Value& value, const Fields<S>& fields, S& s) {
+  std::vector<std::string> names;
+  for (const Field<S>& f : fields) names.push_back(f.name);
+  yaml::for_each_entry(value, names, [&](const std::string& name, const yaml::Value& v) {
+    std::find_if(fields.begin(), fields.end(), [&](const Field<S>& f) { return f.name == name; })->read(v, s);
+  });
 }
 
 template <typename S>
@@ -140,16 +98,30 @@ void write_map(YAML::Emitter& out, const Fields<S>& fields, const S& s) {
 /// A value member checked by `rule`.
 template <typename S, typename T>
 Field<S> field(const char* name, T S::*member, Rule<T> rule) {
-  return {name, [member, rule](const YAML::Node& node, S& s, const Location& at) { s.*member = decode(node, rule, at); },
+  return {name, [member, rule](const yaml::Value& v, S& s) { s.*member = v.as(rule); },
           [member](YAML::Emitter& out, const S& s) { emit(out, s.*member); }};
+}
+
+/// A member of a struct member under a key of the section itself (the flat keys of
+/// OcclusionParams: region.occlusion_radius is RegionParams::occlusion.radius).
+template <typename S, typename M, typename T>
+Field<S> field(const char* name, M S::*outer, T M::*inner, Rule<T> rule) {
+  return {name, [outer, inner, rule](const yaml::Value& v, S& s) { (s.*outer).*inner = v.as(rule); },
+          [outer, inner](YAML::Emitter& out, const S& s) { emit(out, (s.*outer).*inner); }};
 }
 
 /// A struct member read and written as a nested map of `fields`.
 template <typename S, typename T>
 Field<S> section(const char* name, T S::*member, const Fields<T>& fields) {
-  return {name,
-          [member, &fields](const YAML::Node& node, S& s, const Location& at) { read_map(node, fields, s.*member, at); },
+  return {name, [member, &fields](const yaml::Value& v, S& s) { read_map(v, fields, s.*member); },
           [member, &fields](YAML::Emitter& out, const S& s) { write_map(out, fields, s.*member); }};
+}
+
+/// An enumerator member, written and read by its name (to_string).
+template <typename S, typename E, std::size_t N>
+Field<S> choice(const char* name, E S::*member, const std::array<E, N>& values) {
+  return {name, [member, values](const yaml::Value& v, S& s) { s.*member = v.choice(yaml::named(values)); },
+          [member](YAML::Emitter& out, const S& s) { emit(out, to_string(s.*member)); }};
 }
 
 const Fields<TrackerParams> kTrackerFields = {
@@ -184,7 +156,7 @@ const Fields<NoiseParams> kNoiseFields = {
 };
 
 const Fields<RegionParams> kRegionFields = {
-    field("color_camera", &RegionParams::color_camera, kName),
+    field("color_camera", &RegionParams::color_camera, kNonEmptyString),
     field("depth_camera", &RegionParams::depth_camera, kString),
     field("n_lines_max", &RegionParams::n_lines_max, kPositiveInt),
     field("min_continuous_distance", &RegionParams::min_continuous_distance, kNonNegative),
@@ -205,36 +177,31 @@ const Fields<RegionParams> kRegionFields = {
     field("learning_rate_b", &RegionParams::learning_rate_b, kFraction),
     field("unconsidered_line_length", &RegionParams::unconsidered_line_length, kNonNegative),
     field("max_considered_line_length", &RegionParams::max_considered_line_length, kPositive),
-    field("measure_occlusions", &RegionParams::measure_occlusions, kBool),
-    field("occlusion_radius", &RegionParams::occlusion_radius, kNonNegative),
-    field("occlusion_threshold", &RegionParams::occlusion_threshold, kNonNegative),
+    field("measure_occlusions", &RegionParams::occlusion, &OcclusionParams::measure, kBool),
+    field("occlusion_radius", &RegionParams::occlusion, &OcclusionParams::radius, kNonNegative),
+    field("occlusion_threshold", &RegionParams::occlusion, &OcclusionParams::threshold, kNonNegative),
     field("n_unoccluded_iterations", &RegionParams::n_unoccluded_iterations, kNonNegativeInt),
     field("min_n_unoccluded_lines", &RegionParams::min_n_unoccluded_lines, kNonNegativeInt),
 };
 
 const Fields<DepthParams> kDepthFields = {
-    field("depth_camera", &DepthParams::depth_camera, kName),
+    field("depth_camera", &DepthParams::depth_camera, kNonEmptyString),
     field("n_points_max", &DepthParams::n_points_max, kPositiveInt),
     field("stride_length", &DepthParams::stride_length, kPositive),
     field("considered_distances", &DepthParams::considered_distances, kPositives),
     field("standard_deviations", &DepthParams::standard_deviations, kPositives),
     section("noise", &DepthParams::noise, kNoiseFields),
-    field("measure_occlusions", &DepthParams::measure_occlusions, kBool),
-    field("occlusion_radius", &DepthParams::occlusion_radius, kNonNegative),
-    field("occlusion_threshold", &DepthParams::occlusion_threshold, kNonNegative),
+    field("measure_occlusions", &DepthParams::occlusion, &OcclusionParams::measure, kBool),
+    field("occlusion_radius", &DepthParams::occlusion, &OcclusionParams::radius, kNonNegative),
+    field("occlusion_threshold", &DepthParams::occlusion, &OcclusionParams::threshold, kNonNegative),
     field("n_unoccluded_iterations", &DepthParams::n_unoccluded_iterations, kNonNegativeInt),
     field("min_n_unoccluded_points", &DepthParams::min_n_unoccluded_points, kNonNegativeInt),
 };
 
 const Fields<TextureParams> kTextureFields = {
-    field("color_camera", &TextureParams::color_camera, kName),
+    field("color_camera", &TextureParams::color_camera, kNonEmptyString),
     field("depth_camera", &TextureParams::depth_camera, kString),
-    field("descriptor", &TextureParams::descriptor,
-          Rule<std::string>{"one of orb, brisk, sift, akaze, freak, daisy, oriented_brief", [](const std::string& v) {
-                              static const std::set<std::string> known = {"orb",   "brisk", "sift",          "akaze",
-                                                                          "freak", "daisy", "oriented_brief"};
-                              return known.count(v) > 0;
-                            }}),
+    choice("descriptor", &TextureParams::descriptor, kDescriptors),
     field("focused_image_size", &TextureParams::focused_image_size,
           Rule<int>{"an integer of at least 64", [](const int& v) { return v >= 64; }}),
     field("orb_n_features", &TextureParams::orb_n_features, kPositiveInt),
@@ -253,16 +220,9 @@ const Fields<TextureParams> kTextureFields = {
     field("tukey_norm_constant", &TextureParams::tukey_norm_constant, kPositive),
     field("standard_deviations", &TextureParams::standard_deviations, kPositives),
     section("noise", &TextureParams::noise, kNoiseFields),
-    field("occlusion_radius", &TextureParams::occlusion_radius, kNonNegative),
-    field("occlusion_threshold", &TextureParams::occlusion_threshold, kNonNegative),
+    field("occlusion_radius", &TextureParams::occlusion, &OcclusionParams::radius, kNonNegative),
+    field("occlusion_threshold", &TextureParams::occlusion, &OcclusionParams::threshold, kNonNegative),
 };
-
-bool valid_modalities(const std::vector<std::string>& names) {
-  static const std::set<std::string> known = {"region", "depth", "texture"};
-  const std::set<std::string> distinct(names.begin(), names.end());
-  return !names.empty() && distinct.size() == names.size() &&
-         std::includes(known.begin(), known.end(), distinct.begin(), distinct.end());
-}
 
 bool known_preset(const std::string& name) {
   const std::vector<std::string>& names = tracker_config_presets();
@@ -278,12 +238,11 @@ std::string preset_list() {
 /// `preset` is read before every other key (load_tracker_config), so here it is only
 /// checked and written.
 const Fields<TrackerConfig> kConfigFields = {
-    {"preset", [](const YAML::Node&, TrackerConfig&, const Location&) {},
+    {"preset", [](const yaml::Value&, TrackerConfig&) {},
      [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.preset); }},
     section("tracker", &TrackerConfig::tracker, kTrackerFields),
     field("modalities", &TrackerConfig::modalities,
-          Rule<std::vector<std::string>>{"a non-empty list of distinct names from region, depth, texture",
-                                         valid_modalities}),
+          Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}),
     section("region_model", &TrackerConfig::region_model, kModelFields),
     section("depth_model", &TrackerConfig::depth_model, kModelFields),
     section("region", &TrackerConfig::region, kRegionFields),
@@ -295,7 +254,7 @@ const Fields<TrackerConfig> kConfigFields = {
                                            return std::none_of(files.begin(), files.end(),
                                                                [](const std::string& f) { return f.empty(); });
                                          }}),
-    field("cache_dir", &TrackerConfig::cache_dir, kString),
+    field("cache_dir", &TrackerConfig::cache_dir, yaml::kString),
 };
 
 }  // namespace
@@ -314,34 +273,21 @@ TrackerConfig tracker_config_preset(const std::string& name) {
     for (NoiseParams* noise : {&config.region.noise, &config.depth.noise, &config.texture.noise})
       noise->estimate = noise->robust = false;
     config.region.subpixel_posterior = false;
-    config.texture.descriptor = "orb";
+    config.texture.descriptor = Descriptor::kOrb;
   }
   return config;
 }
 
 TrackerConfig load_tracker_config(const std::string& path) {
-  const Location document{path, ""};
-  std::error_code error;
-  std::ifstream in(path);
-  if (!std::filesystem::is_regular_file(path, error) || !in)
-    document.fail(std::filesystem::exists(path, error) ? "cannot read the file" : "no such file");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    document.fail("line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1) +
-                  ": YAML syntax error: " + e.msg);
-  }
+  const yaml::Value root = yaml::load_file(path, kWording);
   TrackerConfig config;
-  if (root.IsMap() && root["preset"]) {
-    const Location at = document.child("preset");
-    const std::string name = decode(root["preset"], kName, at);
-    if (!known_preset(name)) at.fail("expected one of " + preset_list() + " (got '" + name + "')");
+  if (root.node.IsMap() && root.node["preset"]) {
+    const yaml::Value preset{root.node["preset"], root.at.child("preset")};
+    const std::string name = preset.as(yaml::kNonEmptyString);
+    if (!known_preset(name)) preset.at.fail("expected one of " + preset_list() + " (got '" + name + "')");
     config = tracker_config_preset(name);
   }
-  read_map(root, kConfigFields, config, document);
+  read_map(root, kConfigFields, config);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   for (std::string& region : config.regions)
     if (std::filesystem::path(region).is_relative()) region = (folder / region).lexically_normal().string();

@@ -1,15 +1,12 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "camera_rig.h"
 
-#include <algorithm>
 #include <visp3/core/vpException.h>
+
+#include "icgp/modality/cue_kind.h"
 
 namespace icgp {
 namespace {
-
-bool names_cue(const std::vector<std::string>& modalities, const char* cue) {
-  return std::find(modalities.begin(), modalities.end(), cue) != modalities.end();
-}
 
 void require_types(int types, const std::string& call) {
   if (types == 0 || (types & ~CameraRig::kAllTypes) != 0)
@@ -96,9 +93,9 @@ std::vector<CameraCues> CameraRig::cues(const std::vector<std::string>& modaliti
   std::vector<CameraCues> out;
   for (const auto& [name, camera] : cameras_) {
     CameraCues c{name};
-    c.region = (camera.types & kEdge) && names_cue(modalities, "region");
-    c.texture = (camera.types & kKlt) && names_cue(modalities, "texture");
-    c.depth = is_depth_camera(name) && names_cue(modalities, "depth");
+    c.region = (camera.types & kEdge) && names_cue(modalities, CueKind::kRegion);
+    c.texture = (camera.types & kKlt) && names_cue(modalities, CueKind::kTexture);
+    c.depth = is_depth_camera(name) && names_cue(modalities, CueKind::kDepth);
     c.occlusion_depth_camera = is_depth_camera(name) ? name : first_depth_camera;
     out.push_back(c);
   }

@@ -5,299 +5,37 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <iostream>
-#include <mutex>
-#include <numeric>
-#include <sstream>
 #include <stdexcept>
-#include <visp3/mbt/vpMbTracker.h>
+#include <visp3/mbt/vpMbEdgeTracker.h>
 
 #include "icgp/io/mesh_loader.h"
 #include "icgp/visp/conversions.h"
 
+#include "cao_mesh_builder.h"
+
 namespace icgp {
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-using Vec3 = Eigen::Vector3d;
-
-constexpr double kPi = 3.14159265358979323846;
-
-/// Twice the signed area of the triangle abc: positive when it turns counter-clockwise.
-double signed_area2(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const Vec2 ab = b - a;
-  const Vec2 ac = c - a;
-  return ab.x() * ac.y() - ab.y() * ac.x();
-}
-
-/// Triangulates a simple counter-clockwise polygon by ear clipping. Returns counter-
-/// clockwise index triples. Corners turning by less than `tolerance` (twice an area) count
-/// as straight and are dropped, as they bound no area. Throws std::invalid_argument when
-/// no ear is left, which only happens to self-intersecting polygons.
-std::vector<Eigen::Vector3i> ear_clip(const std::vector<Vec2>& points, double tolerance) {
-  std::vector<int> remaining(points.size());
-  std::iota(remaining.begin(), remaining.end(), 0);
-  std::vector<Eigen::Vector3i> triangles;
-
-  // An ear's triangle must not contain, even on its border, any other remaining corner:
-  // that corner would be cut off or its edge crossed.
-  const auto is_ear = [&](int a, int b, int c) {
-    for (const int p : remaining) {
-      if (p == a || p == b || p == c) continue;
-      const Vec2& q = points[p];
-      if (signed_area2(points[a], points[b], q) >= -tolerance && signed_area2(points[b], points[c], q) >= -tolerance &&
-          signed_area2(points[c], points[a], q) >= -tolerance)
-        return false;
-    }
-    return true;
-  };
-
-  // Walk round the polygon clipping as we go; after a clip, re-test the previous corner,
-  // whose neighbour changed. A full lap without a clip means there is no ear.
-  std::size_t i = 0, corners_without_clip = 0;
-  while (remaining.size() >= 3) {
-    const std::size_t n = remaining.size();
-    if (corners_without_clip >= n)
-      throw std::invalid_argument("the polygon intersects itself, so it cannot be triangulated");
-    i %= n;
-    const int a = remaining[(i + n - 1) % n];
-    const int b = remaining[i];
-    const int c = remaining[(i + 1) % n];
-    const double turn = signed_area2(points[a], points[b], points[c]);
-    const bool straight = std::abs(turn) <= tolerance;
-    if (!straight && (turn < 0.0 || !is_ear(a, b, c))) {
-      ++i;
-      ++corners_without_clip;
-      continue;
-    }
-    if (!straight) triangles.emplace_back(a, b, c);
-    remaining.erase(remaining.begin() + static_cast<std::ptrdiff_t>(i));
-    i = (i + n - 2) % (n - 1);
-    corners_without_clip = 0;
-  }
-  return triangles;
-}
-
-/// Appends the triangulated primitives of a .cao model to one MeshPart, keeping outward
-/// (ViSP) orientation: faces keep their winding, cylinders face away from their axis.
-class PartBuilder {
- public:
-  explicit PartBuilder(MeshPart& part) : part_(part) {}
-
-  void add_polygon(std::vector<Vec3> corners) {
-    drop_repeated_corners(corners);
-    if (corners.size() < 3) return;  // a 3D line: no surface
-
-    // Relative to the first corner, so that models far from their origin keep precision.
-    std::vector<Vec3> local;
-    double extent = 0.0;
-    for (const Vec3& p : corners) {
-      local.push_back(p - corners.front());
-      extent = std::max(extent, local.back().norm());
-    }
-    // Newell's normal: right for non-convex polygons too, and its length is twice the area.
-    Vec3 normal = Vec3::Zero();
-    for (std::size_t i = 0; i < local.size(); ++i) normal += local[i].cross(local[(i + 1) % local.size()]);
-    const double tolerance = 1e-10 * extent * extent;
-    if (normal.norm() <= tolerance) return;  // all corners on one line: no area
-
-    // Plane axes with u x v = normal, so that the polygon is counter-clockwise in (u, v).
-    const Vec3 w = normal.normalized();
-    const Vec3 u = w.unitOrthogonal();
-    const Vec3 v = w.cross(u);
-    std::vector<Vec2> in_plane;
-    in_plane.reserve(corners.size());
-    for (const Vec3& p : local) in_plane.emplace_back(p.dot(u), p.dot(v));
-
-    const std::vector<Eigen::Vector3i> triangles = ear_clip(in_plane, tolerance);
-    const int base = add_vertices(corners);
-    for (const Eigen::Vector3i& t : triangles) part_.triangles.push_back(t + Eigen::Vector3i::Constant(base));
-  }
-
-  /// Open lateral surface of the cylinder of the given radius around the segment p1-p2.
-  void add_cylinder(const Vec3& p1, const Vec3& p2, double radius, int segments) {
-    require_positive_radius(radius);
-    const Vec3 w = (p2 - p1).normalized();  // ViSP itself drops cylinders whose axis points coincide
-    const Vec3 u = w.unitOrthogonal();
-    const Vec3 v = w.cross(u);  // (u, v, w) right-handed: triangles below face outwards
-
-    std::vector<Vec3> rings;  // bottom and top vertex of each segment, interleaved
-    for (int i = 0; i < segments; ++i) {
-      const double angle = 2.0 * kPi * i / segments;
-      const Vec3 offset = radius * (std::cos(angle) * u + std::sin(angle) * v);
-      rings.push_back(p1 + offset);
-      rings.push_back(p2 + offset);
-    }
-    const int base = add_vertices(rings);
-    for (int i = 0; i < segments; ++i) {
-      const int j = (i + 1) % segments;
-      const int bottom_i = base + 2 * i, top_i = bottom_i + 1;
-      const int bottom_j = base + 2 * j, top_j = bottom_j + 1;
-      part_.triangles.emplace_back(bottom_i, bottom_j, top_j);
-      part_.triangles.emplace_back(bottom_i, top_j, top_i);
-    }
-  }
-
-  /// Disc of the given radius around `centre` in the plane through centre, p2 and p3,
-  /// facing along (p2 - centre) x (p3 - centre): ViSP's circle convention.
-  void add_disc(const Vec3& centre, const Vec3& p2, const Vec3& p3, double radius, int segments) {
-    require_positive_radius(radius);
-    const Vec3 normal = (p2 - centre).cross(p3 - centre);
-    if (normal.norm() <= 1e-12 * (p2 - centre).norm() * (p3 - centre).norm())
-      throw std::invalid_argument("its centre and two plane points are collinear, so they define no plane");
-    const Vec3 w = normal.normalized();
-    const Vec3 u = (p2 - centre).normalized();
-    const Vec3 v = w.cross(u);
-
-    std::vector<Vec3> fan{centre};
-    for (int i = 0; i < segments; ++i) {
-      const double angle = 2.0 * kPi * i / segments;
-      fan.push_back(centre + radius * (std::cos(angle) * u + std::sin(angle) * v));
-    }
-    const int base = add_vertices(fan);
-    for (int i = 0; i < segments; ++i) part_.triangles.emplace_back(base, base + 1 + i, base + 1 + (i + 1) % segments);
-  }
-
- private:
-  /// Faces from lines come back closed (first corner repeated at the end); repeated
-  /// corners would also make zero-length edges that ear clipping cannot order.
-  static void drop_repeated_corners(std::vector<Vec3>& corners) {
-    double extent = 0.0;
-    for (const Vec3& p : corners) extent = std::max(extent, (p - corners.front()).norm());
-    const auto same = [&](const Vec3& a, const Vec3& b) { return (a - b).norm() <= 1e-9 * extent; };
-    corners.erase(std::unique(corners.begin(), corners.end(), same), corners.end());
-    while (corners.size() > 1 && same(corners.front(), corners.back())) corners.pop_back();
-  }
-
-  static void require_positive_radius(double radius) {
-    if (!(radius > 0.0) || !std::isfinite(radius))
-      throw std::invalid_argument("its radius must be positive (got " + std::to_string(radius) + ")");
-  }
-
-  int add_vertices(const std::vector<Vec3>& points) {
-    const int base = static_cast<int>(part_.vertices.size());
-    for (const Vec3& p : points) part_.vertices.push_back(p.cast<float>());
-    return base;
-  }
-
-  MeshPart& part_;
-};
-
-Vec3 world_coordinates(const vpPoint& p) { return {p.get_oX(), p.get_oY(), p.get_oZ()}; }
-
 /// Reaches ViSP's .cao parser, which only exists as vpMbTracker::loadModel calling back a
-/// tracker with each face, cylinder and circle (points already in the model frame, load()
-/// transforms and the model transform applied). The tracking interface is meaningless
-/// here and throws.
-class CaoGeometryCollector final : public vpMbTracker {
+/// tracker with each primitive: a ViSP tracker whose hooks mesh what it parses instead of
+/// making its own features. Only loadModel is ever called.
+class CaoGeometryCollector final : public vpMbEdgeTracker {
  public:
-  CaoGeometryCollector(MeshPart& part, const CaoTessellation& tessellation)
-      : builder_(part), tessellation_(tessellation) {}
-
-  /// What was wrong with the first primitive that could not be meshed, empty if none.
-  const std::string& first_error() const { return first_error_; }
+  explicit CaoGeometryCollector(CaoMeshBuilder& builder) : builder_(builder) {}
 
  private:
-  void initFaceFromCorners(vpMbtPolygon& polygon) override { add_face(polygon); }
-  void initFaceFromLines(vpMbtPolygon& polygon) override { add_face(polygon); }
-
+  void initFaceFromCorners(vpMbtPolygon& polygon) override { builder_.add_face(polygon); }
+  void initFaceFromLines(vpMbtPolygon& polygon) override { builder_.add_face(polygon); }
   void initCylinder(const vpPoint& p1, const vpPoint& p2, double radius, int, const std::string& name) override {
-    collect(describe("cylinder", ++cylinders_, name), [&] {
-      builder_.add_cylinder(world_coordinates(p1), world_coordinates(p2), radius, tessellation_.cylinder_segments);
-    });
+    builder_.add_cylinder(p1, p2, radius, name);
   }
-
   void initCircle(const vpPoint& p1, const vpPoint& p2, const vpPoint& p3, double radius, int,
                   const std::string& name) override {
-    collect(describe("circle", ++circles_, name), [&] {
-      builder_.add_disc(world_coordinates(p1), world_coordinates(p2), world_coordinates(p3), radius,
-                        tessellation_.circle_segments);
-    });
+    builder_.add_circle(p1, p2, p3, radius, name);
   }
 
-  void add_face(vpMbtPolygon& polygon) {
-    std::vector<Vec3> corners;
-    for (unsigned int i = 0; i < polygon.getNbPoint(); ++i) corners.push_back(world_coordinates(polygon.getPoint(i)));
-    collect(describe("face", ++faces_, polygon.getName()), [&] { builder_.add_polygon(std::move(corners)); });
-  }
-
-  static std::string describe(const std::string& kind, int ordinal, const std::string& name) {
-    return kind + " #" + std::to_string(ordinal) + (name.empty() ? "" : " '" + name + "'");
-  }
-
-  // Exceptions must not cross ViSP's parser, which would replace them with its generic
-  // "cannot read line"; keep the first reason and report it once parsing is over.
-  template <typename Add>
-  void collect(const std::string& what, Add&& add) {
-    try {
-      add();
-    } catch (const std::exception& e) {
-      if (first_error_.empty()) first_error_ = what + ": " + e.what();
-    }
-  }
-
-  [[noreturn]] static void not_a_tracker() {
-    throw vpException(vpException::notImplementedError,
-                      "CaoGeometryCollector only parses ViSP models, it is not a tracker");
-  }
-  vpColVector getError() const override { not_a_tracker(); }
-  vpColVector getRobustWeights() const override { not_a_tracker(); }
-  void display(const vpImage<unsigned char>&, const vpHomogeneousMatrix&, const vpCameraParameters&, const vpColor&,
-               unsigned int, bool) override {
-    not_a_tracker();
-  }
-  void display(const vpImage<vpRGBa>&, const vpHomogeneousMatrix&, const vpCameraParameters&, const vpColor&,
-               unsigned int, bool) override {
-    not_a_tracker();
-  }
-  std::vector<std::vector<double>> getModelForDisplay(unsigned int, unsigned int, const vpHomogeneousMatrix&,
-                                                      const vpCameraParameters&, bool) override {
-    not_a_tracker();
-  }
-  void init(const vpImage<unsigned char>&) override { not_a_tracker(); }
-  void resetTracker() override { not_a_tracker(); }
-  void setPose(const vpImage<unsigned char>&, const vpHomogeneousMatrix&) override { not_a_tracker(); }
-  void setPose(const vpImage<vpRGBa>&, const vpHomogeneousMatrix&) override { not_a_tracker(); }
-  void testTracking() override { not_a_tracker(); }
-  void track(const vpImage<unsigned char>&) override { not_a_tracker(); }
-  void track(const vpImage<vpRGBa>&) override { not_a_tracker(); }
-  void computeVVSInit() override { not_a_tracker(); }
-  void computeVVSInteractionMatrixAndResidu() override { not_a_tracker(); }
-
-  PartBuilder builder_;
-  CaoTessellation tessellation_;
-  int faces_ = 0;
-  int cylinders_ = 0;
-  int circles_ = 0;
-  std::string first_error_;
+  CaoMeshBuilder& builder_;
 };
-
-/// Redirects std::cerr into a string while alive: when ViSP's .cao parser fails it prints
-/// the reason there and throws only "cannot read line".
-class StderrCapture {
- public:
-  StderrCapture() : previous_(std::cerr.rdbuf(captured_.rdbuf())) {}
-  ~StderrCapture() { std::cerr.rdbuf(previous_); }
-  StderrCapture(const StderrCapture&) = delete;
-  StderrCapture& operator=(const StderrCapture&) = delete;
-
-  std::string text() const { return captured_.str(); }
-
- private:
-  std::ostringstream captured_;
-  std::streambuf* previous_;
-};
-
-/// ViSP's multi-line diagnostics as one parenthesised clause, or nothing.
-std::string as_clause(const std::string& diagnostics) {
-  std::istringstream lines(diagnostics);
-  std::string line, joined;
-  while (std::getline(lines, line)) {
-    line.erase(line.find_last_not_of(" \t\r") + 1);
-    if (!line.empty()) joined += (joined.empty() ? "" : "; ") + line;
-  }
-  return joined.empty() ? "" : " (" + joined + ")";
-}
 
 std::string lower_extension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
@@ -320,37 +58,9 @@ Mesh load_cao_mesh(const std::string& path, const Pose& T, const CaoTessellation
     throw std::invalid_argument("load_cao_mesh: cylinders and circles need at least 3 segments (got " +
                                 std::to_string(tessellation.cylinder_segments) + " and " +
                                 std::to_string(tessellation.circle_segments) + ")");
-  Mesh mesh;
-  mesh.source = path;
-  mesh.parts.emplace_back();
-  CaoGeometryCollector collector(mesh.parts.front(), tessellation);
-
-  std::string visp_error, diagnostics;
-  {
-    // Two loads at once must not swap std::cerr's buffer crosswise.
-    static std::mutex cerr_redirection;
-    const std::lock_guard<std::mutex> lock(cerr_redirection);
-    const StderrCapture capture;
-    try {
-      collector.loadModel(path, false, to_homogeneous_matrix(T));
-    } catch (const vpException& e) {
-      visp_error = e.getStringMessage();
-    }
-    diagnostics = capture.text();
-  }
-  // ViSP's diagnostics go into every error: it also drops primitives it finds broken (e.g.
-  // a cylinder whose axis points coincide) with only a warning, which explains an empty mesh.
-  std::string problem;
-  if (!visp_error.empty())
-    problem = visp_error;
-  else if (!collector.first_error().empty())
-    problem = collector.first_error();
-  else if (mesh.empty())
-    problem = "it describes no surface (no faces, cylinders or circles)";
-  if (!problem.empty())
-    throw std::runtime_error("cannot load ViSP model '" + path + "': " + problem + as_clause(diagnostics));
-
-  std::cerr << diagnostics;  // warnings of a successful parse stay visible
+  CaoMeshBuilder builder(path, tessellation);
+  CaoGeometryCollector collector(builder);
+  Mesh mesh = builder.build([&] { collector.loadModel(path, false, to_homogeneous_matrix(T)); });
   // ViSP applies the model transform to .cao files only ("currently only for .cao").
   if (has_visp_model_extension(path) && !has_cao_extension(path)) mesh.transform(T.cast<float>());
   return mesh;

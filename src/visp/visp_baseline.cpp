@@ -10,6 +10,7 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
+#include "icgp/base/camera_names.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/cao_writer.h"
 #include "icgp/visp/conversions.h"
@@ -99,13 +100,13 @@ std::unique_ptr<vpMbGenericTracker> make_visp_tracker(const VispTrackerConfigura
     throw std::invalid_argument("ViSP configuration '" + configuration.name +
                                 "' has no colour feature: the colour camera is the reference camera");
 
-  std::vector<std::string> cameras = {kVispColorCamera};
+  std::vector<std::string> cameras = {kColorCamera};
   std::vector<int> types = {color_tracker_types(configuration)};
-  std::map<std::string, std::string> settings = {{kVispColorCamera, files.color_config}};
+  std::map<std::string, std::string> settings = {{kColorCamera, files.color_config}};
   if (configuration.dense_depth) {
-    cameras.push_back(kVispDepthCamera);
+    cameras.push_back(kDepthCamera);
     types.push_back(vpMbGenericTracker::DEPTH_DENSE_TRACKER);
-    settings[kVispDepthCamera] = files.depth_config;
+    settings[kDepthCamera] = files.depth_config;
   }
   auto tracker = std::make_unique<vpMbGenericTracker>(cameras, types);
   tracker->loadConfigFile(settings, false);
@@ -124,8 +125,8 @@ VispRgbdTracker::VispRgbdTracker(const VispTrackerConfiguration& configuration, 
     : configuration_(configuration),
       tracker_(make_visp_tracker(configuration, files)),
       buffers_(std::make_unique<Buffers>()) {
-  std::map<std::string, std::string> models = {{kVispColorCamera, files.model}};
-  if (configuration.dense_depth) models[kVispDepthCamera] = files.model;
+  std::map<std::string, std::string> models = {{kColorCamera, files.model}};
+  if (configuration.dense_depth) models[kDepthCamera] = files.model;
   const detail::StdoutSilencer quiet_parser;
   tracker_->loadModel(models);
 }
@@ -137,30 +138,30 @@ void VispRgbdTracker::convert(const Frame& frame) { buffers_->frame.convert(fram
 void VispRgbdTracker::start(const Frame& frame, const Pose& reference_T_body) {
   convert(frame);
   std::map<std::string, vpCameraParameters> cameras = {
-      {kVispColorCamera, to_camera_parameters(frame.colors[0].intrinsics)}};
-  std::map<std::string, const vpImage<unsigned char>*> images = {{kVispColorCamera, &buffers_->frame.grey}};
+      {kColorCamera, to_camera_parameters(frame.colors[0].intrinsics)}};
+  std::map<std::string, const vpImage<unsigned char>*> images = {{kColorCamera, &buffers_->frame.grey}};
   if (configuration_.dense_depth) {
     const DepthImage& depth = frame.depths[0];
-    cameras[kVispDepthCamera] = to_camera_parameters(depth.intrinsics);
+    cameras[kDepthCamera] = to_camera_parameters(depth.intrinsics);
     buffers_->depth_image.resize(buffers_->frame.depth_height, buffers_->frame.depth_width, 0);
-    images[kVispDepthCamera] = &buffers_->depth_image;
+    images[kDepthCamera] = &buffers_->depth_image;
     // Camera2's pose is derived by ViSP from the reference pose and this, as for a user.
-    tracker_->setCameraTransformationMatrix(kVispDepthCamera, to_homogeneous_matrix(depth.camera_T_reference));
+    tracker_->setCameraTransformationMatrix(kDepthCamera, to_homogeneous_matrix(depth.camera_T_reference));
   }
   tracker_->setCameraParameters(cameras);
   tracker_->initFromPose(images, std::map<std::string, vpHomogeneousMatrix>{
-                                     {kVispColorCamera, to_homogeneous_matrix(reference_T_body)}});
+                                     {kColorCamera, to_homogeneous_matrix(reference_T_body)}});
 }
 
 Pose VispRgbdTracker::track(const Frame& frame, double* track_ms) {
   convert(frame);
-  std::map<std::string, const vpImage<unsigned char>*> images = {{kVispColorCamera, &buffers_->frame.grey}};
+  std::map<std::string, const vpImage<unsigned char>*> images = {{kColorCamera, &buffers_->frame.grey}};
   std::map<std::string, const std::vector<vpColVector>*> clouds;
   std::map<std::string, unsigned int> widths, heights;
   if (configuration_.dense_depth) {
-    clouds[kVispDepthCamera] = &buffers_->frame.point_cloud;
-    widths[kVispDepthCamera] = buffers_->frame.depth_width;
-    heights[kVispDepthCamera] = buffers_->frame.depth_height;
+    clouds[kDepthCamera] = &buffers_->frame.point_cloud;
+    widths[kDepthCamera] = buffers_->frame.depth_width;
+    heights[kDepthCamera] = buffers_->frame.depth_height;
   }
   const auto begin = std::chrono::steady_clock::now();
   tracker_->track(images, clouds, widths, heights);

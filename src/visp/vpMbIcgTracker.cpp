@@ -2,11 +2,13 @@
 // vpMbIcgTracker: construction, parameters, model, cameras and initialisation.
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <visp3/mbt/vpMbtXmlGenericParser.h>
 
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
 
+#include "cao_mesh_builder.h"
 #include "vpMbIcgTracker_impl.h"
 
 using icgp::visp_detail::guarded;
@@ -43,17 +45,94 @@ std::unique_ptr<vpMbtXmlGenericParser> parse_visp_xml(const std::string& path, b
   return parser;
 }
 
-icgp::Mesh load_model_file(const std::string& path, const vpHomogeneousMatrix& T) {
+/// .cao and .wrl: the files ViSP's own parser reads (vpMbTracker::loadModel).
+bool is_visp_model(const std::string& path) {
+  const std::string extension = lower_extension(path);
+  return extension == ".cao" || extension == ".wrl";
+}
+
+/// The mesh of a model file, T X for its points X, as icgp::load_any_mesh makes it. Given
+/// `visp_parse`, a .cao or .wrl file is parsed by it instead: a vpMbTracker::loadModel(path,
+/// verbose, T) call of a tracker whose init* hooks feed the builder it is handed.
+icgp::Mesh load_model_file(const std::string& path, const vpHomogeneousMatrix& T,
+                           const std::function<void(icgp::CaoMeshBuilder&)>& visp_parse = {}) {
   require_file(path, "model file");
   return guarded("loadModel", [&] {
     try {
-      return icgp::load_any_mesh(path, 1.0, icgp::to_pose(T));
+      if (!visp_parse || !is_visp_model(path)) return icgp::load_any_mesh(path, 1.0, icgp::to_pose(T));
+      // As load_any_mesh: meshed in the file's frame, then placed with T. ViSP has already
+      // applied T to the points of a .cao file (not of a .wrl), so the builder takes it off.
+      const icgp::Pose pose = icgp::to_pose(T);
+      icgp::CaoMeshBuilder builder(path, {}, lower_extension(path) == ".cao" ? pose : icgp::Pose());
+      icgp::Mesh mesh = builder.build([&] { visp_parse(builder); });
+      mesh.transform(pose.cast<float>());
+      return mesh;
     } catch (const std::exception& e) {
       throw vpException(vpException::badValue, "vpMbIcgTracker::loadModel: cannot load '" + path +
                                                    "' (.cao, .wrl, or a mesh format assimp reads): " + e.what());
     }
   });
 }
+
+/// ViSP's model in a vpMbTracker as it stands (the faces, and the faces, lines, cylinders and
+/// circles of its projection-error model), so that restore() can take back what a model
+/// file's parse added when that file turns out not to load.
+class VispModelMark {
+ public:
+  VispModelMark(vpMbHiddenFaces<vpMbtPolygon>& faces, vpMbHiddenFaces<vpMbtPolygon>& error_faces,
+                std::vector<vpMbtDistanceLine*>& error_lines, std::vector<vpMbtDistanceCylinder*>& error_cylinders,
+                std::vector<vpMbtDistanceCircle*>& error_circles, bool& model_initialised, std::string& model_file)
+      : faces_(faces.getPolygon()),
+        error_faces_(error_faces.getPolygon()),
+        error_lines_(error_lines),
+        error_cylinders_(error_cylinders),
+        error_circles_(error_circles),
+        model_initialised_(model_initialised),
+        model_file_(model_file),
+        n_faces_(faces_.size()),
+        n_error_faces_(error_faces_.size()),
+        n_error_cylinders_(error_cylinders.size()),
+        n_error_circles_(error_circles.size()),
+        was_initialised_(model_initialised),
+        previous_file_(model_file) {
+    // A new face sharing an edge with an earlier one adds its index to that edge's line.
+    for (const vpMbtDistanceLine* line : error_lines) line_polygons_.push_back(line->Lindex_polygon.size());
+  }
+
+  void restore() const {
+    truncate(faces_, n_faces_);
+    truncate(error_faces_, n_error_faces_);
+    truncate(error_lines_, line_polygons_.size());
+    for (std::size_t i = 0; i < line_polygons_.size(); ++i) {
+      vpMbtDistanceLine& line = *error_lines_[i];
+      line.Lindex_polygon.resize(line_polygons_[i]);
+      line.Lindex_polygon_tracked.resize(line_polygons_[i]);
+    }
+    truncate(error_cylinders_, n_error_cylinders_);
+    truncate(error_circles_, n_error_circles_);
+    model_initialised_ = was_initialised_;
+    model_file_ = previous_file_;
+  }
+
+ private:
+  template <typename T>
+  static void truncate(std::vector<T*>& owned, std::size_t size) {
+    for (std::size_t i = size; i < owned.size(); ++i) delete owned[i];
+    owned.resize(size);
+  }
+
+  std::vector<vpMbtPolygon*>& faces_;
+  std::vector<vpMbtPolygon*>& error_faces_;
+  std::vector<vpMbtDistanceLine*>& error_lines_;
+  std::vector<vpMbtDistanceCylinder*>& error_cylinders_;
+  std::vector<vpMbtDistanceCircle*>& error_circles_;
+  bool& model_initialised_;
+  std::string& model_file_;
+  std::size_t n_faces_, n_error_faces_, n_error_cylinders_, n_error_circles_;
+  std::vector<std::size_t> line_polygons_;  ///< polygons of each line there was
+  bool was_initialised_;
+  std::string previous_file_;
+};
 
 /// One object is tracked by every camera, with the reference camera's model. Another
 /// camera's file should describe the same object (ViSP's programs give a .wrl and a .cao
@@ -165,26 +244,9 @@ std::map<std::string, int> vpMbIcgTracker::getCameraTrackerTypes() const {
 // --------------------------------------------------------------------------------- model
 
 void vpMbIcgTracker::loadModel(const std::string& modelFile, bool verbose, const vpHomogeneousMatrix& T) {
-  icgp::Mesh part = load_model_file(modelFile, T);
-  // ViSP's own parser also fills `faces` and the projection-error model, so that
-  // computeCurrentProjectionError means what it means for ViSP's trackers.
-  const std::string extension = lower_extension(modelFile);
-  if (extension == ".cao" || extension == ".wrl") {
-    vpMbTracker::loadModel(modelFile, verbose, T);
-    impl_->has_visp_model_part = true;
-  }
-
-  Impl& d = *impl_;
-  d.mesh.source = d.mesh.source.empty() ? modelFile : d.mesh.source + "+" + modelFile;
-  for (icgp::MeshPart& p : part.parts) d.mesh.parts.push_back(std::move(p));
-  d.model_changed();
-  modelInitialised = true;
-  if (verbose) {
-    std::size_t triangles = 0;
-    for (const icgp::MeshPart& p : d.mesh.parts) triangles += p.triangles.size();
-    std::cout << "vpMbIcgTracker: model " << modelFile << " loaded; the object has " << d.mesh.parts.size()
-              << " part(s), " << triangles << " triangles\n";
-  }
+  const std::string& camera = impl_->rig.reference();
+  loadModel(std::map<std::string, std::string>{{camera, modelFile}}, verbose,
+            std::map<std::string, vpHomogeneousMatrix>{{camera, T}});
 }
 
 void vpMbIcgTracker::loadModel(const std::string& modelFile1, const std::string& modelFile2, bool verbose,
@@ -208,13 +270,49 @@ void vpMbIcgTracker::loadModel(const std::map<std::string, std::string>& mapOfMo
   };
   const auto main = mapOfModelFiles.count(rig.reference()) ? mapOfModelFiles.find(rig.reference())
                                                            : mapOfModelFiles.begin();
-  for (const auto& [camera, file] : mapOfModelFiles) {
-    if (camera == main->first || file.empty()) continue;
-    if (file == main->second && transform(camera) == transform(main->first)) continue;
-    check_same_object(load_model_file(main->second, transform(main->first)), main->second,
-                      load_model_file(file, transform(camera)), file);
+  const std::string& modelFile = main->second;
+  Impl& d = *impl_;
+
+  // A .cao or .wrl file is parsed once, by ViSP's parser in this tracker: vpMbTracker fills
+  // `faces` and the projection-error model (so that getPolygonFaces and
+  // computeCurrentProjectionError mean what they mean for ViSP's trackers) and calls the init*
+  // hooks with each primitive, which d.cao_builder meshes.
+  const VispModelMark visp_model(faces, m_projectionErrorFaces, m_projectionErrorLines, m_projectionErrorCylinders,
+                                 m_projectionErrorCircles, modelInitialised, modelFileName);
+  const auto parse_here = [&](icgp::CaoMeshBuilder& builder) {
+    d.cao_builder = &builder;
+    try {
+      vpMbTracker::loadModel(modelFile, verbose, transform(main->first));
+    } catch (...) {
+      d.cao_builder = nullptr;
+      throw;
+    }
+    d.cao_builder = nullptr;
+  };
+  icgp::Mesh part;
+  try {
+    part = load_model_file(modelFile, transform(main->first), parse_here);
+    for (const auto& [camera, file] : mapOfModelFiles) {
+      if (camera == main->first || file.empty()) continue;
+      if (file == modelFile && transform(camera) == transform(main->first)) continue;
+      check_same_object(part, modelFile, load_model_file(file, transform(camera)), file);
+    }
+  } catch (...) {
+    visp_model.restore();  // the object is as it was
+    throw;
   }
-  loadModel(main->second, verbose, transform(main->first));
+
+  if (is_visp_model(modelFile)) d.has_visp_model_part = true;
+  d.mesh.source = d.mesh.source.empty() ? modelFile : d.mesh.source + "+" + modelFile;
+  for (icgp::MeshPart& p : part.parts) d.mesh.parts.push_back(std::move(p));
+  d.model_changed();
+  modelInitialised = true;
+  if (verbose) {
+    std::size_t triangles = 0;
+    for (const icgp::MeshPart& p : d.mesh.parts) triangles += p.triangles.size();
+    std::cout << "vpMbIcgTracker: model " << modelFile << " loaded; the object has " << d.mesh.parts.size()
+              << " part(s), " << triangles << " triangles\n";
+  }
 }
 
 namespace {
@@ -403,7 +501,7 @@ void vpMbIcgTracker::init(const vpImage<unsigned char>&) {
                               "vpMbIcgTracker: no model; call loadModel() before initialising");
   if (!d.tracker) {
     d.cues = d.rig.cues(d.config.modalities);
-    d.tracker = guarded("init", [&] { return icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues); });
+    d.tracker = guarded("init", [&] { return icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues, d.renderer); });
   }
   d.tracker->body(Impl::kBody).reference_T_body = icgp::to_pose(m_cMo);
   d.start_pending = true;
@@ -674,8 +772,22 @@ void vpMbIcgTracker::resetTracker() {
 }
 
 // ------------------------------------------------------ ViSP's .cao / .wrl parser hooks
+// vpMbTracker has put each primitive in `faces` and in the projection-error model before it
+// calls these; outside loadModel there is nothing to mesh.
 
-void vpMbIcgTracker::initCircle(const vpPoint&, const vpPoint&, const vpPoint&, double, int, const std::string&) {}
-void vpMbIcgTracker::initCylinder(const vpPoint&, const vpPoint&, double, int, const std::string&) {}
-void vpMbIcgTracker::initFaceFromCorners(vpMbtPolygon&) {}
-void vpMbIcgTracker::initFaceFromLines(vpMbtPolygon&) {}
+void vpMbIcgTracker::initCircle(const vpPoint& p1, const vpPoint& p2, const vpPoint& p3, double radius, int,
+                                const std::string& name) {
+  if (impl_->cao_builder) impl_->cao_builder->add_circle(p1, p2, p3, radius, name);
+}
+
+void vpMbIcgTracker::initCylinder(const vpPoint& p1, const vpPoint& p2, double radius, int, const std::string& name) {
+  if (impl_->cao_builder) impl_->cao_builder->add_cylinder(p1, p2, radius, name);
+}
+
+void vpMbIcgTracker::initFaceFromCorners(vpMbtPolygon& polygon) {
+  if (impl_->cao_builder) impl_->cao_builder->add_face(polygon);
+}
+
+void vpMbIcgTracker::initFaceFromLines(vpMbtPolygon& polygon) {
+  if (impl_->cao_builder) impl_->cao_builder->add_face(polygon);
+}

@@ -21,14 +21,7 @@ std::vector<std::vector<double>> vpMbIcgTracker::getModelForDisplay(unsigned int
     const icgp::Intrinsics k = icgp::to_intrinsics(cam, static_cast<int>(width), static_cast<int>(height));
     const icgp::Pose camera_T_body = icgp::to_pose(cMo);
     cv::Mat depth;
-    if (!displayFullModel) {
-      if (!d.renderer) {
-        d.renderer = std::make_unique<icgp::Renderer>();
-        d.render_body = d.renderer->add_body(d.mesh, 1);
-      }
-      d.renderer->set_body_pose(d.render_body, camera_T_body);
-      depth = d.renderer->render(k, icgp::Pose(), icgp::kRenderDepth).depth;
-    }
+    if (!displayFullModel) depth = d.renderer->depth_of(Impl::kBody, d.mesh, k, camera_T_body);
     std::vector<std::vector<double>> lines;
     for (const icgp::ImageSegment& s : d.edges->project(k, camera_T_body, depth))
       lines.push_back({0.0, s.a.y(), s.a.x(), s.b.y(), s.b.x()});  // ViSP: i is the row (v), j the column (u)

@@ -13,12 +13,16 @@
 #include <visp3/core/vpTrackingException.h>
 
 #include "icgp/render/model_edges.h"
-#include "icgp/render/renderer.h"
+#include "icgp/render/scene_renderer.h"
 #include "icgp/tracker/tracker.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 
 #include "camera_rig.h"
 #include "frame_assembly.h"
+
+namespace icgp {
+class CaoMeshBuilder;
+}  // namespace icgp
 
 struct vpMbIcgTracker::Impl {
   static constexpr const char* kBody = "object";
@@ -29,6 +33,8 @@ struct vpMbIcgTracker::Impl {
   icgp::TrackerConfig config;
   icgp::Mesh mesh;
   bool has_visp_model_part = false;  ///< ViSP's projection-error model exists (.cao / .wrl)
+  /// Meshes what ViSP's parser calls the init* hooks with, while loadModel parses a .cao / .wrl.
+  icgp::CaoMeshBuilder* cao_builder = nullptr;
   std::unique_ptr<icgp::Tracker> tracker;  ///< for the current mesh, config and rig, built by init()
   std::vector<icgp::CameraCues> cues;      ///< which cues read which camera, as `tracker` was built
   bool start_pending = false;
@@ -54,8 +60,8 @@ struct vpMbIcgTracker::Impl {
   std::list<vpMbtDistanceKltPoints*> no_klt_points;
 
   std::unique_ptr<icgp::ModelEdges> edges;  ///< for display, made on first use
-  std::unique_ptr<icgp::Renderer> renderer;
-  icgp::Renderer::BodyHandle render_body{};
+  /// The tracker's renderer, which the display's hidden-line removal uses too.
+  std::shared_ptr<icgp::SceneRenderer> renderer = std::make_shared<icgp::SceneRenderer>();
 
   /// The cues of one of the rig's cameras.
   const icgp::CameraCues& cues_of(const std::string& camera) const {
@@ -83,7 +89,7 @@ struct vpMbIcgTracker::Impl {
   void model_changed() {
     tracker.reset();
     edges.reset();
-    renderer.reset();
+    renderer = std::make_shared<icgp::SceneRenderer>();  // the body's mesh is uploaded once
   }
 };
 

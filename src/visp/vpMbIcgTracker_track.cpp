@@ -6,10 +6,12 @@
 #include <type_traits>
 #include <visp3/core/vpImageConvert.h>
 
+#include "icgp/modality/cue_kind.h"
 #include "icgp/visp/conversions.h"
 
 #include "vpMbIcgTracker_impl.h"
 
+using icgp::CueKind;
 using icgp::visp_detail::DepthInput;
 using icgp::visp_detail::guarded;
 
@@ -302,51 +304,55 @@ std::vector<const icgp::Modality*> vpMbIcgTracker::cues(const std::string& name,
   return out;
 }
 
-namespace {
-
-unsigned int image_feature_count(const std::vector<const icgp::Modality*>& cues) {
-  std::vector<icgp::ImageFeature> features;
-  for (const icgp::Modality* m : cues) m->append_image_features(features);
-  return static_cast<unsigned int>(features.size());
-}
-
-}  // namespace
-
-unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return image_feature_count(cues("region")); }
-unsigned int vpMbIcgTracker::getNbFeaturesKlt() const { return image_feature_count(cues("texture")); }
-
-unsigned int vpMbIcgTracker::depth_feature_count(int type) const {
+unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const std::string& camera,
+                                                  int depth_type) const {
+  if (!impl_->tracker) return 0;
+  // The optimizer's part of each cue in the last update: the correspondences it summed
+  // over are the features ViSP counts in its minimisation.
+  const std::vector<const icgp::Modality*> all = impl_->tracker->modalities(Impl::kBody);
+  const std::vector<icgp::CueTerms>& terms = impl_->tracker->last_cue_terms(Impl::kBody);
   unsigned int n = 0;
-  for (const icgp::Modality* m : cues("depth")) {
-    // A camera with both depth types counts as DEPTH_DENSE, ICG's point-to-plane cue.
-    const int types = impl_->rig.at(m->camera(), "getNbFeatures").types;
-    const int counted = (types & DEPTH_DENSE_TRACKER) ? DEPTH_DENSE_TRACKER : DEPTH_NORMAL_TRACKER;
-    if (counted == type) n += static_cast<unsigned int>(m->quality().n_valid);
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    const icgp::Modality& m = *all[i];
+    if (m.name() != name || (!camera.empty() && m.camera() != camera)) continue;
+    if (depth_type != 0) {
+      // A camera with both depth types counts as DEPTH_DENSE, ICG's point-to-plane cue.
+      const int types = impl_->rig.at(m.camera(), "getNbFeatures").types;
+      if (((types & DEPTH_DENSE_TRACKER) ? DEPTH_DENSE_TRACKER : DEPTH_NORMAL_TRACKER) != depth_type) continue;
+    }
+    n += static_cast<unsigned int>(terms[i].n_correspondences);
   }
   return n;
 }
 
-unsigned int vpMbIcgTracker::getNbFeaturesDepthNormal() const { return depth_feature_count(DEPTH_NORMAL_TRACKER); }
-unsigned int vpMbIcgTracker::getNbFeaturesDepthDense() const { return depth_feature_count(DEPTH_DENSE_TRACKER); }
+unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return correspondence_count(to_string(CueKind::kRegion)); }
+unsigned int vpMbIcgTracker::getNbFeaturesKlt() const { return correspondence_count(to_string(CueKind::kTexture)); }
+unsigned int vpMbIcgTracker::getNbFeaturesDepthNormal() const {
+  return correspondence_count(to_string(CueKind::kDepth), "", DEPTH_NORMAL_TRACKER);
+}
+unsigned int vpMbIcgTracker::getNbFeaturesDepthDense() const {
+  return correspondence_count(to_string(CueKind::kDepth), "", DEPTH_DENSE_TRACKER);
+}
 
 unsigned int vpMbIcgTracker::getNbPoints(unsigned int) const {
-  return image_feature_count(cues("region", impl_->rig.reference()));
+  return correspondence_count(to_string(CueKind::kRegion), impl_->rig.reference());
 }
 
 void vpMbIcgTracker::getNbPoints(std::map<std::string, unsigned int>& mapOfNbPoints, unsigned int) const {
   mapOfNbPoints.clear();
-  for (const std::string& name : impl_->rig.names()) mapOfNbPoints[name] = image_feature_count(cues("region", name));
+  for (const std::string& name : impl_->rig.names())
+    mapOfNbPoints[name] = correspondence_count(to_string(CueKind::kRegion), name);
 }
 
 std::vector<std::vector<double>> vpMbIcgTracker::features_for_display(const std::string& camera) const {
   std::vector<std::vector<double>> out;
   constexpr double kFullWeight = 0.0, kDownWeighted = 4.0;  // vpMeSite::NO_SUPPRESSION, M_ESTIMATOR
   std::vector<icgp::ImageFeature> features;
-  for (const icgp::Modality* m : cues("region", camera)) m->append_image_features(features);
+  for (const icgp::Modality* m : cues(to_string(CueKind::kRegion), camera)) m->append_image_features(features);
   for (const icgp::ImageFeature& f : features)
     out.push_back({0.0, f.pixel.y(), f.pixel.x(), f.weight >= 0.5 ? kFullWeight : kDownWeighted});
   features.clear();
-  for (const icgp::Modality* m : cues("texture", camera)) m->append_image_features(features);
+  for (const icgp::Modality* m : cues(to_string(CueKind::kTexture), camera)) m->append_image_features(features);
   for (std::size_t id = 0; id < features.size(); ++id)
     out.push_back({1.0, features[id].pixel.y(), features[id].pixel.x(), static_cast<double>(id)});
   return out;
@@ -363,7 +369,8 @@ void vpMbIcgTracker::getFeaturesForDisplay(std::map<std::string, std::vector<std
 
 std::map<int, vpImagePoint> vpMbIcgTracker::getKltImagePointsWithId() const {
   std::vector<icgp::ImageFeature> features;
-  for (const icgp::Modality* m : cues("texture", impl_->rig.reference())) m->append_image_features(features);
+  for (const icgp::Modality* m : cues(to_string(CueKind::kTexture), impl_->rig.reference()))
+    m->append_image_features(features);
   std::map<int, vpImagePoint> points;
   for (std::size_t id = 0; id < features.size(); ++id)
     points[static_cast<int>(id)] = vpImagePoint(features[id].pixel.y(), features[id].pixel.x());

@@ -98,7 +98,7 @@ TEST_CASE("rgbd simulator: depth is missing at grazing angles and along depth ed
   Scenario grazing = s;
   grazing.camera.noise.grazing_angle_deg = 45.0;
   Scenario edges = s;
-  edges.camera.noise.edge_dropout_px = 3;
+  edges.camera.noise.depth_edge_holes_px = 3;
   Rig exact(s), a(grazing), b(edges);
   const cv::Mat z = depth_of(exact.capture()).clone();
   const cv::Mat z_grazing = depth_of(a.capture()).clone();

@@ -14,8 +14,6 @@ using namespace icgp::servo;
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
 /// A small, fast scenario: 320x240 camera, coarse viewpoint models, the textured box.
 Scenario small_scenario(const std::string& law, const std::string& tracker) {
   const icgp::test::TempDir dir("icgp-test-servo-loop");
@@ -45,7 +43,7 @@ ServoRunOptions quiet() {
 
 void check_converged(const ServoResult& result, double max_t, double max_r) {
   INFO(result.tracker << ": " << result.steps.size() << " steps, final " << 1e3 * result.final_t << " mm "
-                      << result.final_r / kDeg << " deg, tracker mean " << 1e3 * result.mean_track_t << " mm");
+                      << result.final_r / kDegree << " deg, tracker mean " << 1e3 * result.mean_track_t << " mm");
   CHECK(result.converged);
   CHECK(result.final_t < max_t);
   CHECK(result.final_r < max_r);
@@ -73,12 +71,12 @@ class FailingTracker : public PoseEstimator {
 
 TEST_CASE("servo: PBVS with the oracle settles within half the thresholds") {
   const ServoResult result = run_servo(small_scenario("pbvs", "oracle"), quiet());
-  check_converged(result, 0.5e-3, 0.05 * kDeg);
+  check_converged(result, 0.5e-3, 0.05 * kDegree);
 }
 
 TEST_CASE("servo: PBVS with icgp in the loop converges to the desired pose") {
   const ServoResult result = run_servo(small_scenario("pbvs", "icgp"), quiet());
-  check_converged(result, 1e-3, 0.1 * kDeg);
+  check_converged(result, 1e-3, 0.1 * kDegree);
   // The tracker followed the moving camera (coarse test models allow a few-millimetre
   // outlier frame).
   CHECK(result.mean_track_t < 0.2e-3);
@@ -87,7 +85,7 @@ TEST_CASE("servo: PBVS with icgp in the loop converges to the desired pose") {
 
 TEST_CASE("servo: IBVS with icgp in the loop converges to the desired pose") {
   const ServoResult result = run_servo(small_scenario("ibvs", "icgp"), quiet());
-  check_converged(result, 1e-3, 0.1 * kDeg);
+  check_converged(result, 1e-3, 0.1 * kDegree);
 }
 
 TEST_CASE("servo: a tracking loss stops the robot within the step, and the run resumes after it") {
@@ -118,11 +116,11 @@ TEST_CASE("servo: a tracking loss stops the robot within the step, and the run r
 TEST_CASE("servo: random trial starts stay within the scenario's ranges and repeat with the seed") {
   TrialSpec trials;
   trials.translation = 0.02;
-  trials.rotation = 10 * kDeg;
+  trials.rotation = 10 * kDegree;
   for (int i = 0; i < 50; ++i) {
     const icgp::Pose offset = perturbed_start(trials, 7, i);
     CHECK(offset.translation().norm() <= 0.02 + 1e-12);
-    CHECK(Eigen::AngleAxisd(offset.rotation()).angle() <= 10 * kDeg + 1e-12);
+    CHECK(Eigen::AngleAxisd(offset.rotation()).angle() <= 10 * kDegree + 1e-12);
     CHECK(offset.matrix() == perturbed_start(trials, 7, i).matrix());
   }
   CHECK(perturbed_start(trials, 7, 0).matrix() != perturbed_start(trials, 8, 0).matrix());

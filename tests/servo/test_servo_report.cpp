@@ -14,6 +14,7 @@
 #include "icgp/servo/servo_report.h"
 
 namespace fs = std::filesystem;
+using icgp::servo::kDegree;
 using icgp::servo::ServoResult;
 using icgp::servo::ServoStep;
 using icgp::servo::StopSpec;
@@ -21,9 +22,6 @@ using icgp::servo::TrialsSummary;
 using icgp::test::TempDir;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 
 std::string read(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -65,7 +63,7 @@ ServoResult run_a() {
   r.converged_step = 1;
   r.converged_time = 0.1;
   r.final_t = 0.0005;
-  r.final_r = 0.05 * kDeg;
+  r.final_r = 0.05 * kDegree;
   r.steps_per_s = 30.0;
   r.steps = {step(0.0, 0.02, 0.001, 0.01, 10.0), step(0.1, 0.005, 0.002, 0.02, 12.0),
              step(0.2, 0.0005, 0.003, 0.03, 14.0)};
@@ -85,7 +83,7 @@ ServoResult run_b() {
   r.seed = 2;
   r.converged = false;
   r.final_t = 0.01;
-  r.final_r = 2.0 * kDeg;
+  r.final_r = 2.0 * kDegree;
   r.steps_per_s = 20.0;
   r.safety_stops = 2;
   r.recovered = true;
@@ -105,7 +103,7 @@ ServoResult run_c() {
   r.converged = true;
   r.converged_time = 0.3;
   r.final_t = 0.0009;
-  r.final_r = 0.08 * kDeg;
+  r.final_r = 0.08 * kDegree;
   r.steps_per_s = 40.0;
   r.safety_stops = 1;
   r.recovered = false;
@@ -128,16 +126,16 @@ ServoResult run_d() {
 TEST_CASE("succeeded needs convergence and the true final error within both thresholds", "[servo][report]") {
   StopSpec stop;
   stop.converged_translation = 0.001;
-  stop.converged_rotation = 0.1 * kDeg;
+  stop.converged_rotation = 0.1 * kDegree;
   ServoResult r;
   r.converged = true;
   r.final_t = 0.001;  // exactly at the thresholds: success
-  r.final_r = 0.1 * kDeg;
+  r.final_r = 0.1 * kDegree;
   CHECK(icgp::servo::succeeded(r, stop));
   r.final_t = std::nextafter(0.001, 1.0);
   CHECK_FALSE(icgp::servo::succeeded(r, stop));
   r.final_t = 0.0;
-  r.final_r = std::nextafter(0.1 * kDeg, 1.0);
+  r.final_r = std::nextafter(0.1 * kDegree, 1.0);
   CHECK_FALSE(icgp::servo::succeeded(r, stop));
   r.final_r = 0.0;
   CHECK(icgp::servo::succeeded(r, stop));
@@ -159,8 +157,8 @@ TEST_CASE("summarise computes the batch statistics", "[servo][report]") {
   CHECK(s.final_t_median == Approx(0.00145));
   CHECK(s.final_t_max == Approx(0.01));
   // final_r: 0.05, 2, 0.08, 0.05 deg -> median (0.05 + 0.08) / 2, max 2.
-  CHECK(s.final_r_median == Approx(0.065 * kDeg));
-  CHECK(s.final_r_max == Approx(2.0 * kDeg));
+  CHECK(s.final_r_median == Approx(0.065 * kDegree));
+  CHECK(s.final_r_max == Approx(2.0 * kDegree));
   // Over the successful runs a (0.1 s) and c (0.3 s).
   CHECK(s.converged_time_median == Approx(0.2));
   // Tracker error over the 3 + 1 + 2 + 3 = 9 steps.
@@ -256,8 +254,8 @@ TEST_CASE("write_summary_json writes the contract keys in mm and degrees", "[ser
   CHECK(json["converged_time_s_median"].as<double>() == Approx(0.2));
   CHECK(json["track_t_mm"]["mean"].as<double>() == Approx(s.mean_track_t * 1000.0));
   CHECK(json["track_t_mm"]["max"].as<double>() == Approx(9.0));
-  CHECK(json["track_r_deg"]["mean"].as<double>() == Approx(s.mean_track_r / kDeg));
-  CHECK(json["track_r_deg"]["max"].as<double>() == Approx(0.05 / kDeg));
+  CHECK(json["track_r_deg"]["mean"].as<double>() == Approx(s.mean_track_r / kDegree));
+  CHECK(json["track_r_deg"]["max"].as<double>() == Approx(0.05 / kDegree));
 
   // Several summaries: an array; no converged run: null time.
   TrialsSummary failed = icgp::servo::summarise({run_b()}, stop);

@@ -11,6 +11,8 @@
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using icgp::Pose;
+using icgp::kPi;
+using icgp::servo::kDegree;
 using icgp::servo::load_scenario;
 using icgp::servo::resolve_model_path;
 using icgp::servo::Scenario;
@@ -18,9 +20,6 @@ using icgp::servo::ScenarioError;
 using icgp::test::TempDir;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 
 /// The smallest valid scenario: the required keys only.
 const std::string kMinimal =
@@ -132,7 +131,7 @@ seed: 7
   CHECK(s.camera.rate_hz == 15);
   const icgp::servo::NoiseSpec& n = s.camera.noise;
   CHECK((n.color_sigma == 2 && n.depth_sigma_at_1m == 0.001 && n.depth_dropout == 0.05));
-  CHECK((n.grazing_angle_deg == 75 && n.edge_dropout_px == 2 && n.motion_blur == 0.5 && n.frame_drop == 0.1));
+  CHECK((n.grazing_angle_deg == 75 && n.depth_edge_holes_px == 2 && n.motion_blur == 0.5 && n.frame_drop == 0.1));
 
   // start: θu = (5, -10, 3) degrees; its angle is |θu|.
   const Eigen::Vector3d theta_u = Eigen::Vector3d(5, -10, 3) * kPi / 180;
@@ -176,7 +175,7 @@ TEST_CASE("keys left out of a scenario take their defaults") {
   CHECK(s.camera.depth_T_color.matrix().isIdentity());
   CHECK(s.camera.rate_hz == 30);
   CHECK((s.camera.noise.color_sigma == 0 && s.camera.noise.depth_dropout == 0 && s.camera.noise.frame_drop == 0));
-  CHECK((s.camera.noise.grazing_angle_deg == 90 && s.camera.noise.edge_dropout_px == 0));
+  CHECK((s.camera.noise.grazing_angle_deg == 90 && s.camera.noise.depth_edge_holes_px == 0));
   CHECK(s.tracker.kind == icgp::servo::TrackerKind::kIcgp);
   CHECK((s.tracker.modalities.empty() && s.tracker.config.empty()));
   CHECK(s.tracker.visp_configuration == "edge + KLT + dense depth");
@@ -185,10 +184,10 @@ TEST_CASE("keys left out of a scenario take their defaults") {
   CHECK_FALSE(s.control.gain.adaptive());
   CHECK((s.control.max_linear_velocity == 0.1 && s.control.max_angular_velocity == 0.5));
   CHECK(s.stop.converged_translation == Approx(0.001));
-  CHECK(s.stop.converged_rotation == Approx(0.1 * kDeg));
+  CHECK(s.stop.converged_rotation == Approx(0.1 * kDegree));
   CHECK((s.stop.max_time == 20 && s.stop.settle_time == 0.2 && s.seed == 1));
   CHECK(s.trials.translation == Approx(0.02));
-  CHECK(s.trials.rotation == Approx(10 * kDeg));
+  CHECK(s.trials.rotation == Approx(10 * kDegree));
 
   // The depth camera defaults to the colour camera as the file gives it; `occluder:` alone
   // places the default occluder.

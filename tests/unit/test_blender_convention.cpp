@@ -7,6 +7,7 @@
 #include "icgp/eval/sequence.h"
 #include "icgp/render/renderer.h"
 #include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/visp_camera_xml.h"
 
 using namespace icgp;
 
@@ -38,8 +39,8 @@ double mean_depth_difference(const Sequence& sequence, int index) {
 }  // namespace
 
 TEST_CASE("teabox-blender: the corrected principal point reproduces Blender's depth") {
-  const Sequence as_written = Sequence::open(ICGP_TEST_DATA_DIR "/teabox-blender");
-  SequenceOptions options;
+  const Sequence as_written = Sequence::open(ICGP_TEST_DATA_DIR "/teabox-blender", visp_sequence_options());
+  SequenceOptions options = visp_sequence_options();
   options.blender_principal_point = true;
   const Sequence corrected = Sequence::open(ICGP_TEST_DATA_DIR "/teabox-blender", options);
   for (int index : {50, 99}) {

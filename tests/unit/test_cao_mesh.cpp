@@ -15,6 +15,7 @@
 
 namespace fs = std::filesystem;
 using Eigen::Vector3d;
+using icgp::kPi;
 using icgp::Mesh;
 using icgp::Pose;
 using icgp::test::for_each_triangle;
@@ -24,7 +25,6 @@ using icgp::test::TempDir;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const fs::path kData = ICGP_TEST_DATA_DIR;
 const fs::path kModels = kData / "realsense-cube" / "models";
 

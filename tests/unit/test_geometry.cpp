@@ -17,12 +17,11 @@ using Eigen::Matrix3d;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 using icgp::Intrinsics;
+using icgp::kPi;
 using icgp::Pose;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Matrix3d to_eigen(const vpRotationMatrix& R) {
   Matrix3d m;

@@ -245,8 +245,7 @@ void check_untextured(const Mesh& mesh) {
 
 /// Volume of the prism with a regular polygon base that the cylinders are made of.
 double cylinder_prism_volume(double radius, double height, int segments) {
-  const double pi = 3.14159265358979323846;
-  return 0.5 * segments * radius * radius * std::sin(2.0 * pi / segments) * height;
+  return 0.5 * segments * radius * radius * std::sin(2.0 * icgp::kPi / segments) * height;
 }
 
 }  // namespace

@@ -62,10 +62,10 @@ Pose perturbed(const Pose& pose, double mm, double deg) {
 }
 
 void check_gradient(Modality& modality, const Frame& frame, int corr_iter) {
-  modality.correspondences(frame, corr_iter);
-  Vec6 g = Vec6::Zero();
-  Mat66 H = Mat66::Zero();
-  modality.add_gradient_hessian(corr_iter, 0, g, H);
+  modality.correspondences(frame, {}, corr_iter);
+  const CueTerms terms = modality.gradient_hessian(corr_iter, 0);
+  const Vec6& g = terms.gradient;
+  const Mat66& H = terms.hessian;
   const Vec6 numeric = test::numeric_gradient(modality, corr_iter);
   INFO(modality.name() << " corr_iter " << corr_iter << "\nanalytic " << g.transpose() << "\nnumeric  "
                        << numeric.transpose());
@@ -106,7 +106,7 @@ TEST_CASE("depth modality: gradient is the derivative of its log-likelihood") {
   const Frame frame = scene.render(f.truth);
   Body body{"box", f.mesh, perturbed(f.truth, 6.0, 4.0)};
   DepthModality depth(body, f.depth_model, {});
-  depth.start(frame);
+  depth.start(frame, {});
   for (int corr_iter : {0, 2}) check_gradient(depth, frame, corr_iter);
 }
 
@@ -122,7 +122,7 @@ TEST_CASE("region modality: gradient is the derivative of its log-likelihood") {
     RegionParams params;
     params.subpixel_posterior = subpixel;
     RegionModality region(body, f.region_model, params);
-    region.start(frame);
+    region.start(frame, {});
     for (int corr_iter : {0, 3}) check_gradient(region, frame, corr_iter);
   }
 }
@@ -176,7 +176,7 @@ TEST_CASE("region modality: starting with the object out of view is a clear erro
   const Frame frame = scene.render(f.truth);
   Body body{"box", f.mesh, Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5))};
   RegionModality region(body, f.region_model, {});
-  CHECK_THROWS_WITH(region.start(frame), Catch::Contains("in view"));
+  CHECK_THROWS_WITH(region.start(frame, {}), Catch::Contains("in view"));
 }
 
 TEST_CASE("tracker: region + depth converge on a grey image too") {
@@ -401,8 +401,8 @@ TEST_CASE("region modality: clutter of the object's colours beside part of its c
     RegionParams params;
     params.noise.robust = robust;
     RegionModality region(body, f.region_model, params);
-    region.start(clean);
-    region.correspondences(cluttered, 3);
+    region.start(clean, {});
+    region.correspondences(cluttered, {}, 3);
     region.append_residuals(residuals, weights);
   };
   std::vector<double> residuals, weights, plain_residuals, plain_weights;

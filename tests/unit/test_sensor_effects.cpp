@@ -153,3 +153,25 @@ TEST_CASE("sensor effects: depth holes along depth edges and at grazing angles")
   CHECK(cv::countNonZero(flat.colRange(0, 4)) == 32);
   CHECK(cv::countNonZero(flat.colRange(4, 8)) == 0);
 }
+
+TEST_CASE("sensor effects: a sensor's depth is the render without its grazing and edge holes") {
+  const Intrinsics k = Intrinsics::centred(160, 120, 150.0);
+  Renderer renderer;
+  // Turned 77 degrees about the vertical: one face is seen at a grazing angle, one nearly head-on.
+  const Pose camera_T_box = Pose::from_rotation_vector(Eigen::Vector3d(0.0, 1.35, 0.0), Eigen::Vector3d(0.0, 0.0, 0.5));
+  renderer.set_body_pose(renderer.add_body(white_box(), 1), camera_T_box);
+
+  const RenderOutput rendered = renderer.render(k, Pose(), kRenderDepth | kRenderNormals);
+  cv::Mat expected = rendered.depth.clone();
+  remove_grazing_depth(expected, rendered.normals, k, 75.0);
+  remove_depth_edges(expected, 1);
+  SensorNoise holes;
+  holes.grazing_angle_deg = 75.0;
+  holes.depth_edge_holes_px = 1;
+  const cv::Mat measured = render_sensor_depth(renderer, k, Pose(), holes);
+  CHECK(cv::countNonZero(measured != expected) == 0);
+  CHECK(cv::countNonZero(measured) < cv::countNonZero(rendered.depth));
+
+  // Without holes it is the plain depth render.
+  CHECK(cv::countNonZero(render_sensor_depth(renderer, k, Pose(), SensorNoise{}) != rendered.depth) == 0);
+}

@@ -1,17 +1,21 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// Sequence reading (the two ViSP tutorial sets and bad inputs) and the synthetic sequence
-// writer read back through the same reader.
+// Sequence reading (the two ViSP tutorial sets, their XML cameras read by ViSP's parser, and
+// bad inputs) and the synthetic sequence writer read back through the same reader.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
+#include <sstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "icgp/base/standard_stream_capture.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/eval/sequence_writer.h"
+#include "icgp/visp/visp_camera_xml.h"
 #include "test_meshes.h"
 #include "test_temp_dir.h"
 
@@ -69,7 +73,7 @@ std::vector<fs::path> files_under(const fs::path& dir) {
 }
 
 SequenceOptions cube_intrinsics() {
-  SequenceOptions options;
+  SequenceOptions options = visp_sequence_options();
   options.color_intrinsics_file = "models/cube/cube.xml";  // relative to the sequence folder
   options.depth_intrinsics_file = "models/cube/cube_depth.xml";
   return options;
@@ -78,7 +82,7 @@ SequenceOptions cube_intrinsics() {
 }  // namespace
 
 TEST_CASE("teabox-blender: layout, calibration, ground truth and depth of all frames") {
-  const Sequence seq = Sequence::open(kBlender.string());
+  const Sequence seq = Sequence::open(kBlender.string(), visp_sequence_options());
   CHECK(seq.layout() == "visp-blender");
   REQUIRE(seq.size() == 100);
   REQUIRE(seq.has_ground_truth());
@@ -99,7 +103,7 @@ TEST_CASE("teabox-blender: layout, calibration, ground truth and depth of all fr
   CHECK(d.fv == 600.0);
   CHECK(d.pu == 320.0);
   CHECK(d.pv == 240.0);
-  SequenceOptions corrected;
+  SequenceOptions corrected = visp_sequence_options();
   corrected.blender_principal_point = true;
   CHECK(Sequence::open(kBlender.string(), corrected).color_intrinsics().pu == 319.5);
   CHECK(Sequence::open(kBlender.string(), corrected).depth_intrinsics().pv == 239.5);
@@ -198,7 +202,7 @@ TEST_CASE("realsense-cube: explicit intrinsics files, raw uint16 depth in metres
 }
 
 TEST_CASE("realsense-cube: intrinsics auto-detection refuses to guess among models") {
-  REQUIRE_THROWS_WITH(Sequence::open(kRealsense.string()),
+  REQUIRE_THROWS_WITH(Sequence::open(kRealsense.string(), visp_sequence_options()),
                       Contains("ambiguous") && Contains("models/cube/cube.xml") &&
                           Contains("models/teabox/teabox.xml") && Contains("color_intrinsics_file"));
 }
@@ -238,7 +242,7 @@ TEST_CASE("sequence errors name the file and what was expected") {
     TempDir dir("icgp_test_sequence_pose");
     copy_blender_frames(dir.path(), 3);
     dir.write("camera_poses/Camera_002.txt", "1 0 0 0\n0 1 zero 0\n0 0 1 0.5\n0 0 0 1\n");
-    const Sequence seq = Sequence::open(dir.path().string());
+    const Sequence seq = Sequence::open(dir.path().string(), visp_sequence_options());
     REQUIRE(seq.size() == 3);
     CHECK_NOTHROW(seq.load(0));
     REQUIRE_THROWS_WITH(seq.load(1), Contains("Camera_002.txt") && Contains("line 2") && Contains("'zero'"));
@@ -247,24 +251,104 @@ TEST_CASE("sequence errors name the file and what was expected") {
     TempDir dir("icgp_test_sequence_missing_frame");
     copy_blender_frames(dir.path(), 3);
     fs::remove(dir.path() / "depth/Image0002.exr");
-    REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()), Contains("Image0002.exr") && Contains("missing"));
+    REQUIRE_THROWS_WITH(Sequence::open(dir.path().string(), visp_sequence_options()),
+                        Contains("Image0002.exr") && Contains("missing"));
   }
   SECTION("gap in the colour images") {
     TempDir dir("icgp_test_sequence_gap");
     copy_blender_frames(dir.path(), 3);
     fs::remove(dir.path() / "images/0002.jpg");
-    REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()), Contains("0002.jpg") && Contains("missing frame"));
+    REQUIRE_THROWS_WITH(Sequence::open(dir.path().string(), visp_sequence_options()),
+                        Contains("0002.jpg") && Contains("missing frame"));
   }
   SECTION("intrinsics XML without <px>") {
     TempDir dir("icgp_test_sequence_xml");
     copy_blender_frames(dir.path(), 1);
     dir.write("teabox.xml", "<conf><camera><py>700</py><u0>320</u0><v0>240</v0></camera></conf>");
-    REQUIRE_THROWS_WITH(Sequence::open(dir.path().string()), Contains("teabox.xml") && Contains("<px>"));
+    REQUIRE_THROWS_WITH(Sequence::open(dir.path().string(), visp_sequence_options()),
+                        Contains("teabox.xml") && Contains("<px>"));
   }
   SECTION("frame index out of range") {
     const Sequence seq = Sequence::open(kRealsense.string(), cube_intrinsics());
     REQUIRE_THROWS_AS(seq.load(10), std::out_of_range);
   }
+  SECTION("a ViSP layout without an XML reader: the core library says what to pass") {
+    REQUIRE_THROWS_WITH(Sequence::open(kBlender.string()),
+                        Contains(kBlender.string()) && Contains("visp-blender") &&
+                            Contains("SequenceOptions::read_camera_xml") && Contains("read_visp_camera_xml"));
+    SequenceOptions explicit_files = cube_intrinsics();
+    explicit_files.read_camera_xml = nullptr;
+    REQUIRE_THROWS_WITH(Sequence::open(kRealsense.string(), explicit_files),
+                        Contains("visp-realsense") && Contains("SequenceOptions::read_camera_xml"));
+  }
+  SECTION("the injected reader reads the XML files") {
+    SequenceOptions options;
+    std::vector<std::string> read;
+    options.read_camera_xml = [&](const std::string& path) {
+      read.push_back(fs::path(path).filename().string());
+      return Intrinsics::centred(1, 1, 500.0);
+    };
+    const Sequence seq = Sequence::open(kBlender.string(), options);
+    CHECK(read == std::vector<std::string>{"teabox.xml", "teabox_depth.xml"});
+    CHECK(seq.color_intrinsics().fu == 500.0);
+    CHECK(seq.color_intrinsics().width == 640);  // the image size is the first image's
+  }
+}
+
+TEST_CASE("ViSP camera XML: ViSP's parser gives the numbers the files write") {
+  const Intrinsics teabox = read_visp_camera_xml((kBlender / "teabox.xml").string());
+  CHECK((teabox.fu == 700.0 && teabox.fv == 700.0 && teabox.pu == 320.0 && teabox.pv == 240.0));
+  CHECK((teabox.width == 0 && teabox.height == 0));
+  const Intrinsics teabox_depth = read_visp_camera_xml((kBlender / "teabox_depth.xml").string());
+  CHECK((teabox_depth.fu == 600.0 && teabox_depth.fv == 600.0 && teabox_depth.pu == 320.0 && teabox_depth.pv == 240.0));
+  // Exactly the decimal numbers of the files (what strtod makes of them).
+  const Intrinsics cube = read_visp_camera_xml((kRealsense / "models/cube/cube.xml").string());
+  CHECK(cube.fu == 614.9616699219);
+  CHECK(cube.fv == 614.9281005859);
+  CHECK(cube.pu == 320.1971435547);
+  CHECK(cube.pv == 241.455368042);
+  const Intrinsics cube_depth = read_visp_camera_xml((kRealsense / "models/cube/cube_depth.xml").string());
+  CHECK(cube_depth.fu == 383.9700012207);
+  CHECK(cube_depth.fv == 383.9700012207);
+  CHECK(cube_depth.pu == 320.5035095215);
+  CHECK(cube_depth.pv == 235.6029510498);
+}
+
+TEST_CASE("ViSP camera XML: errors name the file and the field, ViSP's parser stays quiet") {
+  TempDir dir("icgp_test_visp_camera_xml");
+  const auto error = [&](const std::string& xml) {
+    const std::string path = dir.write("camera.xml", xml);
+    std::string message, said;
+    {
+      const StandardStreamCapture out(std::cout);
+      try {
+        read_visp_camera_xml(path);
+      } catch (const std::runtime_error& e) {
+        message = e.what();
+      }
+      said = out.text();
+    }
+    CHECK(said.empty());
+    return message;
+  };
+  const std::string file = (dir.path() / "camera.xml").string();
+  const std::string missing = (dir.path() / "missing.xml").string();
+  CHECK_THROWS_WITH(read_visp_camera_xml(missing), missing + ": no such file");
+  CHECK_THROWS_WITH(read_visp_camera_xml(dir.path().string()), dir.path().string() + ": cannot read the file");
+  CHECK(error("<conf><face><angle_appear>70</angle_appear></face></conf>") ==
+        file + ": no <camera> block with <px>, <py>, <u0> and <v0>");
+  // A block in a comment is no block.
+  CHECK(error("<conf><!-- <camera><px>1</px><py>1</py><u0>1</u0><v0>1</v0></camera> --></conf>") ==
+        file + ": no <camera> block with <px>, <py>, <u0> and <v0>");
+  CHECK(error("<conf><camera><px>700</px><py>700</py><u0>320</u0></camera></conf>") ==
+        file + ": <camera> block has no <v0>");
+  CHECK_THAT(error("<conf><camera><px>abc</px><py>700</py><u0>320</u0><v0>240</v0></camera></conf>"),
+             Contains(file + ": <camera>: ") && Contains("px") && Contains("positive"));
+  CHECK(error("<conf><camera><px>700</px><py>-700</py><u0>320</u0><v0>240</v0></camera></conf>") ==
+        file + ": <camera> <py> must be a finite positive number, got -700");
+  CHECK(error("<conf><camera><px>700</px><py>700</py><u0>inf</u0><v0>240</v0></camera></conf>") ==
+        file + ": <camera> <u0> must be a finite number, got inf");
+  CHECK_THAT(error("<conf><camera><px>700</px>"), Contains(file + ": not an XML file"));
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <unistd.h>
 
 #include "icgp/io/mesh_loader.h"
@@ -37,6 +38,14 @@ Pose perturbed(const Pose& pose, double mm, double deg) {
   return Pose(exp_so3<double>(axis * deg * M_PI / 180.0) * pose.rotation(), pose.translation() + direction * mm * 1e-3);
 }
 
+/// Starts the cue as the tracker does: with the render of the scene it asks for.
+void start_cue(TextureModality& texture, const Frame& frame) {
+  icgp::SceneRenderer renderer;
+  Renders renders;
+  renderer.render({&texture.body()}, texture.render_requests(frame, {Stage::kStart}), renders);
+  texture.start(frame, renders);
+}
+
 double translation_error_mm(const Pose& a, const Pose& b) { return 1e3 * (a.translation() - b.translation()).norm(); }
 double rotation_error_deg(const Pose& a, const Pose& b) {
   return rotation_angle_between(a.rotation(), b.rotation()) * 180.0 / M_PI;
@@ -49,7 +58,7 @@ TEST_CASE("texture modality: keyframe points lie on the box and project onto the
   const Frame frame = s.renderer.render(s.truth);
   Body body{"box", s.mesh, s.truth};
   TextureModality texture(body, {});
-  texture.start(frame);
+  start_cue(texture, frame);
   const Keyframe& keyframe = texture.keyframe();
   INFO("keyframe points " << keyframe.body_points.size());
   REQUIRE(keyframe.body_points.size() >= 50);
@@ -72,19 +81,19 @@ TEST_CASE("texture modality: keyframe points lie on the box and project onto the
 
 TEST_CASE("texture modality: matches recover a known image-plane shift") {
   Scene s;
-  for (const char* descriptor : {"oriented_brief", "orb"}) {
-    INFO(descriptor);
+  for (const Descriptor descriptor : {Descriptor::kOrientedBrief, Descriptor::kOrb}) {
+    INFO(to_string(descriptor));
     Body body{"box", s.mesh, s.truth};
     TextureParams params;
     params.descriptor = descriptor;
     TextureModality texture(body, params);
-    texture.start(s.renderer.render(s.truth));
+    start_cue(texture, s.renderer.render(s.truth));
     // 5 px to the right and 3 px down at the object's depth.
     const double z = s.truth.translation().z();
     const Eigen::Vector2d shift_px(5.0, 3.0);
     const Pose shifted(s.truth.rotation(), s.truth.translation() + Eigen::Vector3d(shift_px.x() * z / s.color_k.fu,
                                                                                     shift_px.y() * z / s.color_k.fv, 0.0));
-    texture.correspondences(s.renderer.render(shifted), 0);
+    texture.correspondences(s.renderer.render(shifted), {}, 0);
     REQUIRE(texture.matches().size() >= 30);
     // The matches that agree with the shift to within 1.5 px (keypoints sit on a 200 px
     // crop's grid, about 0.7 px here), and their mean displacement. The others pair
@@ -110,13 +119,13 @@ TEST_CASE("texture modality: gradient is the derivative of its log-likelihood") 
   Scene s;
   Body body{"box", s.mesh, s.truth};
   TextureModality texture(body, {});
-  texture.start(s.renderer.render(s.truth));
+  start_cue(texture, s.renderer.render(s.truth));
   const Frame moved = s.renderer.render(perturbed(s.truth, 3.0, 2.0));
   for (int corr_iter : {0, 2}) {
-    texture.correspondences(moved, corr_iter);
-    Vec6 g = Vec6::Zero();
-    Mat66 H = Mat66::Zero();
-    texture.add_gradient_hessian(corr_iter, 0, g, H);
+    texture.correspondences(moved, {}, corr_iter);
+    const CueTerms terms = texture.gradient_hessian(corr_iter, 0);
+    const Vec6& g = terms.gradient;
+    const Mat66& H = terms.hessian;
     const Vec6 numeric = test::numeric_gradient(texture, corr_iter);
     INFO("corr_iter " << corr_iter << "\nanalytic " << g.transpose() << "\nnumeric  " << numeric.transpose());
     CHECK(g.norm() > 0.0);
@@ -182,13 +191,19 @@ TEST_CASE("texture modality: frames without the object give quality 0") {
 }
 
 TEST_CASE("texture modality: descriptors by name, built by the tracker from a configuration") {
-  for (const char* name : {"oriented_brief", "orb", "brisk", "sift", "akaze", "freak", "daisy"}) CHECK(make_descriptor(name));
-  CHECK_THROWS_WITH(make_descriptor("surf"), Catch::Contains("surf"));
+  for (const char* name : {"oriented_brief", "orb", "brisk", "sift", "akaze", "freak", "daisy"}) {
+    INFO(name);
+    const std::optional<Descriptor> descriptor = parse_descriptor(name);
+    REQUIRE(descriptor);
+    CHECK(to_string(*descriptor) == name);
+    CHECK(make_descriptor(*descriptor));
+  }
+  CHECK_FALSE(parse_descriptor("surf"));
   const std::string yaml = "/tmp/icgp-texture-config-" + std::to_string(::getpid()) + ".yaml";
   std::ofstream(yaml) << "modalities: [texture]\ntexture: {descriptor: brisk, standard_deviations: [5.0, 1.0]}\n";
   const TrackerConfig config = load_tracker_config(yaml);
   std::remove(yaml.c_str());
-  CHECK(config.texture.descriptor == "brisk");
+  CHECK(config.texture.descriptor == Descriptor::kBrisk);
   CHECK(config.texture.standard_deviations == std::vector<double>{5.0, 1.0});
   CHECK(config.texture.orb_n_features == 300);
   const auto tracker = build_tracker(config, load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj"), "box");

@@ -187,14 +187,18 @@ TEST_CASE("tracker config: defaults are the reference values of ALGORITHMS.md") 
   CHECK(c.region.learning_rate_b == 0.2);
   CHECK(c.region.unconsidered_line_length == 0.5);
   CHECK(c.region.max_considered_line_length == 20.0);
-  CHECK(c.region.occlusion_radius == 0.01);
-  CHECK(c.region.occlusion_threshold == 0.03);
+  CHECK(c.region.occlusion.measure);
+  CHECK(c.region.occlusion.radius == 0.01);
+  CHECK(c.region.occlusion.threshold == 0.03);
   CHECK(c.depth.n_points_max == 200);
   CHECK(c.depth.stride_length == 0.005);
   CHECK(c.depth.considered_distances == std::vector<double>{0.05, 0.02, 0.01});
   CHECK(c.depth.standard_deviations == std::vector<double>{0.05, 0.03, 0.02});
-  CHECK(c.depth.occlusion_radius == 0.01);
-  CHECK(c.depth.occlusion_threshold == 0.03);
+  CHECK(c.depth.occlusion.measure);
+  CHECK(c.depth.occlusion.radius == 0.01);
+  CHECK(c.depth.occlusion.threshold == 0.03);
+  CHECK(c.texture.occlusion.radius == 0.01);
+  CHECK(c.texture.occlusion.threshold == 0.03);
   CHECK(c.cache_dir.empty());
 }
 
@@ -209,7 +213,7 @@ TEST_CASE("tracker config: presets") {
   CHECK(defaults.depth.noise.robust);
   CHECK_FALSE(defaults.texture.noise.robust);  // the papers' Tukey norm of its own
   CHECK(defaults.region.subpixel_posterior);
-  CHECK(defaults.texture.descriptor == "oriented_brief");
+  CHECK(defaults.texture.descriptor == icgp::Descriptor::kOrientedBrief);
 
   // icg_reference: the same cues and parameters with the papers' fixed schedules, discrete
   // contour posterior and ORB.
@@ -220,7 +224,7 @@ TEST_CASE("tracker config: presets") {
   CHECK_FALSE(reference.region.noise.robust);
   CHECK_FALSE(reference.depth.noise.robust);
   CHECK_FALSE(reference.region.subpixel_posterior);
-  CHECK(reference.texture.descriptor == "orb");
+  CHECK(reference.texture.descriptor == icgp::Descriptor::kOrb);
   auto expected = flatten_yaml(to_yaml(defaults));
   expected["preset"] = "icg_reference";
   expected["depth.noise.estimate"] = expected["texture.noise.estimate"] = "false";
@@ -289,6 +293,11 @@ TEST_CASE("tracker config: to_yaml writes every key and round-trips exactly") {
   const TrackerConfig c = load_tracker_config(dir.write("every.yaml", kEveryKey));
   CHECK(to_yaml(c) == kEveryKey);
   CHECK(c.region.depth_camera.empty());
+  // The flat occlusion keys of each section are its OcclusionParams; the descriptor is named.
+  CHECK_FALSE(c.region.occlusion.measure);
+  CHECK(c.depth.occlusion.radius == 0.005);
+  CHECK(c.texture.occlusion.threshold == 0.05);
+  CHECK(c.texture.descriptor == icgp::Descriptor::kSift);
   CHECK(c.region_model.seed == 18446744073709551615ull);
   CHECK(c.cache_dir == "/tmp/icgp cache");
 
@@ -365,6 +374,9 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
       {"depth: {considered_distances: [0.05, -0.01]}", "depth.considered_distances: expected a non-empty list of"},
       {"depth: {stride_length: .inf}", "depth.stride_length: expected a positive number"},
       {"depth: {n_unoccluded_iterations: -2}", "depth.n_unoccluded_iterations: expected a non-negative integer"},
+      {"texture: {occlusion_radius: -0.01}", "texture.occlusion_radius: expected a non-negative number"},
+      {"texture: {descriptor: surf}",
+       "texture.descriptor: expected one of orb, brisk, sift, akaze, freak, daisy, oriented_brief"},
       {"modalities: [region, regoin]", "modalities: expected a non-empty list of distinct names from region, depth"},
       {"modalities: [depth, depth]", "modalities: expected a non-empty list of distinct names"},
       {"modalities: []", "modalities: expected a non-empty list of distinct names"},

@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "icgp/base/standard_stream_capture.h"
 #include "icgp/io/mesh_loader.h"
 #include "icgp/model/icosphere.h"
 #include "icgp/model/model_cache.h"
@@ -71,14 +72,6 @@ bool same_payload(const ViewpointModel& a, const ViewpointModel& b) {
   return a.payload_size() == b.payload_size() && std::memcmp(a.payload(), b.payload(), a.payload_size()) == 0;
 }
 
-
-/// Everything written to std::cerr while it lives.
-struct CerrCapture {
-  std::ostringstream text;
-  std::streambuf* previous;
-  CerrCapture() : previous(std::cerr.rdbuf(text.rdbuf())) {}
-  ~CerrCapture() { std::cerr.rdbuf(previous); }
-};
 
 struct BoxModels {
   ViewpointModel region, depth;
@@ -524,10 +517,10 @@ TEST_CASE("model cache: missing, truncated, corrupted, foreign and stale files a
   const std::string path = model_cache_path(dir, "box", kind, truth.key());
 
   auto load = [&](const std::string& expected_reason) {
-    CerrCapture err;
+    StandardStreamCapture err(std::cerr);
     std::vector<CachedModelInfo> info;
     const std::vector<ViewpointModel> m = load_or_generate(mesh, {{kind, p}}, dir, quiet(), &info);
-    const std::string said = err.text.str();
+    const std::string said = err.text();
     INFO("stderr: " << said);
     CHECK(same_payload(m[0], truth));
     CHECK(info[0].path == path);
@@ -571,12 +564,12 @@ TEST_CASE("model cache: an unwritable folder still gives the model, with a warni
   icgp::test::TempDir folder("unwritable");
   const fs::path file = folder.path() / "a-file";
   std::ofstream(file) << "not a folder";
-  CerrCapture err;
+  StandardStreamCapture err(std::cerr);
   std::vector<CachedModelInfo> info;
   const std::vector<ViewpointModel> m = load_or_generate(box(), {{ViewpointModel::Kind::kRegion, coarse_params()}},
                                                          (file / "cache").string(), quiet(), &info);
   CHECK(same_payload(m[0], box_models().region));
   CHECK(info[0].generated);
   CHECK(!info[0].saved);
-  CHECK_THAT(err.text.str(), Catch::Contains("warning"));
+  CHECK_THAT(err.text(), Catch::Contains("warning"));
 }

@@ -7,6 +7,7 @@
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/visp/visp_baseline.h"
+#include "icgp/visp/visp_camera_xml.h"
 
 using namespace icgp;
 using Catch::Matchers::Contains;
@@ -18,7 +19,7 @@ const std::filesystem::path kBlender = std::filesystem::path(ICGP_TEST_DATA_DIR)
 }  // namespace
 
 TEST_CASE("vpMbGenericTracker edge + dense depth follows the first 10 teabox-blender frames") {
-  const Sequence sequence = Sequence::open(kBlender.string());
+  const Sequence sequence = Sequence::open(kBlender.string(), visp_sequence_options());
   std::vector<Frame> frames;
   for (int i = 0; i < 10; ++i) frames.push_back(sequence.load(i));
 

@@ -1,22 +1,32 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // vpMbIcgTracker's ViSP contract on teabox-blender: display edges and projection error
 // against vpMbGenericTracker's, the raw-depth and PCL inputs against the cloud input,
-// residuals, covariance convention, lost detection, multi-part models.
+// residuals, covariance convention, lost detection, multi-part models, .cao / .wrl models
+// read once by ViSP's parser.
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <functional>
+#include <iostream>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/render/model_edges.h"
+#include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/conversions.h"
+#include "icgp/visp/visp_camera_xml.h"
 #include "icgp/visp/vpMbIcgTracker.h"
+#include "test_temp_dir.h"
 
 using namespace icgp;
 
@@ -29,7 +39,7 @@ const std::vector<Frame>& teabox_frames() {
   static const std::vector<Frame> frames = [] {
     // Blender's principal point convention, for both trackers alike: these tests measure the
     // trackers, not how far the XML's (320, 240) is from the renderer's camera.
-    SequenceOptions blender;
+    SequenceOptions blender = visp_sequence_options();
     blender.blender_principal_point = true;
     const Sequence sequence = Sequence::open(kBlender.string(), blender);
     std::vector<Frame> f;
@@ -396,4 +406,166 @@ TEST_CASE("vpMbIcgTracker::loadModel adds parts to one rigid object") {
   CHECK(tracker.getModelForDisplay(640, 480, cMo, cam, true).size() == 2 * one);
   tracker.resetTracker();
   CHECK_THROWS_AS(tracker.getModelForDisplay(640, 480, cMo, cam, true), vpException);
+}
+
+namespace {
+
+/// How many times `text` appears on std::cout during `call`.
+int printed_during(const std::function<void()>& call, const std::string& text) {
+  std::ostringstream out;
+  std::streambuf* const previous = std::cout.rdbuf(out.rdbuf());
+  try {
+    call();
+  } catch (...) {
+    std::cout.rdbuf(previous);
+    throw;
+  }
+  std::cout.rdbuf(previous);
+  const std::string printed = out.str();
+  int count = 0;
+  for (std::size_t at = printed.find(text); at != std::string::npos; at = printed.find(text, at + 1)) ++count;
+  return count;
+}
+
+/// The vpException `call` throws.
+vpException vp_exception_of(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const vpException& e) {
+    return e;
+  }
+  FAIL("no vpException was thrown");
+  return vpException(-1, "no vpException was thrown");
+}
+
+/// The edges of load_any_mesh(path, 1, T) in getModelForDisplay's format, every one whole.
+std::vector<std::vector<double>> standalone_edges(const std::string& path, const vpHomogeneousMatrix& T,
+                                                  const vpHomogeneousMatrix& cMo, const vpCameraParameters& cam) {
+  const ModelEdges edges(load_any_mesh(path, 1.0, to_pose(T)));
+  std::vector<std::vector<double>> lines;
+  for (const ImageSegment& s : edges.project(to_intrinsics(cam, 640, 480), to_pose(cMo), cv::Mat()))
+    lines.push_back({0.0, s.a.y(), s.a.x(), s.b.y(), s.b.x()});
+  return lines;
+}
+
+void check_same_lines(const std::vector<std::vector<double>>& ours, const std::vector<std::vector<double>>& expected) {
+  REQUIRE(ours.size() == expected.size());
+  for (std::size_t i = 0; i < ours.size(); ++i)
+    for (std::size_t k = 0; k < 5; ++k) CHECK(ours[i][k] == Approx(expected[i][k]).margin(1e-6));
+}
+
+}  // namespace
+
+TEST_CASE("vpMbIcgTracker::loadModel reads a .cao once; its mesh and ViSP's faces are the same box") {
+  const vpHomogeneousMatrix T(0.02, -0.01, 0.03, 0.1, -0.2, 0.3);
+  const vpCameraParameters cam(600, 600, 320, 240);
+  const vpHomogeneousMatrix cMo(0.0, 0.0, 0.6, 0.4, -0.3, 0.2);
+
+  // ViSP's parser prints a summary of each .cao file it reads on std::cout, "> 8 points"
+  // first for the teabox's 8 points: vpMbGenericTracker reads the file once, and so do we.
+  vpMbGenericTracker visp(vpMbGenericTracker::EDGE_TRACKER);
+  REQUIRE(printed_during([&] { visp.loadModel(kTeabox, false, T); }, "> 8 points\n") == 1);
+  vpMbIcgTracker ours;
+  CHECK(printed_during([&] { ours.loadModel(kTeabox, false, T); }, "> 8 points\n") == 1);
+
+  // ViSP's faces are vpMbGenericTracker's: the box's six faces, moved by T.
+  REQUIRE(ours.getNbPolygon() == 6);
+  REQUIRE(visp.getNbPolygon() == 6);
+  std::vector<std::pair<vpImagePoint, vpImagePoint>> face_edges;
+  for (unsigned int i = 0; i < 6; ++i) {
+    vpMbtPolygon& face = *ours.getPolygon(i);
+    REQUIRE(face.getNbPoint() == 4);
+    for (unsigned int j = 0; j < 4; ++j) {
+      const vpPoint& p = face.getPoint(j);
+      const vpPoint& q = visp.getPolygon(i)->getPoint(j);
+      CHECK((p.get_oX() == q.get_oX() && p.get_oY() == q.get_oY() && p.get_oZ() == q.get_oZ()));
+    }
+    std::vector<vpImagePoint> corners;
+    for (unsigned int j = 0; j < 4; ++j) {
+      vpPoint p = face.getPoint(j);
+      p.project(cMo);
+      vpImagePoint ip;
+      vpMeterPixelConversion::convertPoint(cam, p.get_x(), p.get_y(), ip);
+      corners.push_back(ip);
+    }
+    for (unsigned int j = 0; j < 4; ++j) face_edges.emplace_back(corners[j], corners[(j + 1) % 4]);
+  }
+
+  // icgp's mesh is the standalone loader's (the same edges, T applied)...
+  const std::vector<std::vector<double>> full = ours.getModelForDisplay(640, 480, cMo, cam, true);
+  check_same_lines(full, standalone_edges(kTeabox, T, cMo, cam));
+  // ... and its 12 edges are those of ViSP's faces, each shared by two faces.
+  CHECK(full.size() == 12);
+  const auto joins = [](const std::vector<double>& line, const std::pair<vpImagePoint, vpImagePoint>& edge) {
+    const auto near = [](double i, double j, const vpImagePoint& p) {
+      return std::abs(i - p.get_i()) < 1e-3 && std::abs(j - p.get_j()) < 1e-3;
+    };
+    return (near(line[1], line[2], edge.first) && near(line[3], line[4], edge.second)) ||
+           (near(line[1], line[2], edge.second) && near(line[3], line[4], edge.first));
+  };
+  for (const std::vector<double>& line : full)
+    CHECK(std::count_if(face_edges.begin(), face_edges.end(), [&](const auto& e) { return joins(line, e); }) == 2);
+  for (const auto& edge : face_edges)
+    CHECK(std::count_if(full.begin(), full.end(), [&](const auto& line) { return joins(line, edge); }) == 1);
+}
+
+TEST_CASE("vpMbIcgTracker meshes cylinders, circles and .wrl files as load_any_mesh does, T included") {
+  test::TempDir dir("icgp-vpmbicgtracker");
+  // A cylinder along z and a disc standing across its foot: their facets follow the file's
+  // frame, wherever T puts them.
+  const std::string curved =
+      dir.write("curved.cao", "V1\n3\n0 0 0\n0 0 0.1\n0.05 0 0\n0\n0\n0\n1\n0 1 0.03\n1\n0.02 2 0 1\n");
+  const std::string wrl = (std::filesystem::path(ICGP_TEST_DATA_DIR) / "realsense-cube" / "models" / "teabox" /
+                           "teabox.wrl").string();
+  const vpCameraParameters cam(600, 600, 320, 240);
+  const vpHomogeneousMatrix cMo(0.0, 0.0, 0.5, 0.4, -0.3, 0.2);
+  for (const vpHomogeneousMatrix& T :
+       {vpHomogeneousMatrix(), vpHomogeneousMatrix(0.02, -0.01, 0.03, 0.1, -0.2, 0.3),
+        vpHomogeneousMatrix(0.0, 0.0, 0.0, 0.0, 1.5707963267948966, 0.0)}) {
+    for (const std::string& model : {curved, wrl}) {
+      CAPTURE(model, T);
+      vpMbIcgTracker tracker;
+      tracker.loadModel(model, false, T);
+      check_same_lines(tracker.getModelForDisplay(640, 480, cMo, cam, true), standalone_edges(model, T, cMo, cam));
+    }
+  }
+}
+
+TEST_CASE("vpMbIcgTracker: a model file that fails to load leaves the object and ViSP's faces as they were") {
+  test::TempDir dir("icgp-vpmbicgtracker");
+  // A face crossing itself: ViSP reads it, icgp cannot triangulate it.
+  const std::string crossed =
+      dir.write("crossed.cao",
+                "V1\n6\n0.03 0.04 0\n0 0.03 0\n0.01 0.03 0\n0.03 0.01 0\n0.02 0.04 0\n0.02 0 0\n0\n0\n1\n"
+                "6 0 1 2 3 4 5\n0\n0\n");
+  const vpCameraParameters cam(600, 600, 320, 240);
+  const vpHomogeneousMatrix cMo(0.0, 0.0, 0.6, 0.4, -0.3, 0.2);
+  vpMbIcgTracker tracker(std::vector<int>{vpMbIcgTracker::EDGE_TRACKER, vpMbIcgTracker::DEPTH_DENSE_TRACKER});
+  tracker.loadModel(kTeabox);
+  const auto lines = tracker.getModelForDisplay(640, 480, cMo, cam, true);
+  const auto faces = tracker.getPolygonFaces(false, false, false);
+
+  const auto unchanged = [&] {
+    CHECK(tracker.getNbPolygon() == 6);
+    CHECK(tracker.getModelForDisplay(640, 480, cMo, cam, true) == lines);
+    const auto now = tracker.getPolygonFaces(false, false, false);
+    REQUIRE(now.second.size() == faces.second.size());
+    for (std::size_t i = 0; i < faces.second.size(); ++i) {
+      REQUIRE(now.second[i].size() == faces.second[i].size());
+      for (std::size_t j = 0; j < faces.second[i].size(); ++j)
+        CHECK(now.second[i][j].get_oX() == faces.second[i][j].get_oX());
+    }
+  };
+  SECTION("the file itself") {
+    const vpException e = vp_exception_of([&] { tracker.loadModel(crossed); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Catch::Contains(crossed) && Catch::Contains("face #1"));
+    unchanged();
+  }
+  SECTION("another camera's file, read after the reference camera's") {
+    const vpException e = vp_exception_of([&] { tracker.loadModel(kTeabox, crossed); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Catch::Contains(crossed));
+    unchanged();
+  }
 }

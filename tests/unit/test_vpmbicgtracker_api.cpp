@@ -32,6 +32,7 @@
 #include "icgp/eval/metrics.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
+#include "icgp/base/standard_stream_capture.h"
 #include "test_temp_dir.h"
 #include "vpmbicgtracker_test_setup.h"
 
@@ -522,8 +523,8 @@ const std::string kColorXml = (test::kTeaboxBlender / "teabox.xml").string();
 const std::string kDepthXml = (test::kTeaboxBlender / "teabox_depth.xml").string();
 const std::string kCubeCao =
     (std::filesystem::path(ICGP_TEST_DATA_DIR) / "realsense-cube" / "models" / "cube" / "cube.cao").string();
-const std::string& kCamera1 = kVispColorCamera;  // "Camera1": colour, EDGE_TRACKER | KLT_TRACKER, the reference
-const std::string& kCamera2 = kVispDepthCamera;  // "Camera2": DEPTH_DENSE_TRACKER
+const std::string kCamera1 = kColorCamera;  // "Camera1": colour, EDGE_TRACKER | KLT_TRACKER, the reference
+const std::string kCamera2 = kDepthCamera;  // "Camera2": DEPTH_DENSE_TRACKER
 constexpr int kEdge = vpMbGenericTracker::EDGE_TRACKER, kKlt = vpMbGenericTracker::KLT_TRACKER,
               kDepthNormal = vpMbGenericTracker::DEPTH_NORMAL_TRACKER,
               kDepthDense = vpMbGenericTracker::DEPTH_DENSE_TRACKER;
@@ -537,20 +538,6 @@ void check_refused(const std::string& name, const std::string& value, Call&& cal
   CHECK(e.getCode() == code);
   CHECK_THAT(e.getStringMessage(), Contains("vpMbIcgTracker::" + name) && Contains(value));
 }
-
-/// What is written to std::cerr while alive.
-class CerrCapture {
- public:
-  CerrCapture() : previous_(std::cerr.rdbuf(text_.rdbuf())) {}
-  ~CerrCapture() { std::cerr.rdbuf(previous_); }
-  CerrCapture(const CerrCapture&) = delete;
-  CerrCapture& operator=(const CerrCapture&) = delete;
-  std::string str() const { return text_.str(); }
-
- private:
-  std::ostringstream text_;
-  std::streambuf* previous_;
-};
 
 std::size_t occurrences(const std::string& text, const std::string& what) {
   std::size_t n = 0;
@@ -1494,7 +1481,7 @@ TEST_CASE("the settings of ViSP's own cues round-trip through their getters as i
     CHECK(ours.getClipping() == visp.getClipping());
   }
   {
-    const CerrCapture quiet;
+    const StandardStreamCapture quiet(std::cerr);
     apply_settings(ours, true);
     apply_settings(visp, true);
   }
@@ -1514,7 +1501,7 @@ TEST_CASE("the settings of ViSP's own cues round-trip through their getters as i
 TEST_CASE("the single-value clipping settings apply to every camera, as in vpMbGenericTracker") {
   vpMbIcgTracker ours(kRgbdTrackerTypes);
   vpMbGenericTracker visp(kRgbdTrackerTypes);
-  const CerrCapture quiet;  // the reports, and vpMbTracker's notes on the refused distances
+  const StandardStreamCapture quiet(std::cerr);  // the reports, and vpMbTracker's notes on the refused distances
   const auto check_same = [&](const char* step) {
     INFO(step);
     CHECK(ours.getClipping() == visp.getClipping());
@@ -1566,10 +1553,10 @@ TEST_CASE("settings without effect: each reported once on std::cerr, and the tra
   for (vpMbIcgTracker* t : {&plain, &again, &tuned}) rig.setup(*t);
   std::string said;
   {
-    const CerrCapture capture;
+    const StandardStreamCapture capture(std::cerr);
     apply_settings(tuned, false);
     apply_settings(tuned, false);  // every call twice: still reported once
-    said = capture.str();
+    said = capture.text();
   }
   for (const std::string& name : kWithoutEffect) {
     INFO(name);
@@ -1579,14 +1566,14 @@ TEST_CASE("settings without effect: each reported once on std::cerr, and the tra
 
   // The settings that act are not reported.
   {
-    const CerrCapture capture;
+    const StandardStreamCapture capture(std::cerr);
     vpMbIcgTracker t(kRgbdTrackerTypes);
     vpKltOpencv klt;
     klt.setMaxFeatures(200);
     t.setKltOpencv(klt);
     t.setDisplayFeatures(true);
     t.setProjectionErrorComputation(true);
-    CHECK(capture.str().find("vpMbIcgTracker::") == std::string::npos);
+    CHECK(capture.text().find("vpMbIcgTracker::") == std::string::npos);
   }
 
   for (vpMbIcgTracker* t : {&plain, &again, &tuned}) t->initFromPose(rig.grey(0), rig.truth(0));
@@ -1737,7 +1724,7 @@ TEST_CASE("every map overload refuses an unknown camera with a vpException namin
                          std::map<std::string, vpCameraParameters>{{u, rig.cam1}});
   });
 
-  const CerrCapture reports;
+  const StandardStreamCapture reports(std::cerr);
   check_refused("setAngleAppear", u, [&] { t.setAngleAppear(DoubleMap{{u, 1.0}}); });
   check_refused("setAngleDisappear", u, [&] { t.setAngleDisappear(DoubleMap{{u, 1.0}}); });
   check_refused("setClipping", u, [&] { t.setClipping(UIntMap{{u, 0u}}); });
@@ -1808,7 +1795,7 @@ TEST_CASE("every two-camera overload refuses a tracker of one camera with a vpEx
   check_refused("getPose", one, [&] { t.getPose(M1, M2); });
   check_refused("display", one, [&] { t.display(I, I, a, a, rig.cam1, rig.cam1, vpColor::red); });
   check_refused("display", one, [&] { t.display(C, C, a, a, rig.cam1, rig.cam1, vpColor::red); });
-  const CerrCapture reports;
+  const StandardStreamCapture reports(std::cerr);
   check_refused("setAngleAppear", one, [&] { t.setAngleAppear(1.0, 1.0); });
   check_refused("setAngleDisappear", one, [&] { t.setAngleDisappear(1.0, 1.0); });
   check_refused("setClipping", one, [&] { t.setClipping(0u, 0u); });

@@ -69,14 +69,14 @@ TEST_CASE("vpMbIcgTracker: an RGB-D rig configured for the depth cue alone track
   tracker.loadModel(kTeaboxCao);
   tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics),
                               to_camera_parameters(frames.front().depths.front().intrinsics));
-  tracker.setCameraTransformationMatrix(kVispDepthCamera,
+  tracker.setCameraTransformationMatrix(kDepthCamera,
                                         to_homogeneous_matrix(frames.front().depths.front().camera_T_reference));
   tracker.initFromPose(vpImage<unsigned char>(), to_homogeneous_matrix(*frames.front().truth()));
   VispRgbdFrame input;
   std::map<std::string, const vpImage<unsigned char>*> no_images;
   for (const Frame& frame : frames) {
     input.convert(frame);
-    CloudMaps maps(kVispDepthCamera, input);
+    CloudMaps maps(kDepthCamera, input);
     REQUIRE_NOTHROW(tracker.track(no_images, maps.clouds, maps.widths, maps.heights));
     INFO("frame " << frame.index);
     CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 0.5);
@@ -93,7 +93,7 @@ TEST_CASE("vpMbIcgTracker: a colour cue without its camera's image is refused, n
   tracker.initFromPose(vpImage<unsigned char>(), to_homogeneous_matrix(*frames.front().truth()));
   VispRgbdFrame input;
   input.convert(frames.front());
-  CloudMaps maps(kVispDepthCamera, input);
+  CloudMaps maps(kDepthCamera, input);
   std::map<std::string, const vpImage<unsigned char>*> no_images;
   const vpException e = vp_exception_of([&] { tracker.track(no_images, maps.clouds, maps.widths, maps.heights); });
   CHECK(e.getCode() == vpException::badValue);
@@ -130,14 +130,14 @@ TEST_CASE("vpMbIcgTracker::setMask: every cue ignores the pixels the mask exclud
     tracker->loadModel(kTeaboxCao);
     tracker->setCameraParameters(to_camera_parameters(frame.colors.front().intrinsics),
                                  to_camera_parameters(frame.depths.front().intrinsics));
-    tracker->setCameraTransformationMatrix(kVispDepthCamera,
+    tracker->setCameraTransformationMatrix(kDepthCamera,
                                            to_homogeneous_matrix(frame.depths.front().camera_T_reference));
     if (mask) tracker->setMask(*mask);
     VispRgbdFrame input;
     input.convert(frame);
     tracker->initFromPose(input.grey, to_homogeneous_matrix(*frame.truth()));
-    std::map<std::string, const vpImage<unsigned char>*> images{{kVispColorCamera, &input.grey}};
-    CloudMaps maps(kVispDepthCamera, input);
+    std::map<std::string, const vpImage<unsigned char>*> images{{kColorCamera, &input.grey}};
+    CloudMaps maps(kDepthCamera, input);
     // Two frames: texture measures from the second, after its first keyframe.
     tracker->track(images, maps.clouds, maps.widths, maps.heights);
     tracker->track(images, maps.clouds, maps.widths, maps.heights);

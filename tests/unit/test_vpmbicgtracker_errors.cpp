@@ -10,6 +10,7 @@
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpTrackingException.h>
 
+#include "icgp/base/standard_stream_capture.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
@@ -40,13 +41,13 @@ struct RgbdFixture {
     tracker.loadModel(kTeaboxCao, kTeaboxCao);
     tracker.setCameraParameters(to_camera_parameters(frame.colors.front().intrinsics),
                                 to_camera_parameters(frame.depths.front().intrinsics));
-    tracker.setCameraTransformationMatrix(kVispDepthCamera,
+    tracker.setCameraTransformationMatrix(kDepthCamera,
                                           to_homogeneous_matrix(frame.depths.front().camera_T_reference));
     if (initialise) tracker.initFromPose(input.grey, to_homogeneous_matrix(*frame.truth()));
-    images = {{kVispColorCamera, &input.grey}};
-    clouds = {{kVispDepthCamera, &input.point_cloud}};
-    widths = {{kVispDepthCamera, input.depth_width}};
-    heights = {{kVispDepthCamera, input.depth_height}};
+    images = {{kColorCamera, &input.grey}};
+    clouds = {{kDepthCamera, &input.point_cloud}};
+    widths = {{kDepthCamera, input.depth_width}};
+    heights = {{kDepthCamera, input.depth_height}};
   }
 
   void track() { tracker.track(images, clouds, widths, heights); }
@@ -102,8 +103,8 @@ TEST_CASE("vpMbIcgTracker: RGB-D maps with an unknown camera or a cloud of the w
   RgbdFixture f(true);
 
   SECTION("unknown camera in the point cloud maps") {
-    for (auto* map : {&f.widths, &f.heights}) (*map)["Camera3"] = (*map)[kVispDepthCamera];
-    f.clouds["Camera3"] = f.clouds[kVispDepthCamera];
+    for (auto* map : {&f.widths, &f.heights}) (*map)["Camera3"] = (*map)[kDepthCamera];
+    f.clouds["Camera3"] = f.clouds[kDepthCamera];
     const vpException e = vp_exception_of([&] { f.track(); });
     CHECK(e.getCode() == vpException::badValue);
     CHECK_THAT(e.getStringMessage(), Contains("Camera3"));
@@ -115,7 +116,7 @@ TEST_CASE("vpMbIcgTracker: RGB-D maps with an unknown camera or a cloud of the w
     CHECK_THAT(e.getStringMessage(), Contains("Camera3"));
   }
   SECTION("cloud smaller than width x height") {
-    f.heights[kVispDepthCamera] += 1;
+    f.heights[kDepthCamera] += 1;
     const vpException e = vp_exception_of([&] { f.track(); });
     CHECK(e.getCode() == vpException::badValue);
     CHECK_THAT(e.getStringMessage(), Contains(std::to_string(f.input.point_cloud.size())));
@@ -130,9 +131,9 @@ TEST_CASE("vpMbIcgTracker: width and height 0 in the cloud maps mean no depth th
     f.input.convert(frames[i]);
     const bool depth = i % 2 == 0;
     // ViSP's programs pass 0 x 0 with the last cloud or with an empty one.
-    f.clouds[kVispDepthCamera] = depth || i % 4 == 1 ? &f.input.point_cloud : &empty_cloud;
-    f.widths[kVispDepthCamera] = depth ? f.input.depth_width : 0;
-    f.heights[kVispDepthCamera] = depth ? f.input.depth_height : 0;
+    f.clouds[kDepthCamera] = depth || i % 4 == 1 ? &f.input.point_cloud : &empty_cloud;
+    f.widths[kDepthCamera] = depth ? f.input.depth_width : 0;
+    f.heights[kDepthCamera] = depth ? f.input.depth_height : 0;
     INFO("frame " << i << (depth ? " with depth" : " without depth"));
     REQUIRE_NOTHROW(f.track());
     vpHomogeneousMatrix cMo;
@@ -187,12 +188,13 @@ TEST_CASE("vpMbIcgTracker: track(I) with the depth cue alone is a vpException na
 
 TEST_CASE("vpMbIcgTracker: setScanLineVisibilityTest is accepted and reported once as having no effect") {
   vpMbIcgTracker tracker;
-  std::ostringstream said;
-  std::streambuf* const stderr_buffer = std::cerr.rdbuf(said.rdbuf());
-  tracker.setScanLineVisibilityTest(true);
-  tracker.setScanLineVisibilityTest(false);
-  std::cerr.rdbuf(stderr_buffer);
-  const std::string text = said.str();
+  std::string text;
+  {
+    const icgp::StandardStreamCapture said(std::cerr);
+    tracker.setScanLineVisibilityTest(true);
+    tracker.setScanLineVisibilityTest(false);
+    text = said.text();
+  }
   CHECK_THAT(text, Contains("setScanLineVisibilityTest: no effect"));
   CHECK(text.find("setScanLineVisibilityTest") == text.rfind("setScanLineVisibilityTest"));  // once
 }

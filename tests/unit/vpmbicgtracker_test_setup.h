@@ -10,6 +10,7 @@
 
 #include "icgp/eval/sequence.h"
 #include "icgp/tracker/tracker_config.h"
+#include "icgp/visp/visp_camera_xml.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 
 namespace icgp::test {
@@ -20,7 +21,7 @@ inline const std::filesystem::path kTeaboxBlender = std::filesystem::path(ICGP_T
 inline std::vector<Frame> teabox_frames(int n) {
   // Blender's principal point convention, for both trackers alike: these tests measure the
   // trackers, not how far the XML's (320, 240) is from the renderer's camera.
-  SequenceOptions blender;
+  SequenceOptions blender = visp_sequence_options();
   blender.blender_principal_point = true;
   const Sequence sequence = Sequence::open(kTeaboxBlender.string(), blender);
   std::vector<Frame> frames;

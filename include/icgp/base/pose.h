@@ -6,6 +6,12 @@
 
 namespace icgp {
 
+/// pi to double precision (std::numbers::pi is C++20; M_PI is POSIX, not C++).
+constexpr double kPi = 3.14159265358979323846;
+
+/// Degrees to radians, as degrees * pi / 180 (in that order, so results stay bit for bit).
+constexpr double deg_to_rad(double degrees) { return degrees * kPi / 180.0; }
+
 /// Skew-symmetric matrix [v]x, so that skew(a) * b == a.cross(b).
 template <typename T>
 Eigen::Matrix<T, 3, 3> skew(const Eigen::Matrix<T, 3, 1>& v) {

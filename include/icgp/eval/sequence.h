@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,11 @@ struct SequenceOptions {
   /// the colour file is given, the depth file defaults to "<stem>_depth.xml" beside it.
   std::string color_intrinsics_file;
   std::string depth_intrinsics_file;
+  /// Reads px, py, u0, v0 of such a file's <camera> block into fu, fv, pu, pv (image size
+  /// left 0), throwing std::runtime_error naming the file and what is wrong. The ViSP
+  /// layouts need it and the core library does not parse ViSP's XML: icgp::visp provides
+  /// read_visp_camera_xml (icgp/visp/visp_camera_xml.h, also visp_sequence_options()).
+  std::function<Intrinsics(const std::string& xml_path)> read_camera_xml;
   /// Depth beyond this (metres) is treated as no measurement, like NaN and inf: Blender
   /// writes a huge Z on the background and real sensors report far outliers.
   double max_depth = 10.0;
@@ -52,9 +58,10 @@ struct SequenceObject {
 ///    (little-endian uint32 height, uint32 width, H*W uint16, Z = value * 1 mm),
 ///    depth_M_color.txt, no ground truth.
 ///
-/// Intrinsics of the ViSP layouts come from the <camera> block of ViSP XML files: the
-/// explicit SequenceOptions files, else the only `<name>.xml` + `<name>_depth.xml` pair at
-/// the top level, else the only such pair in a `models/*/` subfolder. Several candidate
+/// Intrinsics of the ViSP layouts come from the <camera> block of ViSP XML files, read by
+/// SequenceOptions::read_camera_xml (without one, open() fails saying so): the explicit
+/// SequenceOptions files, else the only `<name>.xml` + `<name>_depth.xml` pair at the top
+/// level, else the only such pair in a `models/*/` subfolder. Several candidate
 /// pairs are ambiguous (a models/ folder often holds objects filmed with other cameras),
 /// so open() then fails listing them rather than guessing. The image size is that of the
 /// first colour (depth) image; every frame is checked against it.
@@ -113,11 +120,6 @@ class Sequence {
   bool has_ground_truth_ = false;
   std::shared_ptr<const Layout> files_;
 };
-
-/// Reads px, py, u0, v0 of the first <camera> block of a ViSP XML file into fu, fv, pu, pv
-/// (image size left 0). A targeted reader: the core library does not depend on ViSP.
-/// Throws std::runtime_error naming the file and the missing or malformed tag.
-Intrinsics read_visp_camera_xml(const std::string& path);
 
 /// Reads a 4x4 homogeneous matrix written as 4 lines of 4 numbers (ViSP's cMo and
 /// depth_M_color files). Throws std::runtime_error naming the file and line.

@@ -9,6 +9,7 @@
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
 #include "icgp/base/mesh.h"
+#include "icgp/render/sensor_effects.h"
 
 namespace icgp {
 
@@ -50,27 +51,6 @@ class OrbitTrajectory {
   };
   OrbitOptions options_;
   Signal distance_, tilt_x_, tilt_y_, roll_, wander_[3];
-};
-
-/// Sensor imperfections added to the rendered images. Zero = exact renders.
-struct SensorNoise {
-  double color_sigma = 0.0;        ///< Gaussian noise on each colour channel, 8-bit levels
-  /// Depth noise sigma = this * Z^2 (metres at 1 m): stereo and structured-light sensors'
-  /// error grows with the square of the distance.
-  double depth_sigma_at_1m = 0.0;
-  double depth_dropout = 0.0;  ///< fraction of depth pixels randomly reported as missing (0)
-  /// Depth is missing where the surface is seen more obliquely than this (angle between its
-  /// normal and the viewing ray, degrees); 90 = never.
-  double grazing_angle_deg = 90.0;
-  /// Depth is missing within this many pixels of a depth discontinuity; 0 = never.
-  int depth_edge_holes_px = 0;
-
-  /// A RealSense-class active stereo sensor: sigma 0.0015 Z^2, 5 % dropout, holes along
-  /// depth edges (1 px) and beyond 80 deg, mild colour noise.
-  static SensorNoise realsense_class();
-  /// A Kinect-class structured-light sensor: sigma 0.005 Z^2, 20 % dropout, holes along
-  /// depth edges (2 px) and beyond 75 deg, visible colour noise.
-  static SensorNoise kinect_class();
 };
 
 /// A colour camera's exposure: each colour image is the mean of `samples` renders spread

@@ -25,12 +25,12 @@ class DepthModality : public Modality {
 
   std::string name() const override { return "depth"; }
   const std::string& camera() const override { return params_.depth_camera; }
-  void start(const Frame& frame) override;
-  void correspondences(const Frame& frame, int corr_iter) override;
-  void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
+  void start(const Frame& frame, const Renders& renders) override;
+  void correspondences(const Frame& frame, const Renders& renders, int corr_iter) override;
+  CueTerms gradient_hessian(int corr_iter, int update_iter) override;
   double log_likelihood(int corr_iter) const override;
   void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const override;
-  void finish(const Frame& frame) override;
+  void finish(const Frame& frame, const Renders& renders) override;
   ModalityQuality quality() const override { return quality_; }
 
   const DepthParams& params() const { return params_; }

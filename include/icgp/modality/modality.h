@@ -7,6 +7,7 @@
 
 #include "icgp/base/frame.h"
 #include "icgp/base/body.h"
+#include "icgp/render/scene_renderer.h"
 
 namespace icgp {
 
@@ -37,9 +38,32 @@ struct ImageFeature {
   double weight = 1.0;    ///< the correspondence's weight in [0, 1]
 };
 
+/// One cue's part of a Newton step (ALGORITHMS.md §2): the gradient and Hessian of its
+/// log-likelihood with respect to θ at θ = 0, and the number of correspondences (lines,
+/// points, matches) they sum over.
+struct CueTerms {
+  Vec6 gradient = Vec6::Zero();
+  Mat66 hessian = Mat66::Zero();
+  int n_correspondences = 0;
+};
+
+/// Where in a frame a cue may read renders (Modality::render_requests): when it starts,
+/// in correspondence iteration `corr_iter`, or when it finishes the frame.
+struct Stage {
+  enum Kind { kStart, kCorrespondences, kFinish };
+  Kind kind = kStart;
+  int corr_iter = 0;
+};
+
 /// One cue about one body's pose (ALGORITHMS.md §2): it supplies the gradient and Hessian of
 /// its log-likelihood with respect to a body-frame pose variation θ = [θ_r; θ_t] at θ = 0.
-/// The optimizer only sums them; a new cue needs nothing but a new subclass.
+/// The optimizer only sums them; a new cue needs nothing but a new subclass, added to the
+/// tracker with Tracker::add_modality (docs/architecture.md shows the smallest one).
+///
+/// In each frame the tracker calls start() (after a (re)start only), then for each
+/// correspondence iteration correspondences() and, per update, gradient_hessian(), then
+/// finish(). Before each of these stages it renders what the cue asked for with
+/// render_requests() and hands the renders over.
 class Modality {
  public:
   explicit Modality(Body& body) : body_(&body) {}
@@ -50,17 +74,20 @@ class Modality {
   virtual std::string name() const = 0;
   /// The camera whose images the cue reads.
   virtual const std::string& camera() const = 0;
+  /// The renders the cue reads in `stage` of `frame`, at the bodies' current poses (none by
+  /// default). The tracker renders them once per stage and passes them to the stage.
+  virtual std::vector<RenderRequest> render_requests(const Frame&, Stage) const { return {}; }
   /// (Re)initialises from the body's current pose: histograms, keyframes, ...
-  virtual void start(const Frame& frame) = 0;
+  virtual void start(const Frame& frame, const Renders& renders) = 0;
   /// Finds data associations at the current pose for correspondence iteration `corr_iter`.
-  virtual void correspondences(const Frame& frame, int corr_iter) = 0;
-  /// Adds this modality's gradient and Hessian at the current pose to g and H.
-  virtual void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) = 0;
-  /// The log-likelihood (up to a constant) that add_gradient_hessian differentiates, at
-  /// the current pose with the current correspondences. For tests and diagnostics.
+  virtual void correspondences(const Frame& frame, const Renders& renders, int corr_iter) = 0;
+  /// This cue's gradient and Hessian at the current pose.
+  virtual CueTerms gradient_hessian(int corr_iter, int update_iter) = 0;
+  /// The log-likelihood (up to a constant) that gradient_hessian differentiates, at the
+  /// current pose with the current correspondences. For tests and diagnostics.
   virtual double log_likelihood(int corr_iter) const = 0;
   /// After the frame has converged: update statistics (histograms, keyframes).
-  virtual void finish(const Frame& frame) = 0;
+  virtual void finish(const Frame& frame, const Renders& renders) = 0;
   virtual ModalityQuality quality() const = 0;
   /// Appends the residuals of the last correspondences at the current pose, each with a
   /// weight in [0, 1] (1: full; lower: a robust or confidence down-weighting). Units are

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "icgp/base/camera_names.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/residual_noise.h"
 #include "icgp/model/viewpoint_model.h"
@@ -26,11 +29,23 @@ inline constexpr NoiseParams kDepthNoise{true, true, 1e-4};
 /// Its robust weights are the papers' Tukey norm (TextureParams::tukey_norm_constant).
 inline constexpr NoiseParams kTextureNoise{true, false, 0.5};
 
+/// Measured occlusions (ALGORITHMS.md §7): a point of a cue is hidden when a measurement of
+/// the cue's depth camera within `radius` of its projection is closer by more than
+/// `threshold`. One set of defaults for every cue; configuration files keep the flat keys
+/// measure_occlusions, occlusion_radius and occlusion_threshold of each cue's section.
+struct OcclusionParams {
+  /// The cue tests its points (texture: its keyframe points) when true and it has depth.
+  /// (The texture section of a configuration file has no measure_occlusions key.)
+  bool measure = true;
+  double radius = 0.01;     ///< metres
+  double threshold = 0.03;  ///< metres
+};
+
 /// Parameters of the region modality (ALGORITHMS.md §4, §7) with the reference defaults.
 /// Iteration-indexed lists use entry corr_iter, and their last entry afterwards.
 struct RegionParams {
-  std::string color_camera = "Camera1";
-  std::string depth_camera = "Camera2";  ///< for measured occlusions; empty: none
+  std::string color_camera = kColorCamera;
+  std::string depth_camera = kDepthCamera;  ///< for measured occlusions; empty: none
   int n_lines_max = 200;
   double min_continuous_distance = 3.0;  ///< segments
   int function_length = 8;
@@ -52,36 +67,60 @@ struct RegionParams {
   double learning_rate_b = 0.2;
   double unconsidered_line_length = 0.5;  ///< pixels
   double max_considered_line_length = 20.0;  ///< pixels
-  bool measure_occlusions = true;
-  double occlusion_radius = 0.01;     ///< metres
-  double occlusion_threshold = 0.03;  ///< metres
-  int n_unoccluded_iterations = 10;   ///< frames after a (re)start without occlusion tests
+  OcclusionParams occlusion;
+  int n_unoccluded_iterations = 10;  ///< frames after a (re)start without occlusion tests
   int min_n_unoccluded_lines = 0;
 };
 
 /// Parameters of the depth modality (ALGORITHMS.md §5, §7) with the reference defaults.
 struct DepthParams {
-  std::string depth_camera = "Camera2";
+  std::string depth_camera = kDepthCamera;
   int n_points_max = 200;
   double stride_length = 0.005;  ///< metres between window samples
   std::vector<double> considered_distances = {0.05, 0.02, 0.01};  ///< metres
   std::vector<double> standard_deviations = {0.05, 0.03, 0.02};   ///< metres at 1 m; the noise estimate's ceiling
   NoiseParams noise = kDepthNoise;
-  bool measure_occlusions = true;
-  double occlusion_radius = 0.01;
-  double occlusion_threshold = 0.03;
+  OcclusionParams occlusion;
   int n_unoccluded_iterations = 10;
   int min_n_unoccluded_points = 0;
 };
 
+/// The keypoint descriptors of the texture cue (make_descriptor; docs/configuration.md).
+enum class Descriptor {
+  kOrb,           ///< OpenCV's ORB
+  kBrisk,         ///< OpenCV's BRISK
+  kSift,          ///< OpenCV's SIFT
+  kAkaze,         ///< OpenCV's AKAZE
+  kFreak,         ///< icgp::Freak on ORB keypoints
+  kDaisy,         ///< icgp::Daisy on ORB keypoints
+  kOrientedBrief  ///< icgp::OrientedBrief, icgp's own ORB-style extractor
+};
+
+inline constexpr std::array<Descriptor, 7> kDescriptors = {Descriptor::kOrb,   Descriptor::kBrisk, Descriptor::kSift,
+                                                           Descriptor::kAkaze, Descriptor::kFreak, Descriptor::kDaisy,
+                                                           Descriptor::kOrientedBrief};
+
+/// The name configuration files use: "orb", "brisk", "sift", "akaze", "freak", "daisy",
+/// "oriented_brief".
+inline const std::string& to_string(Descriptor descriptor) {
+  static const std::array<std::string, 7> names = {"orb", "brisk", "sift", "akaze", "freak", "daisy", "oriented_brief"};
+  return names[static_cast<std::size_t>(descriptor)];
+}
+
+/// The descriptor called `name`; nullopt for any other name.
+inline std::optional<Descriptor> parse_descriptor(const std::string& name) {
+  for (const Descriptor descriptor : kDescriptors)
+    if (to_string(descriptor) == name) return descriptor;
+  return std::nullopt;
+}
+
 /// Parameters of the texture modality (paper §III-C, §IV; ALGORITHMS.md §8) with the
 /// reference defaults. Pixel values refer to the full colour image.
 struct TextureParams {
-  std::string color_camera = "Camera1";
-  std::string depth_camera = "Camera2";  ///< measured occlusions at keyframes; empty: none
-  /// oriented_brief (icgp's own ORB-style extractor, a third of cv::ORB's time), orb,
-  /// brisk, sift, akaze, freak, daisy (docs/configuration.md).
-  std::string descriptor = "oriented_brief";
+  std::string color_camera = kColorCamera;
+  std::string depth_camera = kDepthCamera;  ///< measured occlusions at keyframes; empty: none
+  /// oriented_brief: icgp's own ORB-style extractor, a third of cv::ORB's time.
+  Descriptor descriptor = Descriptor::kOrientedBrief;
   int focused_image_size = 200;          ///< side of the rescaled detection crop, pixels
   int orb_n_features = 300;              ///< also oriented_brief's, and the detector of freak and daisy
   int orb_n_levels = 3;
@@ -101,8 +140,7 @@ struct TextureParams {
   double tukey_norm_constant = 20.0;                 ///< c, pixels
   std::vector<double> standard_deviations = {15.0, 5.0};  ///< σ_t, pixels; the noise estimate's ceiling
   NoiseParams noise = kTextureNoise;
-  double occlusion_radius = 0.01;     ///< metres
-  double occlusion_threshold = 0.03;  ///< metres
+  OcclusionParams occlusion;
 };
 
 }  // namespace icgp

@@ -34,13 +34,13 @@ class RegionModality : public Modality {
 
   std::string name() const override { return "region"; }
   const std::string& camera() const override { return params_.color_camera; }
-  void start(const Frame& frame) override;
-  void correspondences(const Frame& frame, int corr_iter) override;
-  void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
+  void start(const Frame& frame, const Renders& renders) override;
+  void correspondences(const Frame& frame, const Renders& renders, int corr_iter) override;
+  CueTerms gradient_hessian(int corr_iter, int update_iter) override;
   double log_likelihood(int corr_iter) const override;
   void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const override;
   void append_image_features(std::vector<ImageFeature>& features) const override;
-  void finish(const Frame& frame) override;
+  void finish(const Frame& frame, const Renders& renders) override;
   ModalityQuality quality() const override { return quality_; }
 
   const RegionParams& params() const { return params_; }
@@ -90,7 +90,7 @@ class RegionModality : public Modality {
   /// `log_distribution` is not null.
   void compute_distribution(Line& line, float* distribution, float* log_distribution) const;
   float line_position(const Line& line, const Posef& camera_T_body, const Intrinsics& k) const;
-  void update_quality(const Frame& frame);
+  void update_quality();
   /// σ_r, pixels, for correspondence iteration `corr_iter`.
   double sigma(int corr_iter) const;
   /// The line's residual (projected contour minus most likely contour location) in pixels,

@@ -2,8 +2,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,16 +13,13 @@
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
 #include "icgp/modality/residual_noise.h"
-#include "icgp/render/renderer.h"
 
 namespace icgp {
 
-/// The descriptor extractor called `name` (orb, brisk, sift, akaze, freak, daisy,
-/// oriented_brief) set up with `params` (FREAK and DAISY are icgp::Freak / icgp::Daisy,
-/// which describe given keypoints only; oriented_brief is icgp::OrientedBrief, which
-/// detects its own, orb_n_features of them). Throws std::invalid_argument for an unknown
-/// name.
-cv::Ptr<cv::Feature2D> make_descriptor(const std::string& name, const TextureParams& params = {});
+/// The extractor of `descriptor` set up with `params` (FREAK and DAISY are icgp::Freak /
+/// icgp::Daisy, which describe given keypoints only; oriented_brief is icgp::OrientedBrief,
+/// which detects its own, orb_n_features of them).
+cv::Ptr<cv::Feature2D> make_descriptor(Descriptor descriptor, const TextureParams& params = {});
 
 /// Detects keypoints and computes their descriptors in the focused crop of a colour image
 /// (paper §IV): the square `square` cut out, converted to grey and resampled to
@@ -61,21 +60,20 @@ struct Keyframe {
   int age = 0;  ///< frames since it was made
 };
 
-/// Makes keyframes: renders the body's depth in the focused square at the keyframe pose,
-/// back-projects the keypoints that fall on the body to body-frame points, and drops the
-/// ones a depth measurement shows to be occluded (ALGORITHMS.md §7).
+/// Makes keyframes: back-projects the keypoints that fall on the body in a focused render
+/// of the scene at the keyframe pose to body-frame points, and drops the ones a depth
+/// measurement shows to be occluded (ALGORITHMS.md §7).
 class KeyframeLifter {
  public:
-  KeyframeLifter(const Mesh& mesh, MeasuredOcclusion occlusion);
+  explicit KeyframeLifter(MeasuredOcclusion occlusion) : occlusion_(occlusion) {}
 
-  /// `depth` may be null (no occlusion test). `square` must contain the body's projection.
-  void lift(const Intrinsics& k, const Pose& camera_T_body, const ImageSquare& square, int render_size,
+  /// `render` must show the body (id `body_id`) where the points were detected, in the
+  /// camera of intrinsics `k`; `depth` may be null (no occlusion test).
+  void lift(const Intrinsics& k, const Pose& camera_T_body, const FocusedRender& render, std::uint8_t body_id,
             const std::vector<cv::Point2f>& points, const cv::Mat& descriptors, const DepthImage* depth,
-            const Pose& depth_T_camera, Keyframe& keyframe);
+            const Pose& depth_T_camera, Keyframe& keyframe) const;
 
  private:
-  Renderer renderer_;
-  Renderer::BodyHandle handle_;
   MeasuredOcclusion occlusion_;
 };
 
@@ -112,13 +110,16 @@ class TextureModality : public Modality {
 
   std::string name() const override { return "texture"; }
   const std::string& camera() const override { return params_.color_camera; }
-  void start(const Frame& frame) override;
-  void correspondences(const Frame& frame, int corr_iter) override;
-  void add_gradient_hessian(int corr_iter, int update_iter, Vec6& g, Mat66& H) override;
+  /// A focused render of the scene when a keyframe is due: at the start, and at a finish
+  /// after the keyframe_orientation_threshold_deg rotation or keyframe_max_age frames.
+  std::vector<RenderRequest> render_requests(const Frame& frame, Stage stage) const override;
+  void start(const Frame& frame, const Renders& renders) override;
+  void correspondences(const Frame& frame, const Renders& renders, int corr_iter) override;
+  CueTerms gradient_hessian(int corr_iter, int update_iter) override;
   double log_likelihood(int corr_iter) const override;
   void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const override;
   void append_image_features(std::vector<ImageFeature>& features) const override;
-  void finish(const Frame& frame) override;
+  void finish(const Frame& frame, const Renders& renders) override;
   ModalityQuality quality() const override { return quality_; }
 
   const TextureParams& params() const { return params_; }
@@ -131,7 +132,11 @@ class TextureModality : public Modality {
   void detect(const Frame& frame);
   /// Keeps only the detected points on pixels the camera's mask allows.
   void drop_masked_points(const PixelMask& mask);
-  void make_keyframe(const Frame& frame);
+  /// The render a keyframe at the current pose reads; none when the body is not in front
+  /// of the camera.
+  std::optional<RenderRequest> keyframe_render(const Frame& frame) const;
+  bool keyframe_due(const Pose& camera_T_body, int age) const;
+  void make_keyframe(const Frame& frame, const Renders& renders);
   void match();
   void update_weights();
   void update_quality();

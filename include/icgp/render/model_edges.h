@@ -31,8 +31,6 @@ class ModelEdges {
   std::vector<ImageSegment> project(const Intrinsics& intrinsics, const Pose& camera_T_body,
                                     const cv::Mat& rendered_depth, double step = 2.0) const;
 
-  std::size_t n_creases() const { return creases_.size(); }
-
  private:
   struct Edge {
     Eigen::Vector3d a, b;
@@ -43,7 +41,6 @@ class ModelEdges {
                      double step, std::vector<ImageSegment>& out) const;
 
   std::vector<Edge> edges_;  ///< every edge between two faces or on a border
-  std::vector<std::size_t> creases_;
 };
 
 }  // namespace icgp

@@ -79,7 +79,6 @@ class Renderer {
   /// share an id. The body starts at world_T_body = identity.
   BodyHandle add_body(const Mesh& mesh, std::uint8_t id);
   void set_body_pose(BodyHandle body, const Pose& world_T_body);
-  const Pose& body_pose(BodyHandle body) const;
   /// Hidden bodies are not drawn (and do not occlude).
   void set_body_visible(BodyHandle body, bool visible);
   void set_lighting(const Lighting& lighting);

@@ -1,15 +1,45 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// What a real RGB-D sensor does to rendered images that a renderer alone does not: depth
-// holes at grazing angles and along depth edges, and motion blur. Shared by the sequence
-// writer and the servo simulator so that both simulate the same sensor.
+// What a real RGB-D sensor does to rendered images that a renderer alone does not: its
+// parameters (SensorNoise), depth holes at grazing angles and along depth edges, and motion
+// blur. Shared by the sequence writer and the servo simulator so that both simulate the
+// same sensor with the same parameters.
+// The random draws of that noise (colour, depth, dropout) are not here: the writer draws it pixel by
+// pixel from SplitMix64 streams in double precision, the simulator whole images at a time
+// from cv::RNG in single precision, and both sequences and servo runs are reproduced bit
+// for bit from their seeds, so neither can take the other's.
 #pragma once
 
 #include <functional>
 #include <opencv2/core/mat.hpp>
 
 #include "icgp/base/intrinsics.h"
+#include "icgp/base/pose.h"
 
 namespace icgp {
+
+class Renderer;
+
+/// Sensor imperfections added to the rendered images. Zero = exact renders.
+struct SensorNoise {
+  double color_sigma = 0.0;        ///< Gaussian noise on each colour channel, 8-bit levels
+  /// Depth noise sigma = this * Z^2 (metres at 1 m): stereo and structured-light sensors'
+  /// error grows with the square of the distance.
+  double depth_sigma_at_1m = 0.0;
+  double depth_dropout = 0.0;  ///< fraction of depth pixels randomly reported as missing (0)
+  /// Depth is missing where the surface is seen more obliquely than this (angle between its
+  /// normal and the viewing ray, degrees); 90 = never.
+  double grazing_angle_deg = 90.0;
+  /// Depth is missing within this many pixels of a depth discontinuity; 0 = never.
+  int depth_edge_holes_px = 0;
+
+  /// A RealSense-class active stereo sensor: sigma 0.0015 Z^2, 5 % dropout, holes along
+  /// depth edges (1 px) and beyond 80 deg, mild colour noise.
+  static SensorNoise realsense_class();
+  /// A Kinect-class structured-light sensor: sigma 0.005 Z^2, 20 % dropout, holes along
+  /// depth edges (2 px) and beyond 75 deg, visible colour noise.
+  static SensorNoise kinect_class();
+};
+
 
 /// Removes depth (sets 0) where the surface is seen more obliquely than `max_angle_deg`
 /// (angle between its normal and the viewing ray), as structured-light and stereo sensors
@@ -21,6 +51,13 @@ void remove_grazing_depth(cv::Mat& depth, const cv::Mat& normals, const Intrinsi
 /// of Z between neighbours, or an edge against missing depth), where real sensors report
 /// nothing or "flying pixels" between the two surfaces. Nothing happens for radius 0.
 void remove_depth_edges(cv::Mat& depth, int radius_px);
+
+/// The depth image (CV_32FC1 metric Z, 0 = none) a sensor at camera_T_world measures of
+/// `renderer`'s scene before its random noise: the render without the surfaces seen more
+/// obliquely than noise.grazing_angle_deg (remove_grazing_depth) and without depth within
+/// noise.depth_edge_holes_px of a discontinuity (remove_depth_edges).
+cv::Mat render_sensor_depth(Renderer& renderer, const Intrinsics& intrinsics, const Pose& camera_T_world,
+                            const SensorNoise& noise);
 
 /// Motion blur: the mean of `samples` CV_8UC3 colour renders, `render(i)` being the image
 /// at the i-th instant of the exposure (i = 0 .. samples-1), rounded to 8 bits. One sample

@@ -11,10 +11,11 @@
 
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
+#include "icgp/render/sensor_effects.h"
 
 namespace icgp::servo {
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr double kDegree = kPi / 180.0;
 
 /// A scenario file that cannot be used. The message names the file and the field
 /// ("scenarios/x.yaml: control.gain: expected a positive number, got 'fast'").
@@ -80,16 +81,10 @@ struct LightingSpec {
   double diffuse = 0.65;
 };
 
-/// Sensor imperfections. Zero (and 90 deg) = exact renders.
-struct NoiseSpec {
-  double color_sigma = 0.0;        ///< Gaussian noise per colour channel, 8-bit levels
-  double depth_sigma_at_1m = 0.0;  ///< depth noise sigma = this * Z^2 metres
-  double depth_dropout = 0.0;      ///< fraction of depth pixels randomly missing
-  /// Depth is missing where the surface is seen more obliquely than this (angle between
-  /// its normal and the viewing ray), as on real sensors at grazing angles.
-  double grazing_angle_deg = 90.0;
-  /// Depth is missing within this many pixels of a depth discontinuity (flying pixels removed).
-  int edge_dropout_px = 0;
+/// The simulated sensor's imperfections: those sequences are rendered with (SensorNoise,
+/// file key edge_dropout_px for its depth_edge_holes_px), plus motion blur and lost frames.
+/// Zero (and 90 deg) = exact renders.
+struct NoiseSpec : SensorNoise {
   /// Exposure as a fraction of the frame period: the colour image averages renders over the
   /// last `motion_blur` of the camera's motion between frames. 0 = sharp.
   double motion_blur = 0.0;

@@ -4,8 +4,10 @@
 #include <memory>
 #include <vector>
 
-#include "icgp/modality/modality.h"
 #include "icgp/base/body.h"
+#include "icgp/modality/modality.h"
+#include "icgp/optimizer/optimizer.h"
+#include "icgp/render/scene_renderer.h"
 
 namespace icgp {
 
@@ -30,10 +32,15 @@ struct BodyResult {
 };
 
 /// Tracks any number of bodies with any number of modalities on frames from any number of
-/// cameras. Each body's modalities are fused into one 6-DoF Newton step per update.
+/// cameras. Each body's modalities are fused into one 6-DoF Newton step per update (its
+/// Optimizer). Before each stage of a frame (start, every correspondence iteration,
+/// finish) the tracker renders what the modalities ask for, once, with one SceneRenderer
+/// that shows all of its bodies.
 class Tracker {
  public:
-  explicit Tracker(TrackerParams params = {});
+  /// `renderer`: shared with whoever else draws these bodies (vpMbIcgTracker's display);
+  /// null: the tracker's own.
+  explicit Tracker(TrackerParams params = {}, std::shared_ptr<SceneRenderer> renderer = nullptr);
   ~Tracker();
   Tracker(Tracker&&) noexcept;
   Tracker& operator=(Tracker&&) noexcept;
@@ -56,16 +63,27 @@ class Tracker {
   /// H of the last update's data terms (without the Tikhonov regularisation), per body:
   /// the inverse of −H is the pose covariance in the body-frame variation θ = [θ_r; θ_t].
   const Mat66& last_hessian(const std::string& body) const;
+  /// Each modality's gradient, Hessian and correspondence count in the last update of
+  /// `body`, in the order the modalities were added (empty before the first frame).
+  const std::vector<CueTerms>& last_cue_terms(const std::string& body) const;
   /// The residuals and weights of every modality of `body` at its current pose, in the
   /// order the modalities were added (Modality::append_residuals).
   void residuals(const std::string& body, std::vector<double>& residuals, std::vector<double>& weights) const;
+  /// The renderer of the render step, which shows every body of this tracker.
+  SceneRenderer& renderer() { return *renderer_; }
   /// The modalities of `body`, in the order they were added (for per-cue diagnostics).
   std::vector<const Modality*> modalities(const std::string& body) const;
 
  private:
   struct BodyState;
+  const BodyState& state(const std::string& body) const;
+  /// Renders what the modalities ask for in `stage` into renders_.
+  void render(const Frame& frame, Stage stage);
+
   TrackerParams params_;
   std::vector<std::unique_ptr<BodyState>> states_;
+  std::shared_ptr<SceneRenderer> renderer_;
+  Renders renders_;
 };
 
 }  // namespace icgp

@@ -65,9 +65,11 @@ struct CameraCues {
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name);
 /// The same for a rig of cameras: each camera gets the cues it names (those of
 /// config.modalities only), all fused in one Newton step per update. The viewpoint models
-/// are the object's, shared by every camera.
+/// are the object's, shared by every camera. `renderer`: the one the tracker renders with
+/// (null: its own).
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
-                                       const std::vector<CameraCues>& cameras);
+                                       const std::vector<CameraCues>& cameras,
+                                       std::shared_ptr<SceneRenderer> renderer = nullptr);
 
 /// The configuration as YAML (every key, so `icgp config` can print the defaults).
 std::string to_yaml(const TrackerConfig& config);

@@ -18,18 +18,19 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
+#include "icgp/base/camera_names.h"
 #include "icgp/base/frame.h"
 #include "icgp/base/pose.h"
 #include "icgp/visp/conversions.h"
+#include "icgp/base/standard_stream_capture.h"
 #include "icgp/visp/visp_baseline.h"
 
 namespace icgp {
 
-/// vpMbGenericTracker's camera names: the colour camera is the reference, cMo is relative to it.
-inline const std::string kVispColorCamera = "Camera1";
-inline const std::string kVispDepthCamera = "Camera2";
-/// The tracker types of that pair, as ViSP's RGB-D programs construct it: the colour
-/// camera's edges and KLT points (icgp: region and texture), the depth camera's dense depth.
+/// The tracker types of vpMbGenericTracker's colour camera (kColorCamera, the reference:
+/// cMo is relative to it) and depth camera (kDepthCamera), as ViSP's RGB-D programs
+/// construct them: the colour camera's edges and KLT points (icgp: region and texture), the
+/// depth camera's dense depth.
 inline const std::vector<int> kRgbdTrackerTypes = {vpMbGenericTracker::EDGE_TRACKER | vpMbGenericTracker::KLT_TRACKER,
                                                    vpMbGenericTracker::DEPTH_DENSE_TRACKER};
 
@@ -94,14 +95,8 @@ namespace detail {
 /// what it read there even when not asked to be verbose, which would interleave with the
 /// caller's output once per tracker. Its errors still arrive as exceptions and on std::cerr.
 class StdoutSilencer {
- public:
-  StdoutSilencer() : previous_(std::cout.rdbuf(nullptr)) {}
-  ~StdoutSilencer() { std::cout.rdbuf(previous_); }
-  StdoutSilencer(const StdoutSilencer&) = delete;
-  StdoutSilencer& operator=(const StdoutSilencer&) = delete;
-
  private:
-  std::streambuf* previous_;
+  StandardStreamCapture dropped_{std::cout};
 };
 
 }  // namespace detail
@@ -144,19 +139,19 @@ RgbdRun track_rgbd_sequence(TrackerT& tracker, const std::vector<Frame>& frames,
   tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics),
                               to_camera_parameters(depth.intrinsics));
   tracker.setCameraTransformationMatrix(std::map<std::string, vpHomogeneousMatrix>{
-      {kVispColorCamera, vpHomogeneousMatrix()}, {kVispDepthCamera, to_homogeneous_matrix(depth.camera_T_reference)}});
+      {kColorCamera, vpHomogeneousMatrix()}, {kDepthCamera, to_homogeneous_matrix(depth.camera_T_reference)}});
   tracker.initFromPose(input.grey, cMo0);
 
-  std::map<std::string, const vpImage<unsigned char>*> images = {{kVispColorCamera, &input.grey}};
-  std::map<std::string, const std::vector<vpColVector>*> clouds = {{kVispDepthCamera, &input.point_cloud}};
+  std::map<std::string, const vpImage<unsigned char>*> images = {{kColorCamera, &input.grey}};
+  std::map<std::string, const std::vector<vpColVector>*> clouds = {{kDepthCamera, &input.point_cloud}};
   std::map<std::string, unsigned int> widths, heights;
   vpHomogeneousMatrix cMo;
   // The first frame is tracked too, as ViSP's tutorials do after initFromPose.
   for (const Frame& frame : frames) {
     const auto begin = Clock::now();
     input.convert(frame);
-    widths[kVispDepthCamera] = input.depth_width;
-    heights[kVispDepthCamera] = input.depth_height;
+    widths[kDepthCamera] = input.depth_width;
+    heights[kDepthCamera] = input.depth_height;
     const auto converted = Clock::now();
     tracker.track(images, clouds, widths, heights);
     const auto tracked = Clock::now();

@@ -478,10 +478,10 @@ class vpMbIcgTracker : public vpMbTracker {
   /// these only gather the final residuals and weights into m_error / m_w.
   void computeVVSInit() override;
   void computeVVSInteractionMatrixAndResidu() override;
-  /// Called back by ViSP's .cao / .wrl parser for each primitive. vpMbTracker has already
-  /// put it in `faces` and in the projection-error model (so computeCurrentProjectionError
-  /// works as in ViSP's trackers); the triangles icgp tracks come from icgp::load_cao_mesh,
-  /// so there is nothing left to do here.
+  /// Called back by ViSP's .cao / .wrl parser for each primitive during loadModel, the one
+  /// pass over the file. vpMbTracker has already put it in `faces` and in the
+  /// projection-error model (so computeCurrentProjectionError works as in ViSP's trackers);
+  /// these also mesh it into the triangles icgp tracks.
   void initCircle(const vpPoint& p1, const vpPoint& p2, const vpPoint& p3, double radius, int idFace = 0,
                   const std::string& name = "") override;
   void initCylinder(const vpPoint& p1, const vpPoint& p2, double radius, int idFace = 0,
@@ -523,8 +523,9 @@ class vpMbIcgTracker : public vpMbTracker {
   std::string depth_camera_of_raw_depth() const;
   /// The tracker's cues called `name` ("region", "depth", "texture"), of `camera` or all.
   std::vector<const icgp::Modality*> cues(const std::string& name, const std::string& camera = "") const;
-  /// Depth correspondences of the cameras whose types count them as `type`.
-  unsigned int depth_feature_count(int type) const;
+  /// The correspondences the cues called `name` summed over in the last update, of `camera`
+  /// or all; for "depth", of the cameras whose types count them as `depth_type` (0: all).
+  unsigned int correspondence_count(const std::string& name, const std::string& camera = "", int depth_type = 0) const;
   /// ViSP's getFeaturesForDisplay format for one camera.
   std::vector<std::vector<double>> features_for_display(const std::string& camera) const;
   /// Keeps a ViSP XML file's settings of ViSP's own cues for their getters.

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace icgp {
+
+/// The built-in cues. Their names ("region", "depth", "texture") are what configuration
+/// files, scenarios and vpMbIcgTracker::setModalities select them by, and what the built-in
+/// modalities' Modality::name() returns (a cue written elsewhere may name itself freely).
+enum class CueKind { kRegion, kDepth, kTexture };
+
+inline constexpr std::array<CueKind, 3> kCueKinds = {CueKind::kRegion, CueKind::kDepth, CueKind::kTexture};
+
+inline const std::string& to_string(CueKind kind) {
+  static const std::array<std::string, 3> names = {"region", "depth", "texture"};
+  return names[static_cast<std::size_t>(kind)];
+}
+
+/// The cue called `name`; nullopt for any other name.
+inline std::optional<CueKind> parse_cue_kind(const std::string& name) {
+  for (const CueKind kind : kCueKinds)
+    if (to_string(kind) == name) return kind;
+  return std::nullopt;
+}
+
+/// "region, depth, texture".
+inline std::string cue_kind_names() {
+  std::string names;
+  for (const CueKind kind : kCueKinds) names += (names.empty() ? "" : ", ") + to_string(kind);
+  return names;
+}
+
+/// Whether the list of cue names `names` selects `kind`.
+inline bool names_cue(const std::vector<std::string>& names, CueKind kind) {
+  return std::find(names.begin(), names.end(), to_string(kind)) != names.end();
+}
+
+/// Whether `names` is a selection of cues: at least one, every one a cue's name, none twice.
+inline bool valid_cue_list(const std::vector<std::string>& names) {
+  const std::set<std::string> distinct(names.begin(), names.end());
+  const auto known = [](const std::string& name) { return parse_cue_kind(name).has_value(); };
+  return !names.empty() && distinct.size() == names.size() && std::all_of(names.begin(), names.end(), known);
+}
+
+/// What valid_cue_list accepts, completing "expected …" in the messages of the files that
+/// select cues: "a non-empty list of distinct names from region, depth, texture".
+inline const char* cue_list_expected() {
+  static const std::string text = "a non-empty list of distinct names from " + cue_kind_names();
+  return text.c_str();
+}
+
+}  // namespace icgp

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/visp/visp_camera_xml.h"
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <visp3/core/vpException.h>
+#include <visp3/mbt/vpMbtXmlGenericParser.h>
+
+#include "icgp/base/standard_stream_capture.h"
+
+namespace icgp {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw std::runtime_error(path + ": " + what);
+}
+
+std::string number_text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+/// ViSP's parser keeps the camera it was given for every field the file leaves out, so a
+/// camera of this value tells which fields the file gives: no file writes it.
+constexpr double kNotInFile = std::numeric_limits<double>::lowest();
+
+}  // namespace
+
+Intrinsics read_visp_camera_xml(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) fail(path, "no such file");
+  if (!std::filesystem::is_regular_file(path, error) || !std::ifstream(path)) fail(path, "cannot read the file");
+
+  // Any parser type but PROJECTION_ERROR_PARSER reads <camera>; the edge parser reads the
+  // fewest other blocks.
+  vpMbtXmlGenericParser parser(vpMbtXmlGenericParser::EDGE_PARSER);
+  vpCameraParameters not_in_file;
+  not_in_file.initPersProjWithoutDistortion(kNotInFile, kNotInFile, kNotInFile, kNotInFile);
+  parser.setCameraParameters(not_in_file);
+  parser.setVerbose(false);
+  try {
+    const StandardStreamCapture chatter(std::cout);
+    parser.parse(path);
+  } catch (const vpException& e) {
+    // The file exists and is readable, so ViSP's "Cannot open file" means it is no XML;
+    // the only other complaint about <camera> is a px or py of 0, which is also what it
+    // reads from text that is no number.
+    if (e.getCode() == vpException::ioError)
+      fail(path, "not an XML file ViSP's parser reads (" + e.getStringMessage() + ")");
+    fail(path, "<camera>: " + e.getStringMessage() + " (px and py must be positive numbers)");
+  }
+  vpCameraParameters camera;
+  parser.getCameraParameters(camera);
+
+  Intrinsics k;
+  k.fu = camera.get_px();
+  k.fv = camera.get_py();
+  k.pu = camera.get_u0();
+  k.pv = camera.get_v0();
+  const std::array<std::pair<const char*, double>, 4> fields = {
+      {{"px", k.fu}, {"py", k.fv}, {"u0", k.pu}, {"v0", k.pv}}};
+  int missing = 0;
+  for (const auto& [tag, value] : fields) missing += value == kNotInFile;
+  if (missing == 4) fail(path, "no <camera> block with <px>, <py>, <u0> and <v0>");
+  for (const auto& [tag, value] : fields) {
+    const std::string name = tag;
+    if (value == kNotInFile) fail(path, "<camera> block has no <" + name + ">");
+    const bool focal = name == "px" || name == "py";
+    if (!std::isfinite(value) || (focal && !(value > 0.0)))
+      fail(path, "<camera> <" + name + "> must be a finite" + (focal ? " positive" : "") + " number, got " +
+                     number_text(value));
+  }
+  return k;
+}
+
+SequenceOptions visp_sequence_options() {
+  SequenceOptions options;
+  options.read_camera_xml = read_visp_camera_xml;
+  return options;
+}
+
+}  // namespace icgp
