@@ -9,7 +9,7 @@
 #include <string>
 
 #include "icgp/tracker/tracker.h"
-#include "icgp/tracker/tracker_config.h"
+#include "icgp/tracker/tracker_builder.h"
 
 namespace icgp::app {
 

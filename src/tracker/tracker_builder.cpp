@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/tracker/tracker_builder.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
@@ -9,7 +11,6 @@
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
 #include "icgp/modality/texture_modality.h"
-#include "icgp/tracker/tracker_config.h"
 
 namespace icgp {
 namespace {

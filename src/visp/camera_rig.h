@@ -8,7 +8,7 @@
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 
-#include "icgp/tracker/tracker_config.h"
+#include "icgp/tracker/tracker_builder.h"
 
 namespace icgp {
 

@@ -14,7 +14,7 @@
 
 #include "icgp/render/model_edges.h"
 #include "icgp/render/scene_renderer.h"
-#include "icgp/tracker/tracker.h"
+#include "icgp/tracker/tracker_builder.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 
 #include "camera_rig.h"

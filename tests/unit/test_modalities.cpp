@@ -15,7 +15,7 @@
 #include "icgp/modality/region_modality.h"
 #include "icgp/modality/texture_modality.h"
 #include "icgp/tracker/tracker.h"
-#include "icgp/tracker/tracker_config.h"
+#include "icgp/tracker/tracker_builder.h"
 #include "test_gradients.h"
 #include "test_scene.h"
 

@@ -13,7 +13,7 @@
 #include "icgp/io/mesh_loader.h"
 #include "icgp/modality/texture_modality.h"
 #include "icgp/tracker/tracker.h"
-#include "icgp/tracker/tracker_config.h"
+#include "icgp/tracker/tracker_builder.h"
 #include "test_gradients.h"
 #include "test_meshes.h"
 #include "test_scene.h"

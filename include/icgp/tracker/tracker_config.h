@@ -47,30 +47,6 @@ const std::vector<std::string>& tracker_config_presets();
 /// Reads a YAML configuration over the defaults. Unknown keys and values of the wrong type
 /// or range throw std::runtime_error naming the file and the key.
 TrackerConfig load_tracker_config(const std::string& path);
-/// One camera of a rig and the cues that read it. The colour cues (region, texture) test
-/// their lines and keypoints for measured occlusion in `occlusion_depth_camera`'s depth
-/// (empty: none).
-struct CameraCues {
-  std::string camera;
-  bool region = false;
-  bool texture = false;
-  bool depth = false;
-  std::string occlusion_depth_camera;
-};
-
-/// A tracker for one body with the configured modalities. Viewpoint models come from the
-/// cache (config.cache_dir), generated with progress output on first use. The body starts
-/// at the identity pose: set tracker.body(body_name).reference_T_body, then start().
-/// Throws std::invalid_argument for an unknown or unavailable modality name.
-std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name);
-/// The same for a rig of cameras: each camera gets the cues it names (those of
-/// config.modalities only), all fused in one Newton step per update. The viewpoint models
-/// are the object's, shared by every camera. `renderer`: the one the tracker renders with
-/// (null: its own).
-std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
-                                       const std::vector<CameraCues>& cameras,
-                                       std::shared_ptr<SceneRenderer> renderer = nullptr);
-
 /// The configuration as YAML (every key, so `icgp config` can print the defaults).
 std::string to_yaml(const TrackerConfig& config);
 
