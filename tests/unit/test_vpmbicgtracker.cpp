@@ -18,6 +18,7 @@
 #include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
+#include "icgp/base/standard_stream_capture.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/render/model_edges.h"
@@ -412,16 +413,12 @@ namespace {
 
 /// How many times `text` appears on std::cout during `call`.
 int printed_during(const std::function<void()>& call, const std::string& text) {
-  std::ostringstream out;
-  std::streambuf* const previous = std::cout.rdbuf(out.rdbuf());
-  try {
+  std::string printed;
+  {
+    const icgp::StandardStreamCapture out(std::cout);
     call();
-  } catch (...) {
-    std::cout.rdbuf(previous);
-    throw;
+    printed = out.text();
   }
-  std::cout.rdbuf(previous);
-  const std::string printed = out.str();
   int count = 0;
   for (std::size_t at = printed.find(text); at != std::string::npos; at = printed.find(text, at + 1)) ++count;
   return count;

@@ -1129,12 +1129,14 @@ TEST_CASE("loadModel's two-camera and map forms describe one object: faces and p
   // tracked by every camera, the reference camera's); the program goes on, as with ViSP.
   vpMbIcgTracker two_objects(kRgbdTrackerTypes);
   const detail::StdoutSilencer quiet_parser;
-  std::ostringstream said;
-  std::streambuf* const stderr_buffer = std::cerr.rdbuf(said.rdbuf());
-  two_objects.loadModel(kTeaboxCao, kCubeCao);
-  two_objects.loadModel(std::map<std::string, std::string>{{kCamera1, kTeaboxCao}, {kCamera2, kCubeCao}});
-  std::cerr.rdbuf(stderr_buffer);
-  CHECK_THAT(said.str(), Contains("cube.cao") && Contains("does not describe the object"));
+  std::string said;
+  {
+    const icgp::StandardStreamCapture stderr_text(std::cerr);
+    two_objects.loadModel(kTeaboxCao, kCubeCao);
+    two_objects.loadModel(std::map<std::string, std::string>{{kCamera1, kTeaboxCao}, {kCamera2, kCubeCao}});
+    said = stderr_text.text();
+  }
+  CHECK_THAT(said, Contains("cube.cao") && Contains("does not describe the object"));
 }
 
 TEST_CASE("getPolygonFaces with ViSP's visibility test gives ViSP's visible faces") {

@@ -3,11 +3,13 @@
 // depth-only rigs that need no colour image, colour cues that need one, ViSP's pixel mask,
 // and one object described by different model files for different cameras.
 #include <catch2/catch.hpp>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <visp3/core/vpException.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
+#include "icgp/base/standard_stream_capture.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
@@ -190,17 +192,15 @@ TEST_CASE("vpMbIcgTracker::loadModel: a .wrl and a .cao of one object for two ca
   // reference camera's model is the one tracked, as one rigid object.
   vpMbIcgTracker other(kRgbdTrackerTypes);
   const std::string cube = (kRealsenseModels.parent_path() / "cube" / "cube.cao").string();
-  std::ostringstream said;
-  std::streambuf* const stderr_buffer = std::cerr.rdbuf(said.rdbuf());
-  other.loadModel(cao, cube);
-  std::cerr.rdbuf(stderr_buffer);
-  CHECK_THAT(said.str(), Contains("cube.cao") && Contains("teabox.cao") && Contains("does not describe the object"));
+  const auto stderr_during = [](const std::function<void()>& call) {
+    const icgp::StandardStreamCapture said(std::cerr);
+    call();
+    return said.text();
+  };
+  CHECK_THAT(stderr_during([&] { other.loadModel(cao, cube); }),
+             Contains("cube.cao") && Contains("teabox.cao") && Contains("does not describe the object"));
   vpMbIcgTracker same(kRgbdTrackerTypes);
-  std::ostringstream quiet;
-  std::cerr.rdbuf(quiet.rdbuf());
-  same.loadModel(wrl, cao);
-  std::cerr.rdbuf(stderr_buffer);
-  CHECK(quiet.str().find("does not describe") == std::string::npos);
+  CHECK(stderr_during([&] { same.loadModel(wrl, cao); }).find("does not describe") == std::string::npos);
 }
 
 TEST_CASE("vpMbIcgTracker with KLT_TRACKER alone: the texture cue's first frame, keyframe only, is not a loss") {
