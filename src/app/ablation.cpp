@@ -114,7 +114,7 @@ void run_ablation(const std::string& summary_path, int frame_limit) {
                 "ADD-S AUC", "mean mm", "mean deg", "median ms", "Hz");
     for (const AblationConfig& c : ablation_configs()) {
       TrackerConfig config = s.base;
-      config.modalities = c.modalities;
+      config.modalities = parse_cue_list(c.modalities);
       config.texture.descriptor = c.descriptor;
       if (!c.multi_region) config.regions.clear();
       std::cerr << s.name << ": " << c.name << " ...\n";

@@ -74,7 +74,7 @@ void run_bench(const BenchOptions& o) {
     for (std::size_t i = 0; i < modalities.size(); ++i) name += (i ? " + " : " ") + modalities[i];
     jobs.push_back({name, [&, modalities] {
                       TrackerConfig config = base_config;
-                      config.modalities = modalities;
+                      config.modalities = parse_cue_list(modalities);
                       return run_icgp(frames, object.name, mesh, config);
                     }});
   }

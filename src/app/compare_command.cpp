@@ -105,8 +105,8 @@ void run_compare(const CompareOptions& o) {
   const VispModelFiles visp_files = VispModelFiles::beside_model(object.mesh_path);
   const Mesh mesh = load_any_mesh(object.mesh_path);
   TrackerConfig icgp_config = benchmark_tracker_config(o.config);
-  if (!o.modalities.empty()) icgp_config.modalities = o.modalities;
-  const std::string icgp_name = joined(icgp_config.modalities);
+  if (!o.modalities.empty()) icgp_config.modalities = parse_cue_list(o.modalities);
+  const std::string icgp_name = joined(cue_names(icgp_config.modalities));
 
   const int n_frames = o.frames > 0 ? std::min(o.frames, sequence.size()) : sequence.size();
   std::cerr << "loading " << n_frames << " frames of " << o.sequence << "\n";

@@ -245,7 +245,7 @@ class CellTrackers {
                             const std::vector<std::string>& modalities) const {
     TrackerConfig config = tracker_config_preset(preset);
     config.regions = model.regions;
-    if (!modalities.empty()) config.modalities = modalities;
+    if (!modalities.empty()) config.modalities = parse_cue_list(modalities);
     if (viewpoint_models_) {
       config.region_model = viewpoint_models_->region_model;
       config.depth_model = viewpoint_models_->depth_model;

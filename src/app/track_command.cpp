@@ -109,10 +109,10 @@ void run_track(const TrackOptions& o) {
   const Mesh mesh = load_any_mesh(model);
 
   TrackerConfig config = sequence_tracker_config(o.config, o.sequence);
-  if (!o.modalities.empty()) config.modalities = o.modalities;
+  if (!o.modalities.empty()) config.modalities = parse_cue_list(o.modalities);
   if (o.sequence_options.grey_without_depth) {
     // Without a depth camera the depth cue has nothing to read: the other cues track.
-    config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), "depth"),
+    config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), CueKind::kDepth),
                             config.modalities.end());
     if (config.modalities.empty())
       throw std::runtime_error("--grey-without-depth leaves no modality: the configuration has only depth");
@@ -132,7 +132,7 @@ void run_track(const TrackOptions& o) {
   std::cout << "sequence   " << o.sequence << " (" << sequence.layout() << ", " << sequence.size() << " frames)\n"
             << "model      " << model << " as body '" << body << "'\n"
             << "modalities ";
-  for (std::size_t i = 0; i < config.modalities.size(); ++i) std::cout << (i ? "," : "") << config.modalities[i];
+  for (std::size_t i = 0; i < config.modalities.size(); ++i) std::cout << (i ? "," : "") << to_string(config.modalities[i]);
   std::cout << "\nstart      " << (o.init_pose.empty() ? "first ground-truth pose" : o.init_pose) << "\n" << std::flush;
 
   TimedIcgTracker tracker(config, mesh, body);

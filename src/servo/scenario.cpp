@@ -207,7 +207,7 @@ void read_tracker(const Value& v, TrackerSpec& tracker, const fs::path& scenario
     tracker.kind = x->choice<TrackerKind>(
         {{"icgp", TrackerKind::kIcgp}, {"visp", TrackerKind::kVisp}, {"oracle", TrackerKind::kOracle}});
   if (auto x = s.get("modalities"))
-    tracker.modalities = x->as(Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list});
+    tracker.modalities = parse_cue_list(x->as(Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}));
   if (auto x = s.get("config"))
     if (!x->node.IsNull()) tracker.config = existing_file(*x, scenario_dir);
   if (auto x = s.get("visp_configuration")) {

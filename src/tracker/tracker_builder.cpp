@@ -38,7 +38,7 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   // The cameras the parameters name: the colour cues' camera, which looks for occlusions
   // in the region cue's depth camera (the texture cue's when region is off), and the depth
   // cue's camera.
-  const bool region_on = names_cue(config.modalities, CueKind::kRegion);
+  const bool region_on = has_cue(config.modalities, CueKind::kRegion);
   std::vector<CameraCues> cameras;
   auto camera = [&](const std::string& name) -> CameraCues& {
     for (CameraCues& c : cameras)
@@ -57,15 +57,12 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
                                        const std::vector<CameraCues>& cameras,
                                        std::shared_ptr<SceneRenderer> renderer) {
-  for (const std::string& name : config.modalities)
-    if (!parse_cue_kind(name))
-      throw std::invalid_argument("modality '" + name + "' is not available (available: " + cue_kind_names() + ")");
   auto any_camera = [&](bool CameraCues::*cue) {
     return std::any_of(cameras.begin(), cameras.end(), [cue](const CameraCues& c) { return c.*cue; });
   };
-  const bool region = names_cue(config.modalities, CueKind::kRegion) && any_camera(&CameraCues::region);
-  const bool depth = names_cue(config.modalities, CueKind::kDepth) && any_camera(&CameraCues::depth);
-  const bool texture = names_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture);
+  const bool region = has_cue(config.modalities, CueKind::kRegion) && any_camera(&CameraCues::region);
+  const bool depth = has_cue(config.modalities, CueKind::kDepth) && any_camera(&CameraCues::depth);
+  const bool texture = has_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture);
 
   const bool multi_region = region && !config.regions.empty();
   std::vector<ModelRequest> requests;

@@ -241,8 +241,11 @@ const Fields<TrackerConfig> kConfigFields = {
     {"preset", [](const yaml::Value&, TrackerConfig&) {},
      [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.preset); }},
     section("tracker", &TrackerConfig::tracker, kTrackerFields),
-    field("modalities", &TrackerConfig::modalities,
-          Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}),
+    {"modalities",
+     [](const yaml::Value& v, TrackerConfig& c) {
+       c.modalities = parse_cue_list(v.as(Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}));
+     },
+     [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, cue_names(c.modalities)); }},
     section("region_model", &TrackerConfig::region_model, kModelFields),
     section("depth_model", &TrackerConfig::depth_model, kModelFields),
     section("region", &TrackerConfig::region, kRegionFields),

@@ -86,16 +86,16 @@ bool CameraRig::is_depth_camera(const std::string& name) const {
   return (cameras_.at(name).types & (kDepthNormal | kDepthDense)) != 0;
 }
 
-std::vector<CameraCues> CameraRig::cues(const std::vector<std::string>& modalities) const {
+std::vector<CameraCues> CameraRig::cues(const std::vector<CueKind>& modalities) const {
   std::string first_depth_camera;
   for (const auto& [name, camera] : cameras_)
     if (is_depth_camera(name) && first_depth_camera.empty()) first_depth_camera = name;
   std::vector<CameraCues> out;
   for (const auto& [name, camera] : cameras_) {
     CameraCues c{name};
-    c.region = (camera.types & kEdge) && names_cue(modalities, CueKind::kRegion);
-    c.texture = (camera.types & kKlt) && names_cue(modalities, CueKind::kTexture);
-    c.depth = is_depth_camera(name) && names_cue(modalities, CueKind::kDepth);
+    c.region = (camera.types & kEdge) && has_cue(modalities, CueKind::kRegion);
+    c.texture = (camera.types & kKlt) && has_cue(modalities, CueKind::kTexture);
+    c.depth = is_depth_camera(name) && has_cue(modalities, CueKind::kDepth);
     c.occlusion_depth_camera = is_depth_camera(name) ? name : first_depth_camera;
     out.push_back(c);
   }

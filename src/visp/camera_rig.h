@@ -56,7 +56,7 @@ class CameraRig {
   /// Which cues run on which camera: EDGE → region, KLT → texture, DEPTH_NORMAL or
   /// DEPTH_DENSE → depth, each only if `modalities` names it. A colour camera looks for
   /// occlusions in its own depth when it has a depth type, else in the first depth camera.
-  std::vector<CameraCues> cues(const std::vector<std::string>& modalities) const;
+  std::vector<CameraCues> cues(const std::vector<CueKind>& modalities) const;
   /// Has a depth type (its depth may serve for occlusions even if the depth cue is off).
   bool is_depth_camera(const std::string& name) const;
 

@@ -219,7 +219,7 @@ const icgp::TrackerConfig& vpMbIcgTracker::getTrackerConfig() const { return imp
 
 void vpMbIcgTracker::setModalities(const std::vector<std::string>& modalities) {
   icgp::TrackerConfig config = impl_->config;
-  config.modalities = modalities;
+  config.modalities = guarded("setModalities", [&] { return icgp::parse_cue_list(modalities); });
   setTrackerConfig(config);
 }
 

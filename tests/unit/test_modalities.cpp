@@ -251,7 +251,7 @@ TEST_CASE("tracker: depth converted on read tracks exactly as the dense image, r
 
 TEST_CASE("build_tracker: one region modality per region of a multi-region object") {
   TrackerConfig config;
-  config.modalities = {"region", "depth"};
+  config.modalities = {CueKind::kRegion, CueKind::kDepth};
   config.region_model = config.depth_model = coarse_model_params();
   config.regions = {ICGP_MODELS_DIR "/two_region/region_body.obj", ICGP_MODELS_DIR "/two_region/region_lid.obj"};
   config.cache_dir = (std::filesystem::temp_directory_path() / "icgp-test-multi-region-cache").string();

@@ -85,7 +85,7 @@ void configure(vpMbIcgTracker& tracker, const std::vector<std::string>& modaliti
   config.region_model.n_divides = config.depth_model.n_divides = 3;
   config.region_model.image_size = config.depth_model.image_size = 800;
   config.cache_dir = (std::filesystem::temp_directory_path() / "icgp-test-vpmbicgtracker-cache").string();
-  config.modalities = modalities;
+  config.modalities = parse_cue_list(modalities);
   tracker.setTrackerConfig(config);
 }
 

@@ -92,6 +92,16 @@ TEST_CASE("vpMbIcgTracker: missing and unsupported files are ViSP exceptions nam
   }
 }
 
+TEST_CASE("vpMbIcgTracker: setModalities refuses a name that is no cue, naming it, and keeps the cues it had") {
+  vpMbIcgTracker tracker;
+  tracker.setModalities({"region", "depth"});
+  const vpException e = vp_exception_of([&] { tracker.setModalities({"region", "edges"}); });
+  CHECK(e.getCode() == vpException::badValue);
+  CHECK_THAT(e.getStringMessage(), Contains("setModalities") && Contains("'edges'") &&
+                                       Contains("region, depth, texture"));
+  CHECK(tracker.getTrackerConfig().modalities == std::vector<icgp::CueKind>{icgp::CueKind::kRegion, icgp::CueKind::kDepth});
+}
+
 TEST_CASE("vpMbIcgTracker: tracking before initFromPose is a vpTrackingException") {
   RgbdFixture f(false);
   const vpTrackingException e = vp_exception_of<vpTrackingException>([&] { f.track(); });

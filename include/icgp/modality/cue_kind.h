@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -36,9 +37,9 @@ inline std::string cue_kind_names() {
   return names;
 }
 
-/// Whether the list of cue names `names` selects `kind`.
-inline bool names_cue(const std::vector<std::string>& names, CueKind kind) {
-  return std::find(names.begin(), names.end(), to_string(kind)) != names.end();
+/// Whether `cues` selects `kind`.
+inline bool has_cue(const std::vector<CueKind>& cues, CueKind kind) {
+  return std::find(cues.begin(), cues.end(), kind) != cues.end();
 }
 
 /// Whether `names` is a selection of cues: at least one, every one a cue's name, none twice.
@@ -46,6 +47,25 @@ inline bool valid_cue_list(const std::vector<std::string>& names) {
   const std::set<std::string> distinct(names.begin(), names.end());
   const auto known = [](const std::string& name) { return parse_cue_kind(name).has_value(); };
   return !names.empty() && distinct.size() == names.size() && std::all_of(names.begin(), names.end(), known);
+}
+
+/// The cues `names` names, in order. Throws std::invalid_argument for the first name that
+/// is none: "modality 'x' is not available (available: region, depth, texture)".
+inline std::vector<CueKind> parse_cue_list(const std::vector<std::string>& names) {
+  std::vector<CueKind> cues;
+  for (const std::string& name : names) {
+    const std::optional<CueKind> kind = parse_cue_kind(name);
+    if (!kind) throw std::invalid_argument("modality '" + name + "' is not available (available: " + cue_kind_names() + ")");
+    cues.push_back(*kind);
+  }
+  return cues;
+}
+
+/// The names of `cues`, in order.
+inline std::vector<std::string> cue_names(const std::vector<CueKind>& cues) {
+  std::vector<std::string> names;
+  for (const CueKind kind : cues) names.push_back(to_string(kind));
+  return names;
 }
 
 /// What valid_cue_list accepts, completing "expected …" in the messages of the files that

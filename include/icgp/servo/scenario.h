@@ -11,6 +11,7 @@
 
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
+#include "icgp/modality/cue_kind.h"
 #include "icgp/render/sensor_effects.h"
 
 namespace icgp::servo {
@@ -103,7 +104,7 @@ struct CameraSpec {
 struct TrackerSpec {
   TrackerKind kind = TrackerKind::kIcgp;
   /// icgp: modalities ("region", "depth", "texture"); empty = the configuration's.
-  std::vector<std::string> modalities;
+  std::vector<CueKind> modalities;
   /// icgp: tracker configuration YAML (resolved; YAML: relative to the scenario); empty =
   /// reference defaults.
   std::string config;

@@ -26,7 +26,6 @@ struct CameraCues {
 /// A tracker for one body with the configured modalities. Viewpoint models come from the
 /// cache (config.cache_dir), generated with progress output on first use. The body starts
 /// at the identity pose: set tracker.body(body_name).reference_T_body, then start().
-/// Throws std::invalid_argument for an unknown or unavailable modality name.
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name);
 /// The same for a rig of cameras: each camera gets the cues it names (those of
 /// config.modalities only), all fused in one Newton step per update. The viewpoint models

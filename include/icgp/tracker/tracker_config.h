@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "icgp/modality/cue_kind.h"
 #include "icgp/modality/modality_params.h"
 #include "icgp/model/viewpoint_model.h"
 #include "icgp/tracker/tracker.h"
@@ -19,7 +20,7 @@ struct TrackerConfig {
   TrackerParams tracker;
   /// ICG+'s three cues. Texture abstains on objects without texture (too few keyframe
   /// points, ModalityQuality::abstained) and depth where no depth is measured.
-  std::vector<std::string> modalities = {"region", "depth", "texture"};
+  std::vector<CueKind> modalities = {CueKind::kRegion, CueKind::kDepth, CueKind::kTexture};
   ViewpointModelParams region_model;
   ViewpointModelParams depth_model;
   RegionParams region;
