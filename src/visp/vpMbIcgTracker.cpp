@@ -280,14 +280,13 @@ void vpMbIcgTracker::loadModel(const std::map<std::string, std::string>& mapOfMo
   const VispModelMark visp_model(faces, m_projectionErrorFaces, m_projectionErrorLines, m_projectionErrorCylinders,
                                  m_projectionErrorCircles, modelInitialised, modelFileName);
   const auto parse_here = [&](icgp::CaoMeshBuilder& builder) {
+    // The hooks feed `builder` for this parse only, whether it returns or throws.
     d.cao_builder = &builder;
-    try {
-      vpMbTracker::loadModel(modelFile, verbose, transform(main->first));
-    } catch (...) {
-      d.cao_builder = nullptr;
-      throw;
-    }
-    d.cao_builder = nullptr;
+    struct Unhook {
+      icgp::CaoMeshBuilder*& hooks;
+      ~Unhook() { hooks = nullptr; }
+    } const unhook{d.cao_builder};
+    vpMbTracker::loadModel(modelFile, verbose, transform(main->first));
   };
   icgp::Mesh part;
   try {

@@ -22,6 +22,8 @@
 using namespace icgp;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
+using icgp::test::files_under;
+using icgp::test::read_bytes;
 using icgp::test::TempDir;
 
 namespace {
@@ -56,20 +58,6 @@ void copy_blender_frames(const fs::path& to, int frames) {
     std::snprintf(name, sizeof name, "camera_poses/Camera_%03d.txt", n);
     copy_contents(kBlender / name, to / name);
   }
-}
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-/// Every regular file under `dir`, relative, sorted.
-std::vector<fs::path> files_under(const fs::path& dir) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), dir));
-  std::sort(files.begin(), files.end());
-  return files;
 }
 
 SequenceOptions cube_intrinsics() {

@@ -21,6 +21,8 @@
 
 using namespace icgp;
 using Catch::Matchers::Contains;
+using icgp::test::files_under;
+using icgp::test::read_bytes;
 using icgp::test::TempDir;
 namespace fs = std::filesystem;
 
@@ -56,19 +58,6 @@ SequenceWriter box_writer(const SequenceWriterOptions& options) {
 /// A rectified pair: the stereo camera is the colour camera moved `baseline` metres along
 /// its x axis (what `icgp make-sequence --stereo-baseline` writes).
 Pose rectified(double baseline) { return Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(-baseline, 0.0, 0.0)); }
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<fs::path> files_under(const fs::path& dir) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), dir));
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 /// Sum of squared grey differences of the (2r+1)^2 patches centred on (u1, v) of `a` and
 /// (u2, v) of `b`.

@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// A temporary folder of a test's own, removed with everything in it at the end of the test.
+// A temporary folder of a test's own, removed with everything in it at the end of the test,
+// and reading back what a test wrote.
 #pragma once
 
 #include <stdlib.h>  // mkdtemp
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace icgp::test {
 
@@ -49,5 +53,20 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+/// The bytes of a file ("" when it cannot be read).
+inline std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Every regular file under `dir`, relative, sorted.
+inline std::vector<std::filesystem::path> files_under(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+    if (entry.is_regular_file()) files.push_back(std::filesystem::relative(entry.path(), dir));
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 }  // namespace icgp::test
