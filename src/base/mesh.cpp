@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/base/mesh.h"
 
+#include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace icgp {
 
@@ -48,5 +50,41 @@ void Mesh::transform(const Posef& T) {
 }
 
 void Mesh::append(const Mesh& other) { parts.insert(parts.end(), other.parts.begin(), other.parts.end()); }
+
+void check_mesh(const Mesh& mesh) {
+  const auto refuse = [&](const std::string& what) {
+    throw std::invalid_argument("mesh '" + mesh.source + "': " + what);
+  };
+  const std::size_t triangles = mesh.triangle_count();
+  if (triangles == 0) refuse("has no triangle (expected a surface mesh with at least one)");
+  if (triangles > MeshLimits::kMaxTriangles)
+    refuse("has " + std::to_string(triangles) + " triangles (expected at most " + std::to_string(MeshLimits::kMaxTriangles) +
+           "; decimate it)");
+  for (std::size_t p = 0; p < mesh.parts.size(); ++p) {
+    const MeshPart& part = mesh.parts[p];
+    const std::string where = "part " + std::to_string(p) + " ";
+    for (std::size_t i = 0; i < part.vertices.size(); ++i) {
+      const Eigen::Vector3f& v = part.vertices[i];
+      if (!v.allFinite() || v.cwiseAbs().maxCoeff() > MeshLimits::kMaxCoordinate)
+        refuse(where + "vertex " + std::to_string(i) + " is (" + std::to_string(v.x()) + ", " + std::to_string(v.y()) +
+               ", " + std::to_string(v.z()) + ") (expected finite coordinates within +-" +
+               std::to_string(int(MeshLimits::kMaxCoordinate)) + " m)");
+    }
+    const auto n = static_cast<long long>(part.vertices.size());
+    for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+      const Eigen::Vector3i& tri = part.triangles[t];
+      if ((tri.array() < 0).any() || (tri.cast<long long>().array() >= n).any())
+        refuse(where + "triangle " + std::to_string(t) + " has index (" + std::to_string(tri.x()) + ", " +
+               std::to_string(tri.y()) + ", " + std::to_string(tri.z()) + ") (expected indices 0 to " +
+               std::to_string(n - 1) + ")");
+    }
+    if (!part.texcoords.empty() && part.texcoords.size() != part.vertices.size())
+      refuse(where + "has " + std::to_string(part.texcoords.size()) + " texture coordinates for " +
+             std::to_string(part.vertices.size()) + " vertices (expected one per vertex or none)");
+  }
+  Eigen::Vector3f lo, hi;
+  mesh.bounds(lo, hi);
+  if (!((hi - lo).maxCoeff() > 0.f)) refuse("has all its vertices at one point (expected a surface with an extent)");
+}
 
 }  // namespace icgp

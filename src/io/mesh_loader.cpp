@@ -30,6 +30,10 @@ void check_scale(const std::string& path, double scale) {
 void check_is_file(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) fail(path, "no such file; expected a mesh file assimp can read");
+  const auto bytes = fs::file_size(path, ec);
+  if (ec) fail(path, "its size cannot be read");
+  if (bytes > kMaxMeshFileBytes)
+    fail(path, std::to_string(bytes) + " bytes (expected at most " + std::to_string(kMaxMeshFileBytes) + " bytes)");
 }
 
 unsigned int import_flags() {
@@ -168,6 +172,7 @@ Mesh load_mesh(const std::string& path, const MeshLoadOptions& options) {
     mesh.parts.push_back(part_of(source, scene, path, options.scale));
   }
   if (mesh.empty()) fail(path, "contains no triangles; expected a surface mesh (points and lines are ignored)");
+  check_mesh(mesh);
   return mesh;
 }
 

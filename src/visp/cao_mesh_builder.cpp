@@ -12,6 +12,7 @@
 #include <visp3/mbt/vpMbtPolygon.h>
 
 #include "icgp/base/standard_stream_capture.h"
+#include "icgp/io/cao_file_check.h"
 
 namespace icgp {
 namespace {
@@ -233,7 +234,30 @@ void CaoMeshBuilder::add_circle(const vpPoint& p1, const vpPoint& p2, const vpPo
   });
 }
 
+namespace {
+
+/// Checks a .cao file before ViSP's parser reads it (that parser does not check indices
+/// or empty faces, and reaches memory it does not own), and its triangles against the mesh
+/// budget before any is made.
+void check_before_parse(const std::string& path, const CaoTessellation& tessellation) {
+  const CaoFileSummary cao = check_cao_file(path);
+  const std::size_t triangles = cao.face_corners + cao.cylinders * 2 * std::size_t(tessellation.cylinder_segments) +
+                                cao.circles * std::size_t(tessellation.circle_segments);
+  if (triangles > MeshLimits::kMaxTriangles)
+    throw std::invalid_argument(path + ": would make up to " + std::to_string(triangles) + " triangles (expected at most " +
+                                std::to_string(MeshLimits::kMaxTriangles) + ")");
+}
+
+}  // namespace
+
 Mesh CaoMeshBuilder::build(const std::function<void()>& parse) {
+  if (is_cao_path(path_)) {
+    try {
+      check_before_parse(path_, tessellation_);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error("cannot load ViSP model '" + path_ + "': " + e.what());
+    }
+  }
   std::string visp_error, diagnostics;
   {
     // When ViSP's parser fails it prints the reason on std::cerr and throws only "cannot read line".
@@ -258,6 +282,7 @@ Mesh CaoMeshBuilder::build(const std::function<void()>& parse) {
     throw std::runtime_error("cannot load ViSP model '" + path_ + "': " + problem + as_clause(diagnostics));
 
   std::cerr << diagnostics;  // warnings of a successful parse stay visible
+  check_mesh(mesh_);
   return std::move(mesh_);
 }
 

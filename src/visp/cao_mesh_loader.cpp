@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <visp3/mbt/vpMbEdgeTracker.h>
 
+#include "icgp/io/cao_file_check.h"
 #include "icgp/io/mesh_loader.h"
 #include "icgp/visp/conversions.h"
 
@@ -44,25 +45,24 @@ std::string lower_extension(const std::string& path) {
   return extension;
 }
 
-bool has_cao_extension(const std::string& path) { return lower_extension(path) == ".cao"; }
-
 /// .cao and .wrl: the formats ViSP's vpMbTracker::loadModel reads (VRML through Coin3D).
 bool has_visp_model_extension(const std::string& path) {
-  return has_cao_extension(path) || lower_extension(path) == ".wrl";
+  return is_cao_path(path) || lower_extension(path) == ".wrl";
 }
 
 }  // namespace
 
 Mesh load_cao_mesh(const std::string& path, const Pose& T, const CaoTessellation& tessellation) {
-  if (tessellation.cylinder_segments < 3 || tessellation.circle_segments < 3)
-    throw std::invalid_argument("load_cao_mesh: cylinders and circles need at least 3 segments (got " +
+  if (tessellation.cylinder_segments < 3 || tessellation.circle_segments < 3 ||
+      tessellation.cylinder_segments > CaoTessellation::kMaxSegments || tessellation.circle_segments > CaoTessellation::kMaxSegments)
+    throw std::invalid_argument("load_cao_mesh: cylinders and circles need 3 to " + std::to_string(CaoTessellation::kMaxSegments) + " segments (got " +
                                 std::to_string(tessellation.cylinder_segments) + " and " +
                                 std::to_string(tessellation.circle_segments) + ")");
   CaoMeshBuilder builder(path, tessellation);
   CaoGeometryCollector collector(builder);
   Mesh mesh = builder.build([&] { collector.loadModel(path, false, to_homogeneous_matrix(T)); });
   // ViSP applies the model transform to .cao files only ("currently only for .cao").
-  if (has_visp_model_extension(path) && !has_cao_extension(path)) mesh.transform(T.cast<float>());
+  if (has_visp_model_extension(path) && !is_cao_path(path)) mesh.transform(T.cast<float>());
   return mesh;
 }
 

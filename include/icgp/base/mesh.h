@@ -25,6 +25,13 @@ struct MeshPart {
   Material material;
 };
 
+/// Bounds every loaded mesh is held to (check_mesh): beyond them model generation and
+/// rendering would take unbounded time or lose float precision.
+struct MeshLimits {
+  static constexpr std::size_t kMaxTriangles = 10000000;
+  static constexpr float kMaxCoordinate = 1e4f;  ///< |x|, |y|, |z| in metres
+};
+
 /// A triangle mesh in metres, the one geometry type every loader produces and every
 /// consumer (renderer, model generation, metrics) reads.
 struct Mesh {
@@ -46,5 +53,11 @@ struct Mesh {
   /// Appends the parts of another mesh.
   void append(const Mesh& other);
 };
+
+/// Throws std::invalid_argument naming `mesh.source` when the mesh is not one icgp can
+/// track: no triangle, more than MeshLimits::kMaxTriangles, a vertex that is not finite or
+/// beyond MeshLimits::kMaxCoordinate, a triangle index outside its part's vertices, texture
+/// coordinates not one per vertex, or all vertices at one point (no extent to view).
+void check_mesh(const Mesh& mesh);
 
 }  // namespace icgp

@@ -10,6 +10,7 @@ namespace icgp {
 
 /// How finely the curved primitives of a .cao model are approximated by triangles.
 struct CaoTessellation {
+  static constexpr int kMaxSegments = 1024;
   int cylinder_segments = 48;  ///< facets around a cylinder's lateral surface (>= 3)
   int circle_segments = 48;    ///< triangles of a circle's disc (>= 3)
 };
