@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <opencv2/core.hpp>
 #include <optional>
 
 #include "commands.h"
@@ -144,8 +145,10 @@ void run_track(const TrackOptions& o) {
     std::printf("\nframe      t mm    r deg  quality  tracked       ms  cue score/sigma (px; depth: m at 1 m)\n");
   const SingleThreadScope single_thread;
   tracker.start(first, initial_pose);
+  int frames_without_depth = 0;
   for (int i = 0; i < sequence.size(); ++i) {
     const Frame frame = i == 0 ? first : sequence.load(i);
+    if (!frame.depths.empty() && cv::countNonZero(frame.depths.front().depth) == 0) ++frames_without_depth;
     double ms = 0.0;
     const BodyResult result = tracker.track(frame, &ms);
     const std::optional<Pose> truth = truth_of(frame, body);
@@ -157,6 +160,10 @@ void run_track(const TrackOptions& o) {
 
   const TrackingSummary summary = evaluation.summary();
   print_summary(summary);
+  if (frames_without_depth > 0)
+    std::cerr << "icgp: warning: " << frames_without_depth << " of " << sequence.size()
+              << " frames have no valid depth measurement (every pixel 0, NaN, inf, negative or beyond "
+              << o.sequence_options.max_depth << " m), so the depth cue measured nothing there; check the depth files\n";
   if (!o.summary.empty()) {
     summary.to_json().write(o.summary);
     std::cout << "wrote      " << o.summary << "\n";

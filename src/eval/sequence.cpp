@@ -128,11 +128,40 @@ void check_size(const cv::Mat& image, const Intrinsics& expected, const fs::path
                    size_text(expected.width, expected.height) + " (" + origin + ")");
 }
 
+/// libjpeg decodes a JPEG cut short with only a warning on stderr, filling the missing rows
+/// with grey, which tracks wrong. A complete file ends with the EOI marker (FF D9); only
+/// padding may follow it.
+void check_jpeg_complete(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension != ".jpg" && extension != ".jpeg") return;
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in.tellg();
+  const std::streamoff tail_size = std::min<std::streamoff>(size, 1024);
+  std::string tail(static_cast<std::size_t>(tail_size), '\0');
+  in.seekg(size - tail_size);
+  in.read(tail.data(), tail_size);
+  std::size_t end = tail.find_last_not_of(std::string("\0 \r\n", 5));
+  if (!in || end == std::string::npos || end < 1 || static_cast<unsigned char>(tail[end - 1]) != 0xFF ||
+      static_cast<unsigned char>(tail[end]) != 0xD9)
+    fail(path, "the JPEG file is cut short (it does not end with the end-of-image marker FF D9); expected a complete image");
+}
+
 cv::Mat read_color_image(const fs::path& path) {
   require_file(path, "colour image");
+  check_jpeg_complete(path);
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
   if (image.empty()) fail(path, "cannot decode colour image");
   return image;
+}
+
+/// A principal point outside the image means the images are not the size the intrinsics
+/// were calibrated for (depth frames of half the size, say).
+void check_principal_point(const fs::path& dir, const Intrinsics& k, const std::string& what) {
+  if (!(k.pu >= -0.5 && k.pu <= k.width - 0.5 && k.pv >= -0.5 && k.pv <= k.height - 0.5))
+    fail(dir, what + " intrinsics put the principal point at (" + std::to_string(k.pu) + ", " + std::to_string(k.pv) +
+                  "), outside the " + size_text(k.width, k.height) + " " + what +
+                  " images (expected images of the size the intrinsics were calibrated for)");
 }
 
 /// OpenCV 4.6 refuses to decode OpenEXR unless OPENCV_IO_ENABLE_OPENEXR is set when the
@@ -553,6 +582,10 @@ Sequence Sequence::open(const std::string& dir_name, const SequenceOptions& opti
               "and color_image_0000.jpg (visp-realsense)");
 
   const Description& d = opened.first;
+  check_principal_point(dir, d.color_intrinsics, "colour");
+  if (!options.grey_without_depth) check_principal_point(dir, d.depth_intrinsics, "depth");
+  if (d.stereo) check_principal_point(dir, d.stereo_intrinsics, "stereo colour");
+  if (!d.depth_T_color.matrix().allFinite()) fail(dir, "the colour-to-depth transform is not finite");
   Sequence s;
   s.directory_ = dir.string();
   s.layout_ = d.layout;

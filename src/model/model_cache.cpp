@@ -6,8 +6,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cmath>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -125,7 +127,11 @@ class MappedFile {
       throw file_error(path,
                        errno == ENOENT ? "does not exist" : std::string("cannot be read: ") + std::strerror(errno));
     struct stat st {};
-    if (::fstat(fd, &st) == 0) size_ = static_cast<std::size_t>(st.st_size);
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+      ::close(fd);
+      throw file_error(path, "is not a regular file (expected an icgp model file)");
+    }
+    size_ = static_cast<std::size_t>(st.st_size);
     if (size_ > 0) {
       void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
       if (p != MAP_FAILED) data_ = static_cast<const unsigned char*>(p);
@@ -161,6 +167,32 @@ std::string model_name(const Mesh& mesh, const ModelGenerationOptions& options) 
 
 void report(const std::string& line) { std::cerr << ("icgp: " + line + "\n") << std::flush; }
 
+/// A valid checksum only says the file is as written: a file written by another program
+/// (or a bug) can hold values no generator makes, which would track silently wrong.
+void check_contents(const ViewpointModel& model, const std::string& path) {
+  const auto corrupted = [&](int view, const std::string& what) {
+    throw file_error(path, "is corrupted (view " + std::to_string(view) + ": " + what + ")");
+  };
+  const auto non_negative = [](float x) { return x >= 0.f; };  // false for NaN
+  for (int v = 0; v < model.n_views(); ++v) {
+    const ModelView& view = model.view(v);
+    if (!view.direction.allFinite() || std::abs(view.direction.norm() - 1.f) > 1e-3f)
+      corrupted(v, "its direction is not a unit vector");
+    if (!std::isfinite(view.measure) || !non_negative(view.measure)) corrupted(v, "its measure is not a finite number >= 0");
+    const int count = model.view_point_count(v);
+    if (count < 0 || count > model.n_points()) corrupted(v, "point count " + std::to_string(count) + " out of range");
+    for (int i = 0; i < count; ++i) {
+      const ModelPoint& point = model.points(v)[i];
+      if (!point.position.allFinite() || !point.normal.allFinite() || !std::isfinite(point.foreground_distance) ||
+          !non_negative(point.foreground_distance) || !non_negative(point.background_distance))
+        corrupted(v, "point " + std::to_string(i) + " has a value that is not finite or negative");
+      const float* offsets = model.depth_offsets(v, i);
+      if (!std::all_of(offsets, offsets + model.n_depth_offsets(), [&](float x) { return std::isfinite(x) && x >= 0.f; }))
+        corrupted(v, "point " + std::to_string(i) + " has a depth offset that is not a finite number >= 0");
+    }
+  }
+}
+
 }  // namespace
 
 std::string default_model_cache_dir() {
@@ -182,6 +214,7 @@ void save_viewpoint_model(const ViewpointModel& model, const std::string& path) 
   if (model.n_views() == 0) throw file_error(path, "cannot hold a model without views");
   const fs::path target(path);
   std::error_code ec;
+  if (fs::is_directory(target, ec)) throw file_error(path, "cannot be written: it is a directory (expected a file path)");
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
   if (ec) throw file_error(path, "cannot be written: " + ec.message());
   // Unique per process and call, so concurrent writers of the same model never collide;
@@ -189,6 +222,7 @@ void save_viewpoint_model(const ViewpointModel& model, const std::string& path) 
   static std::atomic<unsigned> counter{0};
   const std::string temporary = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
   {
+    errno = 0;
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (out) {
       const std::string head = header(model);
@@ -196,7 +230,7 @@ void save_viewpoint_model(const ViewpointModel& model, const std::string& path) 
       out.write(reinterpret_cast<const char*>(model.payload()), static_cast<std::streamsize>(model.payload_size()));
     }
     if (!out) {
-      const std::string why = std::strerror(errno);
+      const std::string why = errno != 0 ? std::strerror(errno) : "the stream failed";
       out.close();
       fs::remove(temporary, ec);
       throw file_error(path, "cannot be written: " + why);
@@ -230,6 +264,11 @@ ViewpointModel load_viewpoint_model(const std::string& path) {
   if (version != kViewpointModelVersion)
     throw file_error(path, "has model version " + std::to_string(version) + ", this program writes version " +
                                std::to_string(kViewpointModelVersion));
+  try {
+    params.validate();  // before payload_size() is trusted with its numbers
+  } catch (const std::invalid_argument& e) {
+    throw file_error(path, std::string("is corrupted (") + e.what() + ")");
+  }
   const bool consistent =
       (kind == static_cast<std::uint32_t>(ViewpointModel::Kind::kRegion) ||
        kind == static_cast<std::uint32_t>(ViewpointModel::Kind::kDepth)) &&
@@ -247,9 +286,7 @@ ViewpointModel load_viewpoint_model(const std::string& path) {
 
   // The model uses the mapped payload in place and keeps the mapping alive.
   ViewpointModel model(static_cast<ViewpointModel::Kind>(kind), params, key, mapped, p + kHeaderSize);
-  for (int v = 0; v < model.n_views(); ++v)
-    if (model.view_point_count(v) < 0 || model.view_point_count(v) > model.n_points())
-      throw file_error(path, "is corrupted (point count out of range)");
+  check_contents(model, path);
   return model;
 }
 

@@ -26,15 +26,27 @@ void ViewpointModelParams::validate() const {
   require(n_divides >= 0 && n_divides <= 6, "n_divides must be from 0 to 6 (got " + std::to_string(n_divides) + ")");
   require(std::isfinite(sphere_radius) && sphere_radius > 0.0,
           "sphere_radius must be positive (got " + std::to_string(sphere_radius) + ")");
-  require(image_size >= 16, "image_size must be at least 16 px (got " + std::to_string(image_size) + ")");
+  require(image_size >= 16 && image_size <= kMaxImageSize, "image_size must be from 16 to " + std::to_string(kMaxImageSize) +
+                                                                 " px (got " + std::to_string(image_size) + ")");
   require(image_margin >= 0 && 2 * image_margin < image_size - 2,
           "image_margin must be non-negative and leave room for the object (got " + std::to_string(image_margin) +
               " px of " + std::to_string(image_size) + ")");
-  require(n_points >= 1, "n_points must be positive (got " + std::to_string(n_points) + ")");
+  require(n_points >= 1 && n_points <= kMaxPoints,
+          "n_points must be from 1 to " + std::to_string(kMaxPoints) + " (got " + std::to_string(n_points) + ")");
   require(std::isfinite(stride_depth_offset) && stride_depth_offset > 0.0,
           "stride_depth_offset must be positive (got " + std::to_string(stride_depth_offset) + ")");
   require(std::isfinite(max_radius_depth_offset) && max_radius_depth_offset >= 0.0,
           "max_radius_depth_offset must be non-negative (got " + std::to_string(max_radius_depth_offset) + ")");
+  require(max_radius_depth_offset / stride_depth_offset <= kMaxDepthOffsets,
+          "max_radius_depth_offset / stride_depth_offset must be at most " + std::to_string(kMaxDepthOffsets) +
+              " depth offsets (got " + std::to_string(max_radius_depth_offset) + " / " +
+              std::to_string(stride_depth_offset) + ")");
+  require(sphere_radius <= 100.0, "sphere_radius must be at most 100 m (got " + std::to_string(sphere_radius) + ")");
+  require(ViewpointModel::payload_size(*this) <= kMaxPayloadBytes,
+          "n_divides " + std::to_string(n_divides) + ", n_points " + std::to_string(n_points) + " and " +
+              std::to_string(n_depth_offsets()) + " depth offsets make a model of " +
+              std::to_string(ViewpointModel::payload_size(*this) >> 20) + " MiB (expected at most " +
+              std::to_string(kMaxPayloadBytes >> 20) + " MiB)");
   require(min_contour_length >= 0,
           "min_contour_length must be non-negative (got " + std::to_string(min_contour_length) + ")");
   require(normal_chord_offset >= 1,

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "icgp/base/stop_request.h"
 #include "icgp/model/icosphere.h"
 #include "icgp/model/model_key.h"
 #include "icgp/render/renderer.h"
@@ -51,8 +52,11 @@ class Progress {
     if (done < n_views_ && now - last_print_ < kInterval) return;
     last_print_ = now;
     std::ostringstream line;  // one write, so lines of concurrent generations do not interleave
-    line << label_ << ": " << done << "/" << n_views_ << " views, " << std::fixed << std::setprecision(1)
-         << std::chrono::duration<double>(now - start_).count() << " s\n";
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    line << label_ << ": " << done << "/" << n_views_ << " views, " << std::fixed << std::setprecision(1) << elapsed
+         << " s";
+    if (done < n_views_) line << ", about " << elapsed / done * (n_views_ - done) << " s left";
+    line << "\n";
     std::cerr << line.str() << std::flush;
   }
 
@@ -129,6 +133,8 @@ class SharedViewsGeneration {
       SilhouetteImages images;
       InverseDepthPyramid pyramid;
       for (int v = next_view_++; v < static_cast<int>(directions_.size()) && !failed_; v = next_view_++) {
+        // A model is written whole or not at all, so stopping drops this generation only.
+        if (stop_requested()) throw StopRequested("stopped on request while generating the " + label());
         RenderedView view;
         view.index = v;
         view.direction = directions_[v];

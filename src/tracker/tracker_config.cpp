@@ -25,24 +25,37 @@ using yaml::kBool;
 using yaml::kFraction;
 using yaml::kNonEmptyString;
 using yaml::kNonNegative;
-using yaml::kNonNegativeInt;
 using yaml::kPositive;
-using yaml::kPositiveInt;
 using yaml::kString;
 using yaml::Rule;
 
-/// The tracker configuration's wording, which docs/configuration.md quotes: "expected …"
-/// without the value, unknown keys listed as "valid keys of <section>".
-const yaml::Wording kWording{"file", /*echo_value=*/false, yaml::KeyListWording::kValidKeysOf};
+/// The tracker configuration's wording, which docs/configuration.md quotes: "expected …,
+/// got <value>", unknown keys listed as "valid keys of <section>".
+const yaml::Wording kWording{"file", /*echo_value=*/true, yaml::KeyListWording::kValidKeysOf};
+
+/// An integer from Lo to Hi. The upper bounds of counts keep a file from asking for
+/// unbounded memory or time (docs/configuration.md lists them); they are far above any
+/// value that tracks better.
+template <int Lo, int Hi>
+Rule<int> int_range() {
+  static const std::string text = "an integer from " + std::to_string(Lo) + " to " + std::to_string(Hi);
+  return {text.c_str(), [](const int& v) { return v >= Lo && v <= Hi; }};
+}
+
+/// Lists indexed by the correspondence iteration need no more entries than iterations.
+constexpr std::size_t kMaxIterationListSize = 100;
 
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }
 
-const Rule<std::vector<int>> kPositiveInts{"a non-empty list of positive integers", [](const std::vector<int>& v) {
-  return !v.empty() && std::all_of(v.begin(), v.end(), [](int x) { return x > 0; });
+const Rule<std::vector<int>> kScales{"a list of 1 to 100 integers from 1 to 64", [](const std::vector<int>& v) {
+  return !v.empty() && v.size() <= kMaxIterationListSize &&
+         std::all_of(v.begin(), v.end(), [](int x) { return x > 0 && x <= 64; });
 }};
-const Rule<std::vector<double>> kPositives{"a non-empty list of positive numbers", [](const std::vector<double>& v) {
-  return !v.empty() && std::all_of(v.begin(), v.end(), positive);
+const Rule<std::vector<double>> kPositives{"a list of 1 to 100 positive numbers", [](const std::vector<double>& v) {
+  return !v.empty() && v.size() <= kMaxIterationListSize && std::all_of(v.begin(), v.end(), positive);
 }};
+const Rule<double> kSphereRadius{"a positive number of at most 100 (metres)",
+                                 [](const double& v) { return positive(v) && v <= 100.0; }};
 
 /// Shortest text that reads back as the same double, with a ".0" on whole numbers.
 void emit(YAML::Emitter& out, double v) {
@@ -125,8 +138,8 @@ Field<S> choice(const char* name, E S::*member, const std::array<E, N>& values) 
 }
 
 const Fields<TrackerParams> kTrackerFields = {
-    field("n_corr_iterations", &TrackerParams::n_corr_iterations, kPositiveInt),
-    field("n_update_iterations", &TrackerParams::n_update_iterations, kPositiveInt),
+    field("n_corr_iterations", &TrackerParams::n_corr_iterations, int_range<1, 100>()),
+    field("n_update_iterations", &TrackerParams::n_update_iterations, int_range<1, 100>()),
     field("tikhonov_rotation", &TrackerParams::tikhonov_rotation, kPositive),
     field("tikhonov_translation", &TrackerParams::tikhonov_translation, kPositive),
     field("quality_threshold", &TrackerParams::quality_threshold, kFraction),
@@ -135,15 +148,14 @@ const Fields<TrackerParams> kTrackerFields = {
 const Fields<ViewpointModelParams> kModelFields = {
     field("n_divides", &ViewpointModelParams::n_divides,
           Rule<int>{"an integer from 0 to 6", [](const int& v) { return v >= 0 && v <= 6; }}),
-    field("sphere_radius", &ViewpointModelParams::sphere_radius, kPositive),
-    field("image_size", &ViewpointModelParams::image_size,
-          Rule<int>{"an integer of at least 64", [](const int& v) { return v >= 64; }}),
-    field("image_margin", &ViewpointModelParams::image_margin, kNonNegativeInt),
-    field("n_points", &ViewpointModelParams::n_points, kPositiveInt),
+    field("sphere_radius", &ViewpointModelParams::sphere_radius, kSphereRadius),
+    field("image_size", &ViewpointModelParams::image_size, int_range<64, ViewpointModelParams::kMaxImageSize>()),
+    field("image_margin", &ViewpointModelParams::image_margin, int_range<0, ViewpointModelParams::kMaxImageSize / 2>()),
+    field("n_points", &ViewpointModelParams::n_points, int_range<1, ViewpointModelParams::kMaxPoints>()),
     field("stride_depth_offset", &ViewpointModelParams::stride_depth_offset, kPositive),
     field("max_radius_depth_offset", &ViewpointModelParams::max_radius_depth_offset, kPositive),
-    field("min_contour_length", &ViewpointModelParams::min_contour_length, kNonNegativeInt),
-    field("normal_chord_offset", &ViewpointModelParams::normal_chord_offset, kPositiveInt),
+    field("min_contour_length", &ViewpointModelParams::min_contour_length, int_range<0, 100000>()),
+    field("normal_chord_offset", &ViewpointModelParams::normal_chord_offset, int_range<1, 100>()),
     field("seed", &ViewpointModelParams::seed, Rule<std::uint64_t>{"a non-negative integer", any<std::uint64_t>}),
 };
 
@@ -151,24 +163,24 @@ const Fields<NoiseParams> kNoiseFields = {
     field("estimate", &NoiseParams::estimate, kBool),
     field("robust", &NoiseParams::robust, kBool),
     field("floor", &NoiseParams::floor, kNonNegative),
-    field("min_residuals", &NoiseParams::min_residuals, kPositiveInt),
+    field("min_residuals", &NoiseParams::min_residuals, int_range<1, 1000000>()),
     field("tukey_constant", &NoiseParams::tukey_constant, kPositive),
 };
 
 const Fields<RegionParams> kRegionFields = {
     field("color_camera", &RegionParams::color_camera, kNonEmptyString),
     field("depth_camera", &RegionParams::depth_camera, kString),
-    field("n_lines_max", &RegionParams::n_lines_max, kPositiveInt),
+    field("n_lines_max", &RegionParams::n_lines_max, int_range<1, 5000>()),
     field("min_continuous_distance", &RegionParams::min_continuous_distance, kNonNegative),
-    field("function_length", &RegionParams::function_length, kPositiveInt),
-    field("distribution_length", &RegionParams::distribution_length, kPositiveInt),
+    field("function_length", &RegionParams::function_length, int_range<1, 100>()),
+    field("distribution_length", &RegionParams::distribution_length, int_range<1, 100>()),
     field("function_amplitude", &RegionParams::function_amplitude,
           Rule<double>{"a number between 0 and 0.5 (both excluded)", [](const double& v) { return v > 0.0 && v < 0.5; }}),
     field("function_slope", &RegionParams::function_slope, kNonNegative),
     field("learning_rate", &RegionParams::learning_rate, kPositive),
-    field("n_global_iterations", &RegionParams::n_global_iterations, kNonNegativeInt),
+    field("n_global_iterations", &RegionParams::n_global_iterations, int_range<0, 100>()),
     field("subpixel_posterior", &RegionParams::subpixel_posterior, kBool),
-    field("scales", &RegionParams::scales, kPositiveInts),
+    field("scales", &RegionParams::scales, kScales),
     field("standard_deviations", &RegionParams::standard_deviations, kPositives),
     section("noise", &RegionParams::noise, kNoiseFields),
     field("n_histogram_bins", &RegionParams::n_histogram_bins,
@@ -180,13 +192,13 @@ const Fields<RegionParams> kRegionFields = {
     field("measure_occlusions", &RegionParams::occlusion, &OcclusionParams::measure, kBool),
     field("occlusion_radius", &RegionParams::occlusion, &OcclusionParams::radius, kNonNegative),
     field("occlusion_threshold", &RegionParams::occlusion, &OcclusionParams::threshold, kNonNegative),
-    field("n_unoccluded_iterations", &RegionParams::n_unoccluded_iterations, kNonNegativeInt),
-    field("min_n_unoccluded_lines", &RegionParams::min_n_unoccluded_lines, kNonNegativeInt),
+    field("n_unoccluded_iterations", &RegionParams::n_unoccluded_iterations, int_range<0, 1000>()),
+    field("min_n_unoccluded_lines", &RegionParams::min_n_unoccluded_lines, int_range<0, 5000>()),
 };
 
 const Fields<DepthParams> kDepthFields = {
     field("depth_camera", &DepthParams::depth_camera, kNonEmptyString),
-    field("n_points_max", &DepthParams::n_points_max, kPositiveInt),
+    field("n_points_max", &DepthParams::n_points_max, int_range<1, 5000>()),
     field("stride_length", &DepthParams::stride_length, kPositive),
     field("considered_distances", &DepthParams::considered_distances, kPositives),
     field("standard_deviations", &DepthParams::standard_deviations, kPositives),
@@ -194,29 +206,28 @@ const Fields<DepthParams> kDepthFields = {
     field("measure_occlusions", &DepthParams::occlusion, &OcclusionParams::measure, kBool),
     field("occlusion_radius", &DepthParams::occlusion, &OcclusionParams::radius, kNonNegative),
     field("occlusion_threshold", &DepthParams::occlusion, &OcclusionParams::threshold, kNonNegative),
-    field("n_unoccluded_iterations", &DepthParams::n_unoccluded_iterations, kNonNegativeInt),
-    field("min_n_unoccluded_points", &DepthParams::min_n_unoccluded_points, kNonNegativeInt),
+    field("n_unoccluded_iterations", &DepthParams::n_unoccluded_iterations, int_range<0, 1000>()),
+    field("min_n_unoccluded_points", &DepthParams::min_n_unoccluded_points, int_range<0, 5000>()),
 };
 
 const Fields<TextureParams> kTextureFields = {
     field("color_camera", &TextureParams::color_camera, kNonEmptyString),
     field("depth_camera", &TextureParams::depth_camera, kString),
     choice("descriptor", &TextureParams::descriptor, kDescriptors),
-    field("focused_image_size", &TextureParams::focused_image_size,
-          Rule<int>{"an integer of at least 64", [](const int& v) { return v >= 64; }}),
-    field("orb_n_features", &TextureParams::orb_n_features, kPositiveInt),
-    field("orb_n_levels", &TextureParams::orb_n_levels, kPositiveInt),
+    field("focused_image_size", &TextureParams::focused_image_size, int_range<64, ViewpointModelParams::kMaxImageSize>()),
+    field("orb_n_features", &TextureParams::orb_n_features, int_range<1, 100000>()),
+    field("orb_n_levels", &TextureParams::orb_n_levels, int_range<1, 32>()),
     field("orb_scale_factor", &TextureParams::orb_scale_factor,
           Rule<double>{"a number greater than 1", [](const double& v) { return std::isfinite(v) && v > 1.0; }}),
-    field("sift_n_octave_layers", &TextureParams::sift_n_octave_layers, kPositiveInt),
+    field("sift_n_octave_layers", &TextureParams::sift_n_octave_layers, int_range<1, 16>()),
     field("sift_contrast_threshold", &TextureParams::sift_contrast_threshold, kPositive),
     field("sift_edge_threshold", &TextureParams::sift_edge_threshold, kPositive),
     field("sift_sigma", &TextureParams::sift_sigma, kPositive),
     field("ratio_test", &TextureParams::ratio_test,
           Rule<double>{"a number in (0, 1]", [](const double& v) { return v > 0.0 && v <= 1.0; }}),
     field("keyframe_orientation_threshold_deg", &TextureParams::keyframe_orientation_threshold_deg, kPositive),
-    field("keyframe_max_age", &TextureParams::keyframe_max_age, kNonNegativeInt),
-    field("min_keyframe_points", &TextureParams::min_keyframe_points, kNonNegativeInt),
+    field("keyframe_max_age", &TextureParams::keyframe_max_age, int_range<0, 1000000>()),
+    field("min_keyframe_points", &TextureParams::min_keyframe_points, int_range<0, 100000>()),
     field("tukey_norm_constant", &TextureParams::tukey_norm_constant, kPositive),
     field("standard_deviations", &TextureParams::standard_deviations, kPositives),
     section("noise", &TextureParams::noise, kNoiseFields),

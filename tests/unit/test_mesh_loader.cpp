@@ -461,3 +461,31 @@ TEST_CASE("models/labelled_can: a printed side and plain caps as two regions of 
   CHECK(caps.parts[0].material.texture_bgr.empty());
   CHECK(caps.parts[0].material.diffuse_rgb.isApprox(Eigen::Vector3f(0.85f, 0.10f, 0.12f), 1e-3f));
 }
+
+TEST_CASE("check_mesh refuses what no view could be made of, naming the mesh and the element") {
+  Mesh mesh;
+  mesh.source = "hand-made";
+  mesh.parts.emplace_back();
+  icgp::MeshPart& part = mesh.parts.front();
+  part.vertices = {{0, 0, 0}, {0.1f, 0, 0}, {0, 0.1f, 0}};
+  CHECK_THAT(message_of<std::invalid_argument>([&] { icgp::check_mesh(mesh); }), Contains("mesh 'hand-made': has no triangle"));
+  part.triangles = {{0, 1, 2}};
+  CHECK_NOTHROW(icgp::check_mesh(mesh));
+  part.vertices[1].y() = std::numeric_limits<float>::quiet_NaN();
+  CHECK_THAT(message_of<std::invalid_argument>([&] { icgp::check_mesh(mesh); }),
+             Contains("part 0 vertex 1 is (0.100000, nan, 0.000000) (expected finite coordinates within +-10000 m)"));
+  part.vertices[1] = {0.1f, 0, 0};
+  part.triangles.push_back({0, 2, 3});
+  CHECK_THAT(message_of<std::invalid_argument>([&] { icgp::check_mesh(mesh); }),
+             Contains("part 0 triangle 1 has index (0, 2, 3) (expected indices 0 to 2)"));
+  part.triangles.pop_back();
+  part.vertices = {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}};
+  CHECK_THAT(message_of<std::invalid_argument>([&] { icgp::check_mesh(mesh); }), Contains("has all its vertices at one point"));
+}
+
+TEST_CASE("a mesh file with a vertex beyond the coordinate bound is refused before it is used") {
+  TempDir dir("icgp_mesh_loader");
+  const std::string far = dir.write("far.obj", "v 0 0 0\nv 1e6 0 0\nv 0 1 0\nf 1 2 3\n");
+  CHECK_THAT(message_of<std::invalid_argument>([&] { load_mesh(far); }),
+             Contains(far) && Contains("vertex 1 is (1000000.000000, 0.000000, 0.000000)"));
+}

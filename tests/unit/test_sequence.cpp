@@ -226,6 +226,28 @@ TEST_CASE("sequence errors name the file and what was expected") {
     const Sequence seq = Sequence::open(dir.path().string(), cube_intrinsics());
     REQUIRE_THROWS_WITH(seq.load(3), Contains("depth_image_0003.bin") && Contains("100x80") && Contains("640x480"));
   }
+  SECTION("depth frames of half the size the depth intrinsics were calibrated for") {
+    TempDir dir("icgp_test_sequence_half_depth");
+    copy_tree(kRealsense, dir.path());
+    for (const auto& entry : fs::directory_iterator(dir.path())) {
+      if (entry.path().extension() != ".bin") continue;
+      const std::uint32_t header[2] = {240, 320};  // height, width (little-endian host assumed)
+      std::ofstream out(entry.path(), std::ios::binary | std::ios::trunc);
+      out.write(reinterpret_cast<const char*>(header), sizeof header);
+      out << std::string(2 * 240 * 320, '\x01');
+    }
+    REQUIRE_THROWS_WITH(Sequence::open(dir.path().string(), cube_intrinsics()),
+                        Contains("depth intrinsics put the principal point at") && Contains("outside the 320x240 depth"));
+  }
+  SECTION("a colour JPEG cut short is refused, not tracked with grey rows") {
+    TempDir dir("icgp_test_sequence_cut_jpeg");
+    copy_blender_frames(dir.path(), 3);
+    const fs::path jpeg = dir.path() / "images/0002.jpg";
+    fs::resize_file(jpeg, fs::file_size(jpeg) / 2);
+    const Sequence seq = Sequence::open(dir.path().string(), visp_sequence_options());
+    CHECK_NOTHROW(seq.load(0));
+    REQUIRE_THROWS_WITH(seq.load(1), Contains("0002.jpg") && Contains("cut short"));
+  }
   SECTION("malformed ground-truth pose") {
     TempDir dir("icgp_test_sequence_pose");
     copy_blender_frames(dir.path(), 3);

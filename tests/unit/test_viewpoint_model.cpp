@@ -573,3 +573,55 @@ TEST_CASE("model cache: an unwritable folder still gives the model, with a warni
   CHECK(!info[0].saved);
   CHECK_THAT(err.text(), Catch::Contains("warning"));
 }
+
+TEST_CASE("model cache: a file with an intact checksum but values no generator makes is refused") {
+  icgp::test::TempDir folder("contents");
+  // A model as the generator's first constructor makes it (every array zero), filled by hand:
+  // save_viewpoint_model writes it with a valid checksum, so only the contents are wrong.
+  ViewpointModelParams params = coarse_params();
+  params.n_divides = 0;
+  const auto model_with = [&](const std::function<void(ViewpointModel&)>& fill) {
+    ViewpointModel model(ViewpointModel::Kind::kDepth, params, 42);
+    for (int v = 0; v < model.n_views(); ++v) {
+      model.mutable_views()[v].direction = Eigen::Vector3f::UnitZ();
+      model.mutable_counts()[v] = 1;
+      model.mutable_points()[v * model.n_points()].normal = Eigen::Vector3f::UnitZ();
+    }
+    fill(model);
+    const std::string path = (folder.path() / "model.icgpmodel").string();
+    save_viewpoint_model(model, path);
+    return path;
+  };
+  CHECK_NOTHROW(load_viewpoint_model(model_with([](ViewpointModel&) {})));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  CHECK_THROWS_WITH(load_viewpoint_model(model_with([&](ViewpointModel& m) { m.mutable_points()[0].position.x() = nan; })),
+                    Catch::Contains("is corrupted (view 0: point 0 has a value that is not finite or negative)"));
+  CHECK_THROWS_WITH(load_viewpoint_model(model_with([&](ViewpointModel& m) { m.mutable_views()[3].direction *= 2.f; })),
+                    Catch::Contains("is corrupted (view 3: its direction is not a unit vector)"));
+  CHECK_THROWS_WITH(load_viewpoint_model(model_with([&](ViewpointModel& m) { m.mutable_counts()[5] = -1; })),
+                    Catch::Contains("is corrupted (view 5: point count -1 out of range)"));
+  CHECK_THROWS_WITH(load_viewpoint_model(model_with([&](ViewpointModel& m) { m.mutable_depth_offsets()[0] = -1.f; })),
+                    Catch::Contains("view 0: point 0 has a depth offset that is not a finite number >= 0"));
+}
+
+TEST_CASE("model cache: a folder where a file belongs is named as such, when saving and loading") {
+  icgp::test::TempDir folder("directory");
+  const std::string path = (folder.path() / "a-folder.icgpmodel").string();
+  fs::create_directories(path);
+  CHECK_THROWS_WITH(save_viewpoint_model(box_models().region, path),
+                    Catch::Contains(path) && Catch::Contains("cannot be written: it is a directory"));
+  CHECK_THROWS_WITH(load_viewpoint_model(path), Catch::Contains(path) && Catch::Contains("is not a regular file"));
+}
+
+TEST_CASE("viewpoint model: parameters that would make a model beyond the resource bounds are refused") {
+  ViewpointModelParams p;
+  p.image_size = 100000;
+  CHECK_THROWS_WITH(p.validate(), Catch::Contains("image_size must be from 16 to 8192 px (got 100000)"));
+  p = ViewpointModelParams();
+  p.n_points = 2000000000;
+  CHECK_THROWS_WITH(p.validate(), Catch::Contains("n_points must be from 1 to 5000"));
+  p = ViewpointModelParams();
+  p.n_divides = 6;
+  p.n_points = 5000;  // 40962 views x 5000 points x (32 + 25 x 4) bytes
+  CHECK_THROWS_WITH(p.validate(), Catch::Contains("make a model of 25783 MiB (expected at most 4096 MiB)"));
+}

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 
@@ -10,6 +11,12 @@ namespace icgp {
 /// How a sparse viewpoint model is generated (ALGORITHMS.md §3). Every field is part of
 /// the cache key: changing any of them regenerates the model.
 struct ViewpointModelParams {
+  // Resource bounds (validate()): beyond them a model would take unbounded memory or time.
+  static constexpr int kMaxImageSize = 8192;
+  static constexpr int kMaxPoints = 5000;
+  static constexpr int kMaxDepthOffsets = 1000;
+  static constexpr std::size_t kMaxPayloadBytes = std::size_t(4) << 30;
+
   int n_divides = 4;                      ///< icosphere subdivisions: 4 -> 2562 views
   double sphere_radius = 0.8;             ///< metres, camera distance to the body origin
   int image_size = 2000;                  ///< square render size in pixels
@@ -23,7 +30,8 @@ struct ViewpointModelParams {
 
   int n_depth_offsets() const;  ///< radii (k+1) * stride_depth_offset up to max_radius_depth_offset
   int n_views() const;          ///< 10 * 4^n_divides + 2
-  /// Throws std::invalid_argument naming the first field out of range.
+  /// Throws std::invalid_argument naming the first field out of range, or the fields whose
+  /// product makes a model larger than kMaxPayloadBytes.
   void validate() const;
 };
 
