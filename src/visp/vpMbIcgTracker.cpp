@@ -324,6 +324,12 @@ void require_known_cameras(const icgp::CameraRig& rig, const std::string& call, 
   }());
 }
 
+template <typename T>
+void delete_all(std::vector<T*>& owned) {
+  for (T* p : owned) delete p;
+  owned.clear();
+}
+
 }  // namespace
 
 void vpMbIcgTracker::clear_model() {
@@ -331,7 +337,12 @@ void vpMbIcgTracker::clear_model() {
   impl_->has_visp_model_part = false;
   impl_->model_changed();
   faces.reset();
+  // vpMbTracker owns the projection-error model its parser filled, and only its destructor
+  // deletes it: a model loaded next would otherwise add to the old one's edges.
   m_projectionErrorFaces.reset();
+  delete_all(m_projectionErrorLines);
+  delete_all(m_projectionErrorCylinders);
+  delete_all(m_projectionErrorCircles);
 }
 
 void vpMbIcgTracker::reInitModel(const vpImage<unsigned char>& I, const std::string& cad_name,
@@ -758,16 +769,16 @@ void vpMbIcgTracker::resetTracker() {
     camera.parameters = vpCameraParameters();
     camera.parameters_set = false;
   }
+  clear_model();
   impl_ = std::make_unique<Impl>(std::move(rig));
   m_cMo.eye();
   m_cam = vpCameraParameters();
-  m_error.resize(0);
-  m_w.resize(0);
-  faces.reset();
-  m_projectionErrorFaces.reset();
+  // clear(), not resize(0): ViSP's resize to 0 hands memset a null pointer.
+  m_error.clear();
+  m_w.clear();
   modelInitialised = false;
   projectionError = 90.0;
-  covarianceMatrix.resize(0, 0);
+  covarianceMatrix.clear();
 }
 
 // ------------------------------------------------------ ViSP's .cao / .wrl parser hooks

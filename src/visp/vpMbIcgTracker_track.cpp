@@ -277,8 +277,10 @@ void vpMbIcgTracker::getPose(std::map<std::string, vpHomogeneousMatrix>& mapOfCa
 }
 
 void vpMbIcgTracker::computeVVSInit() {
-  m_error.resize(0);
-  m_w.resize(0);
+  // clear(), not resize(0): ViSP's resize to 0 hands memset a null pointer (undefined
+  // behaviour that UBSan reports).
+  m_error.clear();
+  m_w.clear();
 }
 
 void vpMbIcgTracker::computeVVSInteractionMatrixAndResidu() {
