@@ -131,21 +131,30 @@ inline void read_cloud(DepthInput& depth, FrameAssembler::PointReader point_at, 
     depth.points = std::move(point_at);
 }
 
-/// Runs `body`, turning a std:: exception from icgp's core into a vpException naming the
-/// call: ViSP code catches vpException, and nothing else may leave vpMbIcgTracker.
-/// std::invalid_argument is the caller's mistake (badValue); anything else a fatal error.
+/// What a failure of icgp's core or of a library under it means in a call (see guarded).
+enum class Failure {
+  kError,     ///< an error of the call: vpException::fatalError
+  kTracking,  ///< the frame could not be tracked: vpTrackingException::fatalError
+};
+
+/// Rethrows the exception being handled as the vpException it means, its message kept and
+/// prefixed with "vpMbIcgTracker::<call>: ". Call it only from a catch block.
+/// vpException (and subclasses) pass unchanged; std::invalid_argument, std::out_of_range and
+/// std::domain_error are the caller's values (badValue); std::bad_alloc, std::length_error
+/// and OpenCV's out-of-memory error are memoryAllocationError; anything else, yaml-cpp's and
+/// OpenCV's other errors included, is `failure`.
+[[noreturn]] void rethrow_as_visp_exception(const std::string& call, Failure failure);
+
+/// Runs `body` with every exception it throws made a ViSP one (rethrow_as_visp_exception):
+/// ViSP programs catch vpException, and nothing else may leave vpMbIcgTracker. Every public
+/// method that reaches icgp's core, OpenCV, yaml-cpp or an allocation sized by its
+/// arguments runs through it; nested calls keep the innermost call's name.
 template <typename Body>
-auto guarded(const std::string& call, Body&& body) -> decltype(body()) {
+auto guarded(const std::string& call, Body&& body, Failure failure = Failure::kError) -> decltype(body()) {
   try {
     return body();
-  } catch (const vpException&) {
-    throw;
-  } catch (const std::invalid_argument& e) {
-    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": " + e.what());
-  } catch (const std::bad_alloc&) {
-    throw vpException(vpException::memoryAllocationError, "vpMbIcgTracker::" + call + ": out of memory");
-  } catch (const std::exception& e) {
-    throw vpException(vpException::fatalError, "vpMbIcgTracker::" + call + ": " + e.what());
+  } catch (...) {
+    rethrow_as_visp_exception(call, failure);
   }
 }
 

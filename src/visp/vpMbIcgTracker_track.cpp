@@ -13,6 +13,7 @@
 
 using icgp::CueKind;
 using icgp::visp_detail::DepthInput;
+using icgp::visp_detail::Failure;
 using icgp::visp_detail::guarded;
 
 // ------------------------------------------------------------------------------ tracking
@@ -110,17 +111,19 @@ void vpMbIcgTracker::track_step(const vpImage<unsigned char>* grey, const std::s
     const bool none_measured = std::all_of(result.modalities.begin(), result.modalities.end(),
                                            [](const icgp::ModalityQuality& q) { return q.abstained; });
     if (starting && none_measured) d.quality = 1.0;
-  });
-  m_cMo = icgp::to_homogeneous_matrix(body.reference_T_body);
-  d.hessian = d.tracker->last_hessian(Impl::kBody);
-  computeVVSInit();
-  computeVVSInteractionMatrixAndResidu();
+  }, Failure::kTracking);
+  guarded(call, [&] {
+    m_cMo = icgp::to_homogeneous_matrix(body.reference_T_body);
+    d.hessian = d.tracker->last_hessian(Impl::kBody);
+    computeVVSInit();
+    computeVVSInteractionMatrixAndResidu();
 
-  if (computeCovariance) covarianceMatrix = getCovarianceMatrix();
-  if (computeProjError && d.has_visp_model_part) {
-    const vpImage<unsigned char>* image = grey ? grey : d.assembler.grey_image(d.rig.reference());
-    if (image) projectionError = computeCurrentProjectionError(*image, m_cMo, m_cam);
-  }
+    if (computeCovariance) covarianceMatrix = getCovarianceMatrix();
+    if (computeProjError && d.has_visp_model_part) {
+      const vpImage<unsigned char>* image = grey ? grey : d.assembler.grey_image(d.rig.reference());
+      if (image) projectionError = computeCurrentProjectionError(*image, m_cMo, m_cam);
+    }
+  });
 }
 
 void vpMbIcgTracker::track(const vpImage<unsigned char>& I) {
@@ -259,8 +262,10 @@ void vpMbIcgTracker::testTracking() {
 double vpMbIcgTracker::getTrackingQuality() const { return impl_->quality; }
 
 void vpMbIcgTracker::setMask(const vpImage<bool>& mask) {
-  vpMbTracker::setMask(mask);
-  impl_->assembler.set_mask(mask);
+  guarded("setMask", [&] {
+    vpMbTracker::setMask(mask);
+    impl_->assembler.set_mask(mask);
+  });
 }
 
 // ----------------------------------------------------------------------------- results

@@ -3,14 +3,64 @@
 // vpException (vpTrackingException for a frame that cannot be tracked) whose message names
 // the method and what is at fault, never in another exception type, a crash or a hang.
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <visp3/core/vpException.h>
+#include <visp3/core/vpTrackingException.h>
 
+#include "icgp/eval/metrics.h"
+#include "icgp/visp/conversions.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
 #include "vpmbicgtracker_test_setup.h"
 
 using namespace icgp;
+using Catch::Matchers::Contains;
 
 namespace {
 
 const std::string kTeaboxCao = (test::kTeaboxBlender / "teabox.cao").string();
+
+/// A file in the temporary directory with `text`, removed with the object.
+struct TempFile {
+  std::filesystem::path path;
+  TempFile(const std::string& name, const std::string& text)
+      : path(std::filesystem::temp_directory_path() / ("icgp-exceptions-" + name)) {
+    std::ofstream(path) << text;
+  }
+  ~TempFile() { std::filesystem::remove(path); }
+};
+
+/// ViSP's RGB-D rig (colour "Camera1", depth "Camera2") with the teabox, initialised at the
+/// first frame's ground truth moved by `offset` (camera frame, metres).
+struct RgbdTracking {
+  std::vector<Frame> frames = test::teabox_frames(3);
+  const Frame& frame = frames.front();
+  VispRgbdFrame input;
+  vpMbIcgTracker tracker{kRgbdTrackerTypes};
+  std::map<std::string, const vpImage<unsigned char>*> images;
+  std::map<std::string, const std::vector<vpColVector>*> clouds;
+  std::map<std::string, unsigned int> widths, heights;
+
+  explicit RgbdTracking(const Eigen::Vector3d& offset = Eigen::Vector3d::Zero()) {
+    test::configure_for_tests(tracker);
+    input.convert(frame);
+    tracker.loadModel(kTeaboxCao, kTeaboxCao);
+    tracker.setCameraParameters(to_camera_parameters(frame.colors.front().intrinsics),
+                                to_camera_parameters(frame.depths.front().intrinsics));
+    tracker.setCameraTransformationMatrix(kDepthCamera,
+                                          to_homogeneous_matrix(frame.depths.front().camera_T_reference));
+    const Pose& truth = *frame.truth();
+    tracker.initFromPose(input.grey, to_homogeneous_matrix(Pose(truth.rotation(), truth.translation() + offset)));
+    images = {{kColorCamera, &input.grey}};
+    clouds = {{kDepthCamera, &input.point_cloud}};
+    widths = {{kDepthCamera, input.depth_width}};
+    heights = {{kDepthCamera, input.depth_height}};
+  }
+
+  void track() { tracker.track(images, clouds, widths, heights); }
+  Pose pose() const { return to_pose(tracker.getPose()); }
+};
 
 /// vpMbTracker's projection-error model (protected: ViSP offers no accessor).
 class ProjectionErrorModel : public vpMbIcgTracker {
@@ -20,6 +70,98 @@ class ProjectionErrorModel : public vpMbIcgTracker {
 };
 
 }  // namespace
+
+TEST_CASE("vpMbIcgTracker exceptions: files are ioError when missing or unreadable, badValue when malformed") {
+  vpMbIcgTracker tracker;
+  const std::filesystem::path missing = std::filesystem::temp_directory_path() / "icgp-no-such-dir";
+
+  SECTION("missing model file") {
+    REQUIRE_THROWS_AS(tracker.loadModel((missing / "box.cao").string()), vpException);
+    REQUIRE_THROWS_WITH(tracker.loadModel((missing / "box.cao").string()),
+                        Contains("vpMbIcgTracker") && Contains("box.cao") && Contains("does not exist"));
+    CHECK(test::vp_exception_of([&] { tracker.loadModel((missing / "box.cao").string()); }).getCode() ==
+          vpException::ioError);
+  }
+  SECTION("a model path that is a directory") {
+    const vpException e = test::vp_exception_of([&] { tracker.loadModel(missing.parent_path().string()); });
+    CHECK(e.getCode() == vpException::ioError);
+    CHECK_THAT(e.getStringMessage(), Contains("is not a regular file"));
+  }
+  SECTION("a model file that is no mesh") {
+    const TempFile garbage("garbage.obj", "this is not a mesh\n\x01\x02\x03");
+    const vpException e = test::vp_exception_of([&] { tracker.loadModel(garbage.path.string()); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains("vpMbIcgTracker::loadModel") && Contains("garbage.obj"));
+    CHECK(tracker.getNbPolygon() == 0);  // nothing of it was kept
+  }
+  SECTION("malformed YAML configuration") {
+    const TempFile yaml("malformed.yaml", "region_model: {n_divides: [3\n");
+    const vpException e = test::vp_exception_of([&] { tracker.loadConfigFile(yaml.path.string(), false); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains("vpMbIcgTracker::loadConfigFile") && Contains("malformed.yaml") &&
+                                         Contains("YAML syntax error"));
+  }
+  SECTION("a YAML value out of its type") {
+    const TempFile yaml("wrong-type.yaml", "region_model: {n_divides: many}\n");
+    const vpException e = test::vp_exception_of([&] { tracker.loadConfigFile(yaml.path.string(), false); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains("n_divides") && Contains("wrong-type.yaml"));
+  }
+}
+
+TEST_CASE("vpMbIcgTracker exceptions: bad arguments are badValue naming the value") {
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
+
+  SECTION("unknown modality") {
+    REQUIRE_THROWS_AS(tracker.setModalities({"edges"}), vpException);
+    REQUIRE_THROWS_WITH(tracker.setModalities({"edges"}), Contains("setModalities") && Contains("'edges'"));
+  }
+  SECTION("unknown camera name") {
+    const vpException e = test::vp_exception_of(
+        [&] { tracker.setCameraParameters(std::map<std::string, vpCameraParameters>{{"Kamera1", {}}}); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains("setCameraParameters") && Contains("'Kamera1'") &&
+                                         Contains("\"Camera1\", \"Camera2\""));
+  }
+  SECTION("invalid tracker type") {
+    const vpException e = test::vp_exception_of([&] { tracker.setTrackerType(64); });
+    CHECK(e.getCode() == vpException::badValue);
+    CHECK_THAT(e.getStringMessage(), Contains("64"));
+  }
+}
+
+TEST_CASE("vpMbIcgTracker exceptions: tracking before initialisation is vpTrackingException::initializationError") {
+  vpMbIcgTracker tracker;
+  const vpImage<unsigned char> I(480, 640, 0);
+  REQUIRE_THROWS_AS(tracker.track(I), vpTrackingException);
+  CHECK(test::vp_exception_of<vpTrackingException>([&] { tracker.track(I); }).getCode() ==
+        vpTrackingException::initializationError);
+  REQUIRE_THROWS_WITH(tracker.track(I), Contains("track(I)") && Contains("initFromPose"));
+}
+
+TEST_CASE("vpMbIcgTracker exceptions: a modality's failure inside the core is a vpTrackingException") {
+  // The object 20 m to the side: where the cues start, the region cue finds no foreground
+  // pixel and its std::runtime_error reaches the ViSP boundary.
+  RgbdTracking t(Eigen::Vector3d(20.0, 0.0, 0.0));
+  const Pose truth = *t.frame.truth();
+  const vpTrackingException e = test::vp_exception_of<vpTrackingException>([&] { t.track(); });
+  CHECK(e.getCode() == vpTrackingException::fatalError);
+  CHECK_THAT(e.getStringMessage(), Contains("vpMbIcgTracker::track: region modality") &&
+                                       Contains("no foreground or background pixels"));
+  // The program may go on: a pose in view, and the frame tracks.
+  t.tracker.initFromPose(t.input.grey, to_homogeneous_matrix(truth));
+  REQUIRE_NOTHROW(t.track());
+  CHECK(translation_error_mm(t.pose(), truth) < 0.5);
+}
+
+TEST_CASE("vpMbIcgTracker exceptions: a camera without valid parameters is badValue from the core's check") {
+  RgbdTracking t;
+  t.tracker.setCameraParameters(vpCameraParameters(-600.0, 600.0, 320.0, 240.0),
+                                to_camera_parameters(t.frame.depths.front().intrinsics));
+  const vpException e = test::vp_exception_of([&] { t.track(); });
+  CHECK(e.getCode() == vpException::badValue);
+  CHECK_THAT(e.getStringMessage(), Contains("Camera1") && Contains("focal lengths must be positive"));
+}
 
 TEST_CASE("vpMbIcgTracker: resetTracker and reInitModel forget ViSP's projection-error model") {
   ProjectionErrorModel tracker;
