@@ -2,7 +2,10 @@
 // vpMbIcgTracker: construction, parameters, model, cameras and initialisation.
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <new>
+#include <opencv2/core.hpp>
 #include <visp3/mbt/vpMbtXmlGenericParser.h>
 
 #include "icgp/visp/cao_mesh_loader.h"
@@ -11,6 +14,7 @@
 #include "cao_mesh_builder.h"
 #include "vpMbIcgTracker_impl.h"
 
+using icgp::visp_detail::Failure;
 using icgp::visp_detail::guarded;
 
 static_assert(int{vpMbIcgTracker::EDGE_TRACKER} == int{icgp::CameraRig::kEdge} &&
@@ -28,8 +32,13 @@ std::string lower_extension(const std::string& path) {
 }
 
 void require_file(const std::string& path, const std::string& what) {
-  if (!std::filesystem::is_regular_file(path))
+  std::error_code error;
+  if (!std::filesystem::exists(path, error))
     throw vpException(vpException::ioError, "vpMbIcgTracker: " + what + " '" + path + "' does not exist");
+  if (!std::filesystem::is_regular_file(path, error))
+    throw vpException(vpException::ioError, "vpMbIcgTracker: " + what + " '" + path + "' is not a regular file");
+  if (!std::ifstream(path))
+    throw vpException(vpException::ioError, "vpMbIcgTracker: " + what + " '" + path + "' cannot be read");
 }
 
 /// A ViSP tracker XML file read by ViSP's own parser, for every cue type: the parser reads
@@ -57,21 +66,21 @@ bool is_visp_model(const std::string& path) {
 icgp::Mesh load_model_file(const std::string& path, const vpHomogeneousMatrix& T,
                            const std::function<void(icgp::CaoMeshBuilder&)>& visp_parse = {}) {
   require_file(path, "model file");
-  return guarded("loadModel", [&] {
-    try {
-      if (!visp_parse || !is_visp_model(path)) return icgp::load_any_mesh(path, 1.0, icgp::to_pose(T));
-      // As load_any_mesh: meshed in the file's frame, then placed with T. ViSP has already
-      // applied T to the points of a .cao file (not of a .wrl), so the builder takes it off.
-      const icgp::Pose pose = icgp::to_pose(T);
-      icgp::CaoMeshBuilder builder(path, {}, lower_extension(path) == ".cao" ? pose : icgp::Pose());
-      icgp::Mesh mesh = builder.build([&] { visp_parse(builder); });
-      mesh.transform(pose.cast<float>());
-      return mesh;
-    } catch (const std::exception& e) {
-      throw vpException(vpException::badValue, "vpMbIcgTracker::loadModel: cannot load '" + path +
-                                                   "' (.cao, .wrl, or a mesh format assimp reads): " + e.what());
-    }
-  });
+  try {
+    if (!visp_parse || !is_visp_model(path)) return icgp::load_any_mesh(path, 1.0, icgp::to_pose(T));
+    // As load_any_mesh: meshed in the file's frame, then placed with T. ViSP has already
+    // applied T to the points of a .cao file (not of a .wrl), so the builder takes it off.
+    const icgp::Pose pose = icgp::to_pose(T);
+    icgp::CaoMeshBuilder builder(path, {}, lower_extension(path) == ".cao" ? pose : icgp::Pose());
+    icgp::Mesh mesh = builder.build([&] { visp_parse(builder); });
+    mesh.transform(pose.cast<float>());
+    return mesh;
+  } catch (const std::bad_alloc&) {
+    throw;  // the file is too large, not wrong: guarded says out of memory
+  } catch (const std::exception& e) {
+    throw vpException(vpException::badValue, "vpMbIcgTracker::loadModel: cannot load '" + path +
+                                                 "' (.cao, .wrl, or a mesh format assimp reads): " + e.what());
+  }
 }
 
 /// ViSP's model in a vpMbTracker as it stands (the faces, and the faces, lines, cylinders and
@@ -154,6 +163,42 @@ void check_same_object(const icgp::Mesh& reference, const std::string& reference
 
 }  // namespace
 
+namespace {
+
+[[noreturn]] void throw_failure(Failure failure, const std::string& message) {
+  if (failure == Failure::kTracking) throw vpTrackingException(vpTrackingException::fatalError, message);
+  throw vpException(vpException::fatalError, message);
+}
+
+}  // namespace
+
+void icgp::visp_detail::rethrow_as_visp_exception(const std::string& call, Failure failure) {
+  const std::string prefix = "vpMbIcgTracker::" + call + ": ";
+  try {
+    throw;
+  } catch (const vpException&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    throw vpException(vpException::badValue, prefix + e.what());
+  } catch (const std::out_of_range& e) {
+    throw vpException(vpException::badValue, prefix + e.what());
+  } catch (const std::domain_error& e) {
+    throw vpException(vpException::badValue, prefix + e.what());
+  } catch (const std::bad_alloc& e) {
+    throw vpException(vpException::memoryAllocationError, prefix + "out of memory (" + e.what() + ")");
+  } catch (const std::length_error& e) {
+    throw vpException(vpException::memoryAllocationError, prefix + "out of memory (" + e.what() + ")");
+  } catch (const cv::Exception& e) {
+    if (e.code == cv::Error::StsNoMem)
+      throw vpException(vpException::memoryAllocationError, prefix + "out of memory (OpenCV: " + e.err + ")");
+    throw_failure(failure, prefix + "OpenCV: " + e.err + " in " + e.func);
+  } catch (const std::exception& e) {
+    throw_failure(failure, prefix + e.what());
+  } catch (...) {
+    throw_failure(failure, prefix + "an exception that is not a std::exception");
+  }
+}
+
 // ------------------------------------------------------------------------ construction
 
 vpMbIcgTracker::vpMbIcgTracker()
@@ -183,31 +228,33 @@ void vpMbIcgTracker::loadConfigFile(const std::string& configFile1, const std::s
 }
 
 void vpMbIcgTracker::loadConfigFile(const std::map<std::string, std::string>& mapOfConfigFiles, bool verbose) {
-  for (const auto& [camera, file] : mapOfConfigFiles) {
-    impl_->rig.at(camera, "loadConfigFile");
-    const std::string extension = lower_extension(file);
-    if (extension == ".yaml" || extension == ".yml") {
-      require_file(file, "configuration file");
-      try {
-        setTrackerConfig(icgp::load_tracker_config(file));
-      } catch (const std::exception& e) {
-        throw vpException(vpException::badValue, std::string("vpMbIcgTracker::loadConfigFile: ") + e.what());
+  guarded("loadConfigFile", [&] {
+    for (const auto& [camera, file] : mapOfConfigFiles) {
+      impl_->rig.at(camera, "loadConfigFile");
+      const std::string extension = lower_extension(file);
+      if (extension == ".yaml" || extension == ".yml") {
+        require_file(file, "configuration file");
+        try {
+          setTrackerConfig(icgp::load_tracker_config(file));
+        } catch (const std::exception& e) {
+          throw vpException(vpException::badValue, std::string("vpMbIcgTracker::loadConfigFile: ") + e.what());
+        }
+        if (verbose) std::cout << "vpMbIcgTracker: parameters from " << file << "\n";
+      } else if (extension == ".xml") {
+        const std::unique_ptr<vpMbtXmlGenericParser> parser = parse_visp_xml(file, verbose);
+        vpCameraParameters parameters;
+        parser->getCameraParameters(parameters);
+        setCameraParameters(std::map<std::string, vpCameraParameters>{{camera, parameters}});
+        store_visp_xml_settings(camera, *parser);
+        if (verbose)
+          std::cout << "vpMbIcgTracker: camera \"" << camera << "\" from " << file
+                    << " (its settings of ViSP's own cues are kept for their getters only)\n";
+      } else {
+        throw vpException(vpException::badValue, "vpMbIcgTracker::loadConfigFile: '" + file +
+                                                     "' must be icgp's YAML (.yaml, .yml) or a ViSP tracker XML (.xml)");
       }
-      if (verbose) std::cout << "vpMbIcgTracker: parameters from " << file << "\n";
-    } else if (extension == ".xml") {
-      const std::unique_ptr<vpMbtXmlGenericParser> parser = parse_visp_xml(file, verbose);
-      vpCameraParameters parameters;
-      parser->getCameraParameters(parameters);
-      setCameraParameters(std::map<std::string, vpCameraParameters>{{camera, parameters}});
-      store_visp_xml_settings(camera, *parser);
-      if (verbose)
-        std::cout << "vpMbIcgTracker: camera \"" << camera << "\" from " << file
-                  << " (its settings of ViSP's own cues are kept for their getters only)\n";
-    } else {
-      throw vpException(vpException::badValue, "vpMbIcgTracker::loadConfigFile: '" + file +
-                                                   "' must be icgp's YAML (.yaml, .yml) or a ViSP tracker XML (.xml)");
     }
-  }
+  });
 }
 
 void vpMbIcgTracker::setTrackerConfig(const icgp::TrackerConfig& config) {
@@ -258,60 +305,62 @@ void vpMbIcgTracker::loadModel(const std::string& modelFile1, const std::string&
 
 void vpMbIcgTracker::loadModel(const std::map<std::string, std::string>& mapOfModelFiles, bool verbose,
                                const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
-  const icgp::CameraRig& rig = impl_->rig;
-  for (const auto& [camera, file] : mapOfModelFiles) rig.at(camera, "loadModel");
-  for (const auto& [camera, T] : mapOfT) rig.at(camera, "loadModel");
-  if (mapOfModelFiles.empty())
-    throw vpException(vpException::badValue, "vpMbIcgTracker::loadModel: no model file given");
-  // The reference camera's file is the object; any other camera's must be the same object.
-  const auto transform = [&](const std::string& camera) {
-    const auto it = mapOfT.find(camera);
-    return it == mapOfT.end() ? vpHomogeneousMatrix() : it->second;
-  };
-  const auto main = mapOfModelFiles.count(rig.reference()) ? mapOfModelFiles.find(rig.reference())
-                                                           : mapOfModelFiles.begin();
-  const std::string& modelFile = main->second;
-  Impl& d = *impl_;
+  guarded("loadModel", [&] {
+    const icgp::CameraRig& rig = impl_->rig;
+    for (const auto& [camera, file] : mapOfModelFiles) rig.at(camera, "loadModel");
+    for (const auto& [camera, T] : mapOfT) rig.at(camera, "loadModel");
+    if (mapOfModelFiles.empty())
+      throw vpException(vpException::badValue, "vpMbIcgTracker::loadModel: no model file given");
+    // The reference camera's file is the object; any other camera's must be the same object.
+    const auto transform = [&](const std::string& camera) {
+      const auto it = mapOfT.find(camera);
+      return it == mapOfT.end() ? vpHomogeneousMatrix() : it->second;
+    };
+    const auto main = mapOfModelFiles.count(rig.reference()) ? mapOfModelFiles.find(rig.reference())
+                                                             : mapOfModelFiles.begin();
+    const std::string& modelFile = main->second;
+    Impl& d = *impl_;
 
-  // A .cao or .wrl file is parsed once, by ViSP's parser in this tracker: vpMbTracker fills
-  // `faces` and the projection-error model (so that getPolygonFaces and
-  // computeCurrentProjectionError mean what they mean for ViSP's trackers) and calls the init*
-  // hooks with each primitive, which d.cao_builder meshes.
-  const VispModelMark visp_model(faces, m_projectionErrorFaces, m_projectionErrorLines, m_projectionErrorCylinders,
-                                 m_projectionErrorCircles, modelInitialised, modelFileName);
-  const auto parse_here = [&](icgp::CaoMeshBuilder& builder) {
-    // The hooks feed `builder` for this parse only, whether it returns or throws.
-    d.cao_builder = &builder;
-    struct Unhook {
-      icgp::CaoMeshBuilder*& hooks;
-      ~Unhook() { hooks = nullptr; }
-    } const unhook{d.cao_builder};
-    vpMbTracker::loadModel(modelFile, verbose, transform(main->first));
-  };
-  icgp::Mesh part;
-  try {
-    part = load_model_file(modelFile, transform(main->first), parse_here);
-    for (const auto& [camera, file] : mapOfModelFiles) {
-      if (camera == main->first || file.empty()) continue;
-      if (file == modelFile && transform(camera) == transform(main->first)) continue;
-      check_same_object(part, modelFile, load_model_file(file, transform(camera)), file);
+    // A .cao or .wrl file is parsed once, by ViSP's parser in this tracker: vpMbTracker fills
+    // `faces` and the projection-error model (so that getPolygonFaces and
+    // computeCurrentProjectionError mean what they mean for ViSP's trackers) and calls the init*
+    // hooks with each primitive, which d.cao_builder meshes.
+    const VispModelMark visp_model(faces, m_projectionErrorFaces, m_projectionErrorLines, m_projectionErrorCylinders,
+                                   m_projectionErrorCircles, modelInitialised, modelFileName);
+    const auto parse_here = [&](icgp::CaoMeshBuilder& builder) {
+      // The hooks feed `builder` for this parse only, whether it returns or throws.
+      d.cao_builder = &builder;
+      struct Unhook {
+        icgp::CaoMeshBuilder*& hooks;
+        ~Unhook() { hooks = nullptr; }
+      } const unhook{d.cao_builder};
+      vpMbTracker::loadModel(modelFile, verbose, transform(main->first));
+    };
+    icgp::Mesh part;
+    try {
+      part = load_model_file(modelFile, transform(main->first), parse_here);
+      for (const auto& [camera, file] : mapOfModelFiles) {
+        if (camera == main->first || file.empty()) continue;
+        if (file == modelFile && transform(camera) == transform(main->first)) continue;
+        check_same_object(part, modelFile, load_model_file(file, transform(camera)), file);
+      }
+    } catch (...) {
+      visp_model.restore();  // the object is as it was
+      throw;
     }
-  } catch (...) {
-    visp_model.restore();  // the object is as it was
-    throw;
-  }
 
-  if (is_visp_model(modelFile)) d.has_visp_model_part = true;
-  d.mesh.source = d.mesh.source.empty() ? modelFile : d.mesh.source + "+" + modelFile;
-  for (icgp::MeshPart& p : part.parts) d.mesh.parts.push_back(std::move(p));
-  d.model_changed();
-  modelInitialised = true;
-  if (verbose) {
-    std::size_t triangles = 0;
-    for (const icgp::MeshPart& p : d.mesh.parts) triangles += p.triangles.size();
-    std::cout << "vpMbIcgTracker: model " << modelFile << " loaded; the object has " << d.mesh.parts.size()
-              << " part(s), " << triangles << " triangles\n";
-  }
+    if (is_visp_model(modelFile)) d.has_visp_model_part = true;
+    d.mesh.source = d.mesh.source.empty() ? modelFile : d.mesh.source + "+" + modelFile;
+    for (icgp::MeshPart& p : part.parts) d.mesh.parts.push_back(std::move(p));
+    d.model_changed();
+    modelInitialised = true;
+    if (verbose) {
+      std::size_t triangles = 0;
+      for (const icgp::MeshPart& p : d.mesh.parts) triangles += p.triangles.size();
+      std::cout << "vpMbIcgTracker: model " << modelFile << " loaded; the object has " << d.mesh.parts.size()
+                << " part(s), " << triangles << " triangles\n";
+    }
+  });
 }
 
 namespace {
@@ -324,6 +373,12 @@ void require_known_cameras(const icgp::CameraRig& rig, const std::string& call, 
   }());
 }
 
+template <typename T>
+void delete_all(std::vector<T*>& owned) {
+  for (T* p : owned) delete p;
+  owned.clear();
+}
+
 }  // namespace
 
 void vpMbIcgTracker::clear_model() {
@@ -331,7 +386,12 @@ void vpMbIcgTracker::clear_model() {
   impl_->has_visp_model_part = false;
   impl_->model_changed();
   faces.reset();
+  // vpMbTracker owns the projection-error model its parser filled, and only its destructor
+  // deletes it: a model loaded next would otherwise add to the old one's edges.
   m_projectionErrorFaces.reset();
+  delete_all(m_projectionErrorLines);
+  delete_all(m_projectionErrorCylinders);
+  delete_all(m_projectionErrorCircles);
 }
 
 void vpMbIcgTracker::reInitModel(const vpImage<unsigned char>& I, const std::string& cad_name,
@@ -494,18 +554,20 @@ void vpMbIcgTracker::setReferenceCameraName(const std::string& referenceCameraNa
 // ------------------------------------------------------------------------ initialisation
 
 void vpMbIcgTracker::init(const vpImage<unsigned char>&) {
-  Impl& d = *impl_;
-  if (d.mesh.parts.empty())
-    throw vpTrackingException(vpTrackingException::initializationError,
-                              "vpMbIcgTracker: no model; call loadModel() before initialising");
-  if (!d.tracker) {
-    d.cues = d.rig.cues(d.config.modalities);
-    d.tracker = guarded("init", [&] { return icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues, d.renderer); });
-  }
-  d.tracker->body(Impl::kBody).reference_T_body = icgp::to_pose(m_cMo);
-  d.start_pending = true;
-  d.quality = 0.0;
-  d.hessian.reset();
+  guarded("init", [&] {
+    Impl& d = *impl_;
+    if (d.mesh.parts.empty())
+      throw vpTrackingException(vpTrackingException::initializationError,
+                                  "vpMbIcgTracker::init: no model; call loadModel() before initialising");
+    if (!d.tracker) {
+      d.cues = d.rig.cues(d.config.modalities);
+      d.tracker = icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues, d.renderer);
+    }
+    d.tracker->body(Impl::kBody).reference_T_body = icgp::to_pose(m_cMo);
+    d.start_pending = true;
+    d.quality = 0.0;
+    d.hessian.reset();
+  });
 }
 
 void vpMbIcgTracker::initFromPose(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cMo) {
@@ -758,16 +820,16 @@ void vpMbIcgTracker::resetTracker() {
     camera.parameters = vpCameraParameters();
     camera.parameters_set = false;
   }
+  clear_model();
   impl_ = std::make_unique<Impl>(std::move(rig));
   m_cMo.eye();
   m_cam = vpCameraParameters();
-  m_error.resize(0);
-  m_w.resize(0);
-  faces.reset();
-  m_projectionErrorFaces.reset();
+  // clear(), not resize(0): ViSP's resize to 0 hands memset a null pointer.
+  m_error.clear();
+  m_w.clear();
   modelInitialised = false;
   projectionError = 90.0;
-  covarianceMatrix.resize(0, 0);
+  covarianceMatrix.clear();
 }
 
 // ------------------------------------------------------ ViSP's .cao / .wrl parser hooks

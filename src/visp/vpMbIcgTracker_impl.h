@@ -47,6 +47,8 @@ struct vpMbIcgTracker::Impl {
   std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
 
   std::set<std::string> reported_without_effect;  ///< ViSP settings already reported once
+  /// Cameras whose depth had no valid measurement on the last frames, already reported.
+  std::set<std::string> depth_without_measurement;
   /// ViSP's settings of its own cues, kept for their getters.
   struct VispSettings {
     std::map<std::string, vpMe> moving_edges;
@@ -104,15 +106,24 @@ struct DepthInput {
   FrameAssembler::PointReader points;  ///< the point per pixel (organised clouds)
 };
 
+/// A point of a cloud as a measurement: one with a coordinate that is NaN or infinite is
+/// none (Z 0), whatever its other coordinates say.
+inline Eigen::Vector3f measured_point(const Eigen::Vector3f& P) {
+  return P.allFinite() ? P : Eigen::Vector3f::Zero();
+}
+
 /// An organised cloud as a camera's depth: Z alone when its points lie on the pinhole
 /// rays of their pixels (a cloud de-projected without distortion, or made from a depth
 /// image), so that the depth cue's search may prune by rays; its points otherwise (a real
 /// sensor's cloud de-projected with its distortion). A 9 x 9 grid of pixels, corners and
 /// edges included where distortion is largest, decides; 0.05 px is far below what lens
-/// distortion moves an edge pixel.
-/// `depth_at` reads Z alone, faster than the whole point.
-inline void read_cloud(DepthInput& depth, FrameAssembler::PointReader point_at, FrameAssembler::DepthReader depth_at,
+/// distortion moves an edge pixel. Points with a non-finite coordinate are no measurement.
+/// `depth` is not empty (require_depth_size).
+inline void read_cloud(DepthInput& depth, const FrameAssembler::PointReader& cloud_point,
                        const vpCameraParameters& camera) {
+  FrameAssembler::PointReader point_at = [cloud_point](int row, int col) {
+    return measured_point(cloud_point(row, col));
+  };
   constexpr int kGrid = 9;
   bool pinhole = true;
   for (int i = 0; i < kGrid && pinhole; ++i)
@@ -120,32 +131,62 @@ inline void read_cloud(DepthInput& depth, FrameAssembler::PointReader point_at, 
       const int row = static_cast<int>((depth.height - 1) * i / (kGrid - 1));
       const int col = static_cast<int>((depth.width - 1) * j / (kGrid - 1));
       const Eigen::Vector3f P = point_at(row, col);
-      if (!(P.z() > 0.f) || !P.allFinite()) continue;
+      if (!(P.z() > 0.f)) continue;
       const double u = camera.get_px() * P.x() / P.z() + camera.get_u0();
       const double v = camera.get_py() * P.y() / P.z() + camera.get_v0();
       pinhole = std::abs(u - col) <= 0.05 && std::abs(v - row) <= 0.05;
     }
   if (pinhole)
-    depth.depth = std::move(depth_at);
+    depth.depth = [point_at](int row, int col) { return point_at(row, col).z(); };
   else
     depth.points = std::move(point_at);
 }
 
-/// Runs `body`, turning a std:: exception from icgp's core into a vpException naming the
-/// call: ViSP code catches vpException, and nothing else may leave vpMbIcgTracker.
-/// std::invalid_argument is the caller's mistake (badValue); anything else a fatal error.
+/// Refuses a depth size that is neither 0 x 0 (ViSP's "no depth this frame") nor within
+/// [1, kMaxImageSide] on both sides, before anything is read or allocated for it.
+inline void require_depth_size(const std::string& call, const DepthInput& depth) {
+  if (depth.width == 0 && depth.height == 0) return;
+  require_image_size(call, "the depth of camera '" + depth.camera + "' (0 x 0: none this frame)", depth.width,
+                     depth.height);
+}
+
+/// Whether any pixel of `depth` holds a measurement (Z > 0 and finite). Every 8th pixel of
+/// every 8th row first, which finds one at once in a sensor's frame; only a depth without
+/// any is read whole.
+inline bool has_measurement(const DepthInput& depth) {
+  for (const int step : {8, 1})
+    for (int row = 0; row < static_cast<int>(depth.height); row += step)
+      for (int col = 0; col < static_cast<int>(depth.width); col += step) {
+        const float z = depth.depth ? depth.depth(row, col) : depth.points(row, col).z();
+        if (z > 0.f && std::isfinite(z)) return true;
+      }
+  return false;
+}
+
+/// What a failure of icgp's core or of a library under it means in a call (see guarded).
+enum class Failure {
+  kError,     ///< an error of the call: vpException::fatalError
+  kTracking,  ///< the frame could not be tracked: vpTrackingException::fatalError
+};
+
+/// Rethrows the exception being handled as the vpException it means, its message kept and
+/// prefixed with "vpMbIcgTracker::<call>: ". Call it only from a catch block.
+/// vpException (and subclasses) pass unchanged; std::invalid_argument, std::out_of_range and
+/// std::domain_error are the caller's values (badValue); std::bad_alloc, std::length_error
+/// and OpenCV's out-of-memory error are memoryAllocationError; anything else, yaml-cpp's and
+/// OpenCV's other errors included, is `failure`.
+[[noreturn]] void rethrow_as_visp_exception(const std::string& call, Failure failure);
+
+/// Runs `body` with every exception it throws made a ViSP one (rethrow_as_visp_exception):
+/// ViSP programs catch vpException, and nothing else may leave vpMbIcgTracker. Every public
+/// method that reaches icgp's core, OpenCV, yaml-cpp or an allocation sized by its
+/// arguments runs through it; nested calls keep the innermost call's name.
 template <typename Body>
-auto guarded(const std::string& call, Body&& body) -> decltype(body()) {
+auto guarded(const std::string& call, Body&& body, Failure failure = Failure::kError) -> decltype(body()) {
   try {
     return body();
-  } catch (const vpException&) {
-    throw;
-  } catch (const std::invalid_argument& e) {
-    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": " + e.what());
-  } catch (const std::bad_alloc&) {
-    throw vpException(vpException::memoryAllocationError, "vpMbIcgTracker::" + call + ": out of memory");
-  } catch (const std::exception& e) {
-    throw vpException(vpException::fatalError, "vpMbIcgTracker::" + call + ": " + e.what());
+  } catch (...) {
+    rethrow_as_visp_exception(call, failure);
   }
 }
 

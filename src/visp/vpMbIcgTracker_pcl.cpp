@@ -31,12 +31,11 @@ template <typename Point>
 icgp::visp_detail::DepthInput depth_of_cloud(const std::string& camera, const std::shared_ptr<const pcl::PointCloud<Point>>& cloud,
                                              const vpCameraParameters& parameters) {
   if (!cloud) throw vpException(vpException::badValue, "vpMbIcgTracker::track: the point cloud of camera '" + camera + "' is null");
-  require_organised(*cloud, camera);
   icgp::visp_detail::DepthInput depth{camera, cloud->width, cloud->height};
+  icgp::visp_detail::require_depth_size("track", depth);
+  require_organised(*cloud, camera);
   icgp::visp_detail::read_cloud(
-      depth, [cloud](int row, int col) { return cloud_point(*cloud, row, col); },
-      [cloud](int row, int col) { return cloud->points[static_cast<std::size_t>(row) * cloud->width + col].z; },
-      parameters);
+      depth, [cloud](int row, int col) { return cloud_point(*cloud, row, col); }, parameters);
   return depth;
 }
 

@@ -13,6 +13,7 @@
 
 using icgp::CueKind;
 using icgp::visp_detail::DepthInput;
+using icgp::visp_detail::Failure;
 using icgp::visp_detail::guarded;
 
 // ------------------------------------------------------------------------------ tracking
@@ -25,6 +26,28 @@ void vpMbIcgTracker::track_frame(const std::map<std::string, const Image*>& imag
   const vpImage<unsigned char>* reference_grey = guarded(call, [&] { return assemble_frame(images, depths, call); });
   track_step(reference_grey, call);
 }
+
+namespace {
+
+/// A camera's colour and depth in one frame are registered, pixel for pixel (one set of
+/// parameters serves both): their sizes must be the same.
+void require_registered(const std::string& call, const DepthInput& depth, const icgp::ColorImage* color) {
+  if (!color || (color->image.cols == static_cast<int>(depth.width) && color->image.rows == static_cast<int>(depth.height)))
+    return;
+  throw vpException(vpException::badValue,
+                    "vpMbIcgTracker::" + call + ": camera '" + depth.camera + "' has a " +
+                        std::to_string(color->image.cols) + " x " + std::to_string(color->image.rows) +
+                        " image but a " + std::to_string(depth.width) + " x " + std::to_string(depth.height) +
+                        " depth; one camera's image and depth must be the same size (registered; give a depth "
+                        "of another size to a camera of its own)");
+}
+
+std::string no_measurement(const DepthInput& depth) {
+  return "the depth of camera '" + depth.camera + "' (" + std::to_string(depth.width) + " x " +
+         std::to_string(depth.height) + ") has no valid measurement: every point is NaN, infinite or at Z <= 0";
+}
+
+}  // namespace
 
 template <typename Image>
 const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std::string, const Image*>& images,
@@ -39,6 +62,7 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     // ViSP programs also pass a depth camera's image: only colour cues read one.
     const icgp::CameraCues& cues = d.cues_of(name);
     if (!image || !(cues.region || cues.texture)) continue;
+    icgp::require_image_size(call, "the image of camera '" + name + "'", image->getWidth(), image->getHeight());
     d.assembler.set_color(name, *image, camera.parameters, camera.parameters_set, camera.camera_M_reference);
     const int channels = std::is_same_v<Image, vpImage<unsigned char>> ? 1 : 3;
     const auto [last, first_image] = d.image_channels.emplace(name, channels);
@@ -50,10 +74,18 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
       if (name == rig.reference()) reference_grey = image;
   }
   bool any_depth = false;
+  std::vector<const DepthInput*> without_measurement;
   for (const DepthInput& depth : depths) {
     const icgp::CameraRig::Camera& camera = rig.at(depth.camera, call);
     if (!rig.is_depth_camera(depth.camera)) continue;  // as ViSP: a cloud no cue of the camera reads
     if (depth.width == 0 && depth.height == 0) continue;  // ViSP's "no depth this frame"
+    require_registered(call, depth, d.assembler.frame().find_color(depth.camera));
+    // A depth without one measurement is none: its camera's depth cue sits the frame out.
+    if (!icgp::visp_detail::has_measurement(depth)) {
+      without_measurement.push_back(&depth);
+      continue;
+    }
+    d.depth_without_measurement.erase(depth.camera);
     if (depth.points)
       d.assembler.set_depth_points(depth.camera, depth.width, depth.height, camera.parameters,
                                    camera.parameters_set, camera.camera_M_reference, depth.points);
@@ -73,6 +105,17 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
                                                    "read one");
     any_color = true;
   }
+  if (!any_color && !any_depth && !without_measurement.empty())
+    // As vpMbGenericTracker when its depth trackers find too few features.
+    throw vpTrackingException(vpTrackingException::notEnoughPointError,
+                              "vpMbIcgTracker::" + call + ": " + no_measurement(*without_measurement.front()) +
+                                  ", and no other cue has data this frame: nothing to track");
+  // ViSP tracks on with its other cues and says nothing; icgp says it, once per run of such
+  // frames of a camera.
+  for (const DepthInput* depth : without_measurement)
+    if (d.depth_without_measurement.insert(depth->camera).second)
+      std::cerr << "vpMbIcgTracker::" << call << ": " << no_measurement(*depth)
+                << "; its depth cue sits out until a frame has some\n";
   if (!any_color && !any_depth)
     throw vpException(vpException::badValue,
                       "vpMbIcgTracker::" + call + ": nothing to track: the tracker's cues read depth only, and this "
@@ -110,17 +153,19 @@ void vpMbIcgTracker::track_step(const vpImage<unsigned char>* grey, const std::s
     const bool none_measured = std::all_of(result.modalities.begin(), result.modalities.end(),
                                            [](const icgp::ModalityQuality& q) { return q.abstained; });
     if (starting && none_measured) d.quality = 1.0;
-  });
-  m_cMo = icgp::to_homogeneous_matrix(body.reference_T_body);
-  d.hessian = d.tracker->last_hessian(Impl::kBody);
-  computeVVSInit();
-  computeVVSInteractionMatrixAndResidu();
+  }, Failure::kTracking);
+  guarded(call, [&] {
+    m_cMo = icgp::to_homogeneous_matrix(body.reference_T_body);
+    d.hessian = d.tracker->last_hessian(Impl::kBody);
+    computeVVSInit();
+    computeVVSInteractionMatrixAndResidu();
 
-  if (computeCovariance) covarianceMatrix = getCovarianceMatrix();
-  if (computeProjError && d.has_visp_model_part) {
-    const vpImage<unsigned char>* image = grey ? grey : d.assembler.grey_image(d.rig.reference());
-    if (image) projectionError = computeCurrentProjectionError(*image, m_cMo, m_cam);
-  }
+    if (computeCovariance) covarianceMatrix = getCovarianceMatrix();
+    if (computeProjError && d.has_visp_model_part) {
+      const vpImage<unsigned char>* image = grey ? grey : d.assembler.grey_image(d.rig.reference());
+      if (image) projectionError = computeCurrentProjectionError(*image, m_cMo, m_cam);
+    }
+  });
 }
 
 void vpMbIcgTracker::track(const vpImage<unsigned char>& I) {
@@ -154,7 +199,8 @@ void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfC
 
 namespace {
 
-/// The point of a ViSP organised cloud's pixel, ViSP's zero-length vectors included.
+/// The point of a ViSP organised cloud's pixel, ViSP's zero-length vectors included (as no
+/// measurement).
 Eigen::Vector3f cloud_point(const std::vector<vpColVector>& cloud, unsigned int width, int row, int col) {
   const vpColVector& point = cloud[static_cast<std::size_t>(row) * width + col];
   if (point.size() < 3) return Eigen::Vector3f::Zero();
@@ -175,6 +221,7 @@ void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& imag
       throw vpException(vpException::badValue,
                         "vpMbIcgTracker::track: no width/height of camera '" + name + "''s point cloud");
     DepthInput depth{name, widths[name], heights[name]};
+    icgp::visp_detail::require_depth_size("track", depth);
     if (depth.width == 0 && depth.height == 0) {  // ViSP's "no depth this frame", whatever the cloud holds
       depths.push_back(depth);
       continue;
@@ -189,12 +236,7 @@ void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& imag
                                                    " (an organised cloud has one point per pixel)");
     const unsigned int width = depth.width;
     icgp::visp_detail::read_cloud(
-        depth, [cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); },
-        [cloud, width](int row, int col) {
-          const vpColVector& point = (*cloud)[static_cast<std::size_t>(row) * width + col];
-          return point.size() >= 3 ? static_cast<float>(point[2]) : 0.f;
-        },
-        camera.parameters);
+        depth, [cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); }, camera.parameters);
     depths.push_back(std::move(depth));
   }
   track_frame(images, depths, "track");
@@ -230,6 +272,7 @@ void vpMbIcgTracker::track_with_raw_depth(const Image& I, const vpImage<uint16_t
                       "vpMbIcgTracker::track: the depth scale must be positive (metres per raw unit), got " +
                           std::to_string(depthScale));
   DepthInput depth{depth_camera_of_raw_depth(), I_depth_raw.getWidth(), I_depth_raw.getHeight()};
+  icgp::visp_detail::require_depth_size("track(I, I_depth_raw, depthScale)", depth);
   depth.depth = [&I_depth_raw, scale = static_cast<float>(depthScale)](int row, int col) {
     return scale * I_depth_raw[static_cast<unsigned int>(row)][col];
   };
@@ -259,8 +302,10 @@ void vpMbIcgTracker::testTracking() {
 double vpMbIcgTracker::getTrackingQuality() const { return impl_->quality; }
 
 void vpMbIcgTracker::setMask(const vpImage<bool>& mask) {
-  vpMbTracker::setMask(mask);
-  impl_->assembler.set_mask(mask);
+  guarded("setMask", [&] {
+    vpMbTracker::setMask(mask);
+    impl_->assembler.set_mask(mask);
+  });
 }
 
 // ----------------------------------------------------------------------------- results
@@ -277,8 +322,10 @@ void vpMbIcgTracker::getPose(std::map<std::string, vpHomogeneousMatrix>& mapOfCa
 }
 
 void vpMbIcgTracker::computeVVSInit() {
-  m_error.resize(0);
-  m_w.resize(0);
+  // clear(), not resize(0): ViSP's resize to 0 hands memset a null pointer (undefined
+  // behaviour that UBSan reports).
+  m_error.clear();
+  m_w.clear();
 }
 
 void vpMbIcgTracker::computeVVSInteractionMatrixAndResidu() {

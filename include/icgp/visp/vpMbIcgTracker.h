@@ -73,11 +73,17 @@ class vpMbtXmlGenericParser;
   meaning they set it, otherwise the first call says once on std::cerr that it has no
   effect.
 
-  Errors are ViSP exceptions, and only those: vpException::ioError for missing or
-  unreadable files, vpException::badValue for unsupported extensions, unknown camera
-  names, invalid tracker types or clouds whose size is not width x height,
+  Errors are ViSP exceptions, and only those (docs/visp.md, "Errors"), each message
+  starting with the method's name: vpException::ioError for missing or unreadable files;
+  vpException::badValue for unsupported extensions, bad configuration files, unknown camera
+  names, invalid tracker types, and images, depth images or clouds of a wrong size (a cloud
+  not width x height, a camera's depth not the size of its image, a side 0 or above
+  16384); vpException::memoryAllocationError when memory runs out;
   vpTrackingException::initializationError for tracking before loadModel/initFromPose,
-  vpTrackingException::fatalError from testTracking() when lost.
+  notEnoughPointError when a frame's only data is depth without one valid measurement,
+  fatalError when the cues fail on a frame (e.g. the object is out of view where they
+  start) and from testTracking() when lost. Exceptions of icgp's core, OpenCV and yaml-cpp
+  are translated at the public methods, their message kept.
 */
 class vpMbIcgTracker : public vpMbTracker {
  public:
@@ -277,8 +283,12 @@ class vpMbIcgTracker : public vpMbTracker {
   virtual void track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages);
   virtual void track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages);
   /// Images and organised point clouds (row major, one vpColVector X, Y, Z in metres per
-  /// pixel in the camera's frame, Z <= 0 or NaN for no measurement). Width and height 0
-  /// mean, as in ViSP, that the camera delivered no depth this frame.
+  /// pixel in the camera's frame; Z <= 0, or any coordinate NaN or infinite, for no
+  /// measurement). Width and height 0 mean, as in ViSP, that the camera delivered no depth
+  /// this frame; otherwise each is in [1, 16384], the cloud has width x height points, and a
+  /// camera given an image too has its depth at the image's size. A depth without one valid
+  /// measurement is none (said once on std::cerr); when nothing else has data the frame
+  /// throws vpTrackingException::notEnoughPointError, as vpMbGenericTracker's depth trackers.
   virtual void track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
                      std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
                      std::map<std::string, unsigned int>& mapOfPointCloudWidths,
