@@ -57,6 +57,7 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
                                        const std::vector<CameraCues>& cameras,
                                        std::shared_ptr<SceneRenderer> renderer) {
+  validate(config, "tracker configuration");
   auto any_camera = [&](bool CameraCues::*cue) {
     return std::any_of(cameras.begin(), cameras.end(), [cue](const CameraCues& c) { return c.*cue; });
   };

@@ -308,6 +308,15 @@ TrackerConfig load_tracker_config(const std::string& path) {
   return config;
 }
 
+void validate(const TrackerConfig& config, const std::string& source) {
+  // A configuration made in code gets the checks of a file: written and read back through
+  // the same field tables, so each rule lives in one place and the message names the key.
+  YAML::Emitter out;
+  write_map(out, kConfigFields, config);
+  TrackerConfig read_back = config;
+  read_map(yaml::Value{YAML::Load(out.c_str()), yaml::Location{source, "", kWording}}, kConfigFields, read_back);
+}
+
 std::string to_yaml(const TrackerConfig& config) {
   YAML::Emitter out;
   write_map(out, kConfigFields, config);

@@ -258,6 +258,11 @@ void vpMbIcgTracker::loadConfigFile(const std::map<std::string, std::string>& ma
 }
 
 void vpMbIcgTracker::setTrackerConfig(const icgp::TrackerConfig& config) {
+  try {
+    icgp::validate(config, "tracker configuration");
+  } catch (const std::exception& e) {
+    throw vpException(vpException::badValue, std::string("vpMbIcgTracker::setTrackerConfig: ") + e.what());
+  }
   impl_->config = config;
   impl_->tracker_changed();
 }

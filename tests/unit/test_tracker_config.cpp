@@ -396,3 +396,18 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
     CHECK_THROWS_WITH(load_tracker_config(file), StartsWith(file + ": " + c.message));
   }
 }
+
+TEST_CASE("tracker config: a configuration made in code gets the checks of a file") {
+  for (const std::string& preset : icgp::tracker_config_presets()) CHECK_NOTHROW(icgp::validate(icgp::tracker_config_preset(preset), "code"));
+  icgp::TrackerConfig config;
+  config.region_model.image_size = 100000;
+  CHECK_THROWS_WITH(icgp::validate(config, "code"),
+                    StartsWith("code: region_model.image_size: expected an integer from 64 to 8192, got 100000"));
+  config = icgp::TrackerConfig();
+  config.depth.n_points_max = 2000000000;
+  CHECK_THROWS_WITH(icgp::validate(config, "code"),
+                    StartsWith("code: depth.n_points_max: expected an integer from 1 to 5000, got 2000000000"));
+  config = icgp::TrackerConfig();
+  config.tracker.tikhonov_rotation = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: tracker.tikhonov_rotation: expected a positive number"));
+}

@@ -50,5 +50,8 @@ const std::vector<std::string>& tracker_config_presets();
 TrackerConfig load_tracker_config(const std::string& path);
 /// The configuration as YAML (every key, so `icgp config` can print the defaults).
 std::string to_yaml(const TrackerConfig& config);
+/// Applies a file's checks (ranges and resource bounds) to a configuration made in code;
+/// throws yaml::Error "<source>: <key>: expected …, got …" for the first value out of range.
+void validate(const TrackerConfig& config, const std::string& source);
 
 }  // namespace icgp
