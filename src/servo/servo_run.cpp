@@ -85,6 +85,7 @@ void summarise_tracking(ServoResult& result) {
 }  // namespace
 
 ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) {
+  check_run_length(original);
   Scenario scenario = original;
   scenario.initial_cMo = options.start_offset * original.initial_cMo;
   const vpHomogeneousMatrix desired_cMo = to_homogeneous_matrix(scenario.desired_cMo);
@@ -116,8 +117,9 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   PoseEstimate estimate;
   bool stopped = false;
   const auto loop_begin = Clock::now();
-  const int max_steps = static_cast<int>(std::ceil(scenario.stop.max_time / dt));
-  for (int k = 0; k <= max_steps; ++k) {
+  // check_run_length bounds it to [1, kMaxSimulatedSteps]: the conversion cannot overflow.
+  const int steps = static_cast<int>(simulated_steps(scenario.stop.max_time, scenario.camera.rate_hz));
+  for (int k = 0; k < steps; ++k) {
     ServoStep step;
     step.time = k * dt;
     const vpHomogeneousMatrix wMc = robot->world_T_camera();

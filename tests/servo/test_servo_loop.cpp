@@ -3,6 +3,7 @@
 // with icgp in the loop (checked against the ground truth), and a tracker that reports lost
 // stops the robot within the step.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <sstream>
 
 #include "icgp/servo/scenario.h"
@@ -124,4 +125,20 @@ TEST_CASE("servo: random trial starts stay within the scenario's ranges and repe
     CHECK(offset.matrix() == perturbed_start(trials, 7, i).matrix());
   }
   CHECK(perturbed_start(trials, 7, 0).matrix() != perturbed_start(trials, 8, 0).matrix());
+}
+
+TEST_CASE("servo: a run length out of bounds is refused before anything is rendered") {
+  Scenario scenario = small_scenario("pbvs", "oracle");
+  scenario.stop.max_time = 1e300;  // built in code: load_scenario would have refused it
+  CHECK_THROWS_WITH(run_servo(scenario, quiet()),
+                    Catch::Matchers::Contains("stop.max_time: 1e+300 s at camera.rate_hz 30 Hz is 3e+301 simulated "
+                                              "steps, outside the [1, 1000000]"));
+  scenario.stop.max_time = 8.0;
+  scenario.camera.rate_hz = 1e12;
+  CHECK_THROWS_AS(run_servo(scenario, quiet()), ScenarioError);
+  scenario.camera.rate_hz = std::nan("");
+  CHECK_THROWS_AS(run_servo(scenario, quiet()), ScenarioError);
+  scenario.camera.rate_hz = 30.0;
+  scenario.stop.max_time = -1.0;  // no step at all: refused too, rather than an empty log
+  CHECK_THROWS_AS(run_servo(scenario, quiet()), ScenarioError);
 }

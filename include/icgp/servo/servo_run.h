@@ -66,7 +66,8 @@ struct ServoRunOptions {
 /// velocity is zero (safety stop) and the tracker restarts at the last pose it did not
 /// report lost, until it tracks again. The run converges when the servo
 /// error as the tracker estimates it stays within the scenario's thresholds for its settle
-/// time, after any target motion has ended.
+/// time, after any target motion has ended. Throws ScenarioError when the scenario's run
+/// length is out of bounds (check_run_length).
 ServoResult run_servo(const Scenario& scenario, const ServoRunOptions& options = {});
 
 /// The start offset of trial `trial` of a batch seeded with `seed`: a translation and a
