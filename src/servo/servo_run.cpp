@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 
+#include "icgp/base/stop_request.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/servo/servo_controller.h"
 #include "icgp/servo/simulated_robot.h"
@@ -176,6 +177,11 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
       result.converged = true;
       result.converged_time = convergence.since();
       result.converged_step = static_cast<int>(std::lround(convergence.since() / dt));
+      break;
+    }
+    // Polled after the step is logged, so that an interrupted run has at least one.
+    if (stop_requested()) {
+      result.interrupted = true;
       break;
     }
   }
