@@ -7,10 +7,8 @@ int main(int argc, char** argv) {
   using icgp::app::kExitError;
   CLI::App app{"icgp: ICG+ multi-modality 6-DoF object tracking for ViSP"};
   app.require_subcommand(1);
-  // Command-line errors read like every other error of the program, and exit with its status.
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return "icgp: error: " + std::string(e.what()) + "\nRun with --help for more information.\n";
-  });
+  // Command-line errors read like every other error of the program: one line, its status.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return "icgp: error: " + std::string(e.what()) + "\n"; });
   icgp::app::register_render_command(app);
   icgp::app::register_bench_render_command(app);
   icgp::app::register_make_sequence_command(app);

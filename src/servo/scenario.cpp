@@ -295,7 +295,9 @@ double simulated_steps(double max_time, double rate_hz) {
 void check_run_length(const Scenario& scenario) {
   const double steps = simulated_steps(scenario.stop.max_time, scenario.camera.rate_hz);
   if (steps >= 1.0 && steps <= kMaxSimulatedSteps) return;
-  throw ScenarioError(scenario.file + ": stop.max_time: " + yaml::plain_number(scenario.stop.max_time) +
+  // A scenario built in code has no file to name.
+  const std::string where = scenario.file.empty() ? "scenario '" + scenario.name + "'" : scenario.file;
+  throw ScenarioError(where + ": stop.max_time: " + yaml::plain_number(scenario.stop.max_time) +
                       " s at camera.rate_hz " + yaml::plain_number(scenario.camera.rate_hz) + " Hz is " +
                       yaml::plain_number(steps) + " simulated steps, outside the [1, " +
                       yaml::plain_number(kMaxSimulatedSteps) + "] a run may take (lower max_time or rate_hz)");
