@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "option_ranges.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/visp/cao_mesh_loader.h"
@@ -122,7 +123,7 @@ void register_bench_command(CLI::App& app) {
                   "folder's icgp.yaml is not read)")->check(CLI::ExistingFile);
   cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
   cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...]}");
-  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all; --sweep: frames per cell, default 60)")->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all; --sweep: frames per cell, default 60)")->check(integer_in(1, kMaxFramesWritten));
   cmd->add_flag("--ablation", o->ablation,
                  "Instead: ICG+ with each descriptor and without each cue (the paper's Tables III/IV) on "
                  "teabox-blender and rendered ambiguous-geometry sequences");
@@ -130,7 +131,7 @@ void register_bench_command(CLI::App& app) {
       cmd->add_option("--rounds", o->rounds,
                       "Run every configuration this many times, alternating the order, and take speed ratios within "
                       "a round")
-          ->check(CLI::Range(1, 100))
+          ->check(integer_in(1, kMaxRounds))
           ->capture_default_str();
   CLI::Option* sweep =
       cmd->add_flag("--sweep", o->sweep,

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "option_ranges.h"
 #include "icgp/render/renderer.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "view_options.h"
@@ -81,7 +82,7 @@ void register_bench_render_command(CLI::App& app) {
   options->model = default_model_path();
   CLI::App* cmd = app.add_subcommand("bench-render", "Time the headless renders tracking and model generation use");
   cmd->add_option("model", options->model, "Mesh or ViSP .cao")->check(CLI::ExistingFile)->capture_default_str();
-  cmd->add_option("--runs", options->runs, "Timed runs per render")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--runs", options->runs, "Timed runs per render")->check(integer_in(1, 100000))->capture_default_str();
   cmd->callback([options] { run_bench_render(*options); });
 }
 

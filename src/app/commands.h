@@ -3,11 +3,31 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "icgp/tracker/tracker_config.h"
 
 namespace icgp::app {
+
+/// The exit status of the icgp program (docs/servo.md, "Exit status").
+enum ExitStatus : int {
+  kExitSuccess = 0,
+  kExitError = 1,        ///< nothing or not all was done: bad input, an option out of range, a missing file
+  kExitNotAchieved = 2,  ///< the work ran and its results are written, but it did not reach its goal
+  kExitInterrupted = 130,  ///< stopped by SIGINT after writing what was done (128 + SIGINT, the shell's convention)
+};
+
+/// Thrown by a command that has done its work and written its results, to end the program
+/// with `status` and a one-line `reason` on stderr ("icgp: <reason>").
+class CommandOutcome : public std::runtime_error {
+ public:
+  CommandOutcome(ExitStatus status, const std::string& reason) : std::runtime_error(reason), status_(status) {}
+  ExitStatus status() const { return status_; }
+
+ private:
+  ExitStatus status_;
+};
 
 void register_render_command(CLI::App& app);
 void register_bench_render_command(CLI::App& app);

@@ -12,6 +12,7 @@
 
 #include "bench_runner.h"
 #include "commands.h"
+#include "option_ranges.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
@@ -204,10 +205,10 @@ void register_compare_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--summary", o->summary,
                   "Write the table as JSON: {\"rows\": [...], \"visp_layer_overhead_percent\": x}");
-  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(integer_in(1, kMaxFramesRead));
   cmd->add_option("--rounds", o->rounds,
                   "Run every tracker this many times, alternating the order, and take speed ratios within a round")
-      ->check(CLI::Range(1, 100))
+      ->check(integer_in(1, kMaxRounds))
       ->capture_default_str();
   cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
   cmd->callback([o] { run_compare(*o); });

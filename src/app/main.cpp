@@ -4,8 +4,11 @@
 #include "commands.h"
 
 int main(int argc, char** argv) {
+  using icgp::app::kExitError;
   CLI::App app{"icgp: ICG+ multi-modality 6-DoF object tracking for ViSP"};
   app.require_subcommand(1);
+  // Command-line errors read like every other error of the program: one line, its status.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return "icgp: error: " + std::string(e.what()) + "\n"; });
   icgp::app::register_render_command(app);
   icgp::app::register_bench_render_command(app);
   icgp::app::register_make_sequence_command(app);
@@ -19,10 +22,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : kExitError;  // --help is a ParseError that exits 0
+  } catch (const icgp::app::CommandOutcome& e) {
+    std::cerr << "icgp: " << e.what() << "\n";
+    return e.status();
   } catch (const std::exception& e) {
     std::cerr << "icgp: error: " << e.what() << "\n";
-    return 1;
+    return kExitError;
   }
   return 0;
 }

@@ -3,8 +3,10 @@
 // the layout `icgp track` and the tests read.
 #include <filesystem>
 #include <iostream>
+#include <limits>
 
 #include "commands.h"
+#include "option_ranges.h"
 #include "icgp/eval/sequence_writer.h"
 #include "icgp/visp/cao_mesh_loader.h"
 
@@ -24,6 +26,7 @@ struct MakeSequenceOptions {
 };
 
 void run_make_sequence(MakeSequenceOptions o) {
+  check_image_pixels(o.width, o.height, "--width", "--height");
   o.writer.color_intrinsics = o.writer.depth_intrinsics = Intrinsics::centred(o.width, o.height, o.focal);
   o.writer.depth_T_color = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0 - o.baseline, 0.0, 0.0));
   if (o.stereo_baseline != 0.0) {
@@ -50,54 +53,65 @@ void register_make_sequence_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("make-sequence", "Render an RGB-D sequence of a model with exact ground truth");
   cmd->add_option("model", o->model, "Mesh or ViSP .cao")->check(CLI::ExistingFile)->capture_default_str();
   cmd->add_option("--out", o->out, "Output folder (created; an earlier sequence there is replaced)")->required();
-  cmd->add_option("--scale", o->scale, "Metres per mesh unit")->capture_default_str();
-  cmd->add_option("--frames", o->writer.frame_count, "Number of frames")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--rate", o->writer.frame_rate, "Frames per second")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--seed", o->writer.seed, "Seed of the motion, background and noise")->capture_default_str();
+  const yaml::Interval baseline_m{-10.0, 10.0};
+  cmd->add_option("--scale", o->scale, "Metres per mesh unit")->check(number_in(kMeshScale))->capture_default_str();
+  cmd->add_option("--frames", o->writer.frame_count, "Number of frames")
+      ->check(integer_in(1, kMaxFramesWritten))
+      ->capture_default_str();
+  cmd->add_option("--rate", o->writer.frame_rate, "Frames per second")
+      ->check(number_in({0.0, 1000.0, true}))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->writer.seed, "Seed of the motion, background and noise")
+      ->check(integer_in(0, std::numeric_limits<unsigned>::max()))
+      ->capture_default_str();
   cmd->add_option("--speed", o->writer.motion.speed, "Motion speed factor (1 calm, 3-5 fast)")
-      ->check(CLI::PositiveNumber)
+      ->check(number_in({0.0, 100.0, true}))
       ->capture_default_str();
   cmd->add_option("--distance", o->writer.motion.distance, "Mean camera distance to the object, metres")
-      ->check(CLI::PositiveNumber)
+      ->check(number_in({0.0, 1000.0, true}))
       ->capture_default_str();
-  cmd->add_option("--width", o->width, "Image width")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--height", o->height, "Image height")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--focal", o->focal, "Focal length in pixels (colour and depth)")->check(CLI::PositiveNumber)
+  cmd->add_option("--width", o->width, "Image width")->check(image_side())->capture_default_str();
+  cmd->add_option("--height", o->height, "Image height")->check(image_side())->capture_default_str();
+  cmd->add_option("--focal", o->focal, "Focal length in pixels (colour and depth)")
+      ->check(number_in(kFocalPx))
       ->capture_default_str();
   cmd->add_option("--baseline", o->baseline, "Depth camera offset along the colour camera's x axis, metres")
+      ->check(number_in(baseline_m))
       ->capture_default_str();
   cmd->add_option("--stereo-baseline", o->stereo_baseline,
                   "Second colour camera (color2/, same intrinsics) this far along the colour camera's x axis, "
                   "metres (0: none)")
+      ->check(number_in(baseline_m))
       ->capture_default_str();
   cmd->add_option("--spin", o->spin, "Object rotation about its y axis (the models' up axis), rad/s")
+      ->check(number_in({-100.0, 100.0}))
       ->capture_default_str();
   cmd->add_option("--color-noise", o->writer.noise.color_sigma, "Gaussian colour noise, 8-bit levels")
-      ->check(CLI::NonNegativeNumber)
+      ->check(number_in({0.0, 255.0}))
       ->capture_default_str();
   cmd->add_option("--depth-noise", o->writer.noise.depth_sigma_at_1m, "Depth noise sigma at 1 m (grows with Z^2)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(number_in({0.0, 1.0}))
       ->capture_default_str();
   cmd->add_option("--depth-dropout", o->writer.noise.depth_dropout, "Fraction of depth pixels missing")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(number_in({0.0, 1.0}))
       ->capture_default_str();
   cmd->add_option("--grazing-angle", o->writer.noise.grazing_angle_deg,
                   "Depth missing where the surface is seen more obliquely than this, degrees (90: never)")
-      ->check(CLI::PositiveNumber)
+      ->check(number_in({0.0, 90.0, true}))
       ->capture_default_str();
   cmd->add_option("--depth-edge-holes", o->writer.noise.depth_edge_holes_px,
                   "Depth missing within this many pixels of a depth discontinuity (0: never)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(integer_in(0, 100))
       ->capture_default_str();
   cmd->add_option("--antialias", o->writer.antialias_samples, "Multisample antialiasing of colour, samples per pixel (0: off)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(integer_in(0, 64))
       ->capture_default_str();
   cmd->add_option("--motion-blur", o->writer.motion_blur.samples,
                   "Colour renders averaged over the exposure of each frame (1: sharp)")
-      ->check(CLI::PositiveNumber)
+      ->check(integer_in(1, 256))
       ->capture_default_str();
   cmd->add_option("--exposure", o->writer.motion_blur.exposure, "Exposure as a fraction of the frame interval (motion blur)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(number_in({0.0, 1.0}))
       ->capture_default_str();
   cmd->callback([o] { run_make_sequence(*o); });
 }

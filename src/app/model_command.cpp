@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "option_ranges.h"
 #include "icgp/model/model_cache.h"
 #include "icgp/visp/cao_mesh_loader.h"
 
@@ -90,13 +91,13 @@ void register_model_command(CLI::App& app) {
   cmd->add_option("--cache-dir", o->cache_dir,
                   "Cache folder (default: $ICGP_CACHE_DIR, $XDG_CACHE_HOME/icgp or ~/.cache/icgp)");
   cmd->add_option("--views-divides", o->params.n_divides, "Icosphere subdivisions: 10*4^N+2 views")
-      ->check(CLI::Range(0, 6))
+      ->check(integer_in(0, 6))
       ->capture_default_str();
   cmd->add_option("--image-size", o->params.image_size, "Render size in pixels")
-      ->check(CLI::Range(16, 16384))
+      ->check(integer_in(16, kMaxImageSide))
       ->capture_default_str();
-  cmd->add_option("--points", o->params.n_points, "Points per view")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--scale", o->scale, "Metres per mesh unit")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--points", o->params.n_points, "Points per view")->check(integer_in(1, 100000))->capture_default_str();
+  cmd->add_option("--scale", o->scale, "Metres per mesh unit")->check(number_in(kMeshScale))->capture_default_str();
   cmd->callback([o] { run_model(*o); });
 }
 

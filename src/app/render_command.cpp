@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "commands.h"
+#include "option_ranges.h"
 #include "icgp/render/renderer.h"
 #include "icgp/render/visualization.h"
 #include "icgp/visp/cao_mesh_loader.h"
@@ -24,6 +25,7 @@ struct RenderOptions {
 };
 
 void run_render(const RenderOptions& o) {
+  check_image_pixels(o.view.width, o.view.height, "--width", "--height");
   const Mesh mesh = load_any_mesh(o.model, o.scale);
   Renderer renderer;
   renderer.add_body(mesh, 1);
@@ -57,7 +59,7 @@ void register_render_command(CLI::App& app) {
   cmd->add_option("model", options->model, "Mesh (.obj/.ply/.stl/.gltf/.dae) or ViSP .cao")
       ->check(CLI::ExistingFile)
       ->capture_default_str();
-  cmd->add_option("--scale", options->scale, "Metres per mesh unit")->capture_default_str();
+  cmd->add_option("--scale", options->scale, "Metres per mesh unit")->check(number_in(kMeshScale))->capture_default_str();
   add_view_options(*cmd, options->view);
   cmd->add_option("--out", options->out, "Output PNG")->capture_default_str();
   cmd->callback([options] { run_render(*options); });

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <visp3/core/vpImageConvert.h>
@@ -13,10 +14,13 @@
 
 #include "commands.h"
 #include "icgp/base/camera_names.h"
+#include "icgp/base/stop_request.h"
+#include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_report.h"
 #include "icgp/servo/servo_run.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
+#include "option_ranges.h"
 #include "overlay_video.h"
 
 namespace icgp::app {
@@ -26,6 +30,10 @@ namespace fs = std::filesystem;
 using servo::Scenario;
 using servo::ServoResult;
 using servo::TrackerKind;
+
+/// The most trials of one batch: 10 000, some 17 hours for one tracker at 6 s a trial
+/// (a 640x480 run here), three times that with --compare.
+constexpr long long kMaxTrials = 10000;
 
 struct ServoOptions {
   std::string scenario;
@@ -107,61 +115,100 @@ class BatchProgress {
   std::chrono::steady_clock::time_point begin_;
 };
 
-std::vector<ServoResult> run_trials(const Scenario& scenario, const ServoOptions& o, BatchProgress& progress) {
-  std::vector<ServoResult> results;
-  for (int i = 0; i < o.trials; ++i) {
-    servo::ServoRunOptions run;
-    run.seed = scenario.seed + static_cast<unsigned>(i);
-    run.start_offset = servo::perturbed_start(scenario.trials, scenario.seed, i);
-    run.progress = false;  // one line per trial instead
-    results.push_back(servo::run_servo(scenario, run));
-    const ServoResult& r = results.back();
-    std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s %s\n", i + 1, o.trials,
-                 r.tracker.c_str(), servo::succeeded(r, scenario.stop) ? "success" : r.converged ? "settled off target" : "not converged",
+/// "visp 93 of 100, icgp 1 of 100": the trackers some of whose runs did not succeed.
+std::string failures(const std::vector<servo::TrialsSummary>& summaries) {
+  std::string text;
+  for (const servo::TrialsSummary& s : summaries) {
+    const int failed = s.trials - s.converged;
+    if (failed == 0) continue;
+    text += (text.empty() ? "" : ", ") + s.tracker + " " + std::to_string(failed) + " of " + std::to_string(s.trials);
+  }
+  return text;
+}
+
+/// Why a single run failed, in one line.
+std::string failure_reason(const ServoResult& r, const servo::StopSpec& stop) {
+  char text[256];
+  std::snprintf(text, sizeof text, "%s: final error %.3f mm, %.3f deg; thresholds %.3g mm, %.3g deg",
+                r.converged ? "settled off target" : "did not converge", 1e3 * r.final_t, r.final_r / servo::kDegree,
+                1e3 * stop.converged_translation, stop.converged_rotation / servo::kDegree);
+  std::string reason = text;
+  if (!r.converged) reason += " (limit " + yaml::plain_number(stop.max_time) + " s simulated)";
+  return reason;
+}
+
+/// Trials (--trials, --compare): a line per run with the time left, the table and the JSON
+/// summary of the trials done, also when Ctrl-C stopped the batch.
+void run_batch(const ServoOptions& o, const Scenario& scenario, const std::string& summary) {
+  if (!o.video.empty() || o.display) throw std::invalid_argument("--video and --display show a single run, not trials");
+  const std::vector<TrackerKind> kinds =
+      o.compare ? std::vector<TrackerKind>{TrackerKind::kOracle, TrackerKind::kVisp, TrackerKind::kIcgp}
+                : std::vector<TrackerKind>{scenario.tracker.kind};
+  BatchProgress progress(o.trials * static_cast<int>(kinds.size()));
+  const servo::TrialBatch batch = servo::run_trials(scenario, kinds, o.trials, [&](int trial, const ServoResult& r) {
+    std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s %s\n", trial + 1, o.trials,
+                 r.tracker.c_str(),
+                 servo::succeeded(r, scenario.stop) ? "success" : r.converged ? "settled off target" : "not converged",
                  1e3 * r.final_t, r.final_r / servo::kDegree, 1e3 * r.max_track_t,
                  r.safety_stops > 0 ? (", " + std::to_string(r.safety_stops) + " safety stop(s)").c_str() : "",
                  progress.trial_done().c_str());
+  });
+  if (batch.trials_done == 0)
+    throw CommandOutcome(kExitInterrupted, "interrupted before the first trial ended: nothing written");
+  std::vector<servo::TrialsSummary> summaries;
+  for (const std::vector<ServoResult>& runs : batch.runs) {
+    summaries.push_back(servo::summarise(runs, scenario.stop));
+    summaries.back().interrupted = batch.interrupted;
   }
-  return results;
+  servo::print_summaries(std::cout, summaries);
+  servo::write_summary_json(summaries, summary);
+  std::cout << "wrote " << summary << "\n";
+  if (batch.interrupted)
+    throw CommandOutcome(kExitInterrupted, "interrupted: " + std::to_string(batch.trials_done) + " of " +
+                                               std::to_string(o.trials) + " trials done, in the table and " + summary);
+  if (const std::string failed = failures(summaries); !failed.empty())
+    throw CommandOutcome(kExitNotAchieved, "servo: runs that did not succeed: " + failed);
+}
+
+/// One run: the printed summary, its log, plots and JSON summary, also when Ctrl-C stopped it.
+void run_single(const ServoOptions& o, const Scenario& scenario, const fs::path& out, const std::string& summary) {
+  servo::ServoRunOptions run;
+  run.seed = scenario.seed;
+  run.progress = !o.quiet;
+  RunViewer viewer(o, scenario);
+  if (viewer.active()) run.on_step = [&viewer](const servo::RgbdCapture& c, const servo::ServoStep& s) { viewer.show(c, s); };
+  const ServoResult result = servo::run_servo(scenario, run);
+  servo::print_run(std::cout, result, scenario.stop);
+  servo::write_step_csv(result, (out / "log.csv").string());
+  servo::plot_run(result, out.string());
+  std::cout << "wrote " << (out / "log.csv").string() << ", " << (out / "error.png").string() << ", "
+            << (out / "velocity.png").string() << (o.video.empty() ? "" : ", " + o.video) << "\n";
+  servo::write_summary_json({servo::summarise({result}, scenario.stop)}, summary);
+  std::cout << "wrote " << summary << "\n";
+  if (result.interrupted) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "interrupted at %.2f s simulated: the log, plots and summary hold the %zu steps done",
+                  result.steps.back().time, result.steps.size());
+    throw CommandOutcome(kExitInterrupted, text);
+  }
+  if (!servo::succeeded(result, scenario.stop))
+    throw CommandOutcome(kExitNotAchieved, "servo run failed: " + failure_reason(result, scenario.stop));
 }
 
 void run_command(const ServoOptions& o) {
+  // Runs and batches can take hours: Ctrl-C stops them at the next step, writing what is done.
+  install_stop_on_sigint();
   Scenario scenario = servo::load_scenario(o.scenario, models_dir());
   if (!o.tracker.empty()) scenario.tracker.kind = tracker_kind(o.tracker);
   if (o.seed != 0) scenario.seed = o.seed;
   const fs::path out = o.out.empty() ? fs::path("out") / "servo" / scenario.name : fs::path(o.out);
-  std::cerr << "scenario " << scenario.name << (scenario.description.empty() ? "" : ": " + scenario.description) << "\n";
-
-  std::vector<servo::TrialsSummary> summaries;
-  if (o.compare || o.trials > 1) {
-    if (!o.video.empty() || o.display) throw std::invalid_argument("--video and --display show a single run, not trials");
-    const std::vector<TrackerKind> kinds =
-        o.compare ? std::vector<TrackerKind>{TrackerKind::kOracle, TrackerKind::kVisp, TrackerKind::kIcgp}
-                  : std::vector<TrackerKind>{scenario.tracker.kind};
-    BatchProgress progress(o.trials * static_cast<int>(kinds.size()));
-    for (const TrackerKind kind : kinds) {
-      Scenario s = scenario;
-      s.tracker.kind = kind;
-      summaries.push_back(servo::summarise(run_trials(s, o, progress), s.stop));
-    }
-    servo::print_summaries(std::cout, summaries);
-  } else {
-    servo::ServoRunOptions run;
-    run.seed = scenario.seed;
-    run.progress = !o.quiet;
-    RunViewer viewer(o, scenario);
-    if (viewer.active()) run.on_step = [&viewer](const servo::RgbdCapture& c, const servo::ServoStep& s) { viewer.show(c, s); };
-    const ServoResult result = servo::run_servo(scenario, run);
-    servo::print_run(std::cout, result, scenario.stop);
-    servo::write_step_csv(result, (out / "log.csv").string());
-    servo::plot_run(result, out.string());
-    std::cout << "wrote " << (out / "log.csv").string() << ", " << (out / "error.png").string() << ", "
-              << (out / "velocity.png").string() << (o.video.empty() ? "" : ", " + o.video) << "\n";
-    summaries.push_back(servo::summarise({result}, scenario.stop));
-  }
   const std::string summary = o.summary.empty() ? (out / "summary.json").string() : o.summary;
-  servo::write_summary_json(summaries, summary);
-  std::cout << "wrote " << summary << "\n";
+  std::cerr << "scenario " << scenario.name << (scenario.description.empty() ? "" : ": " + scenario.description) << "\n";
+  if (o.compare || o.trials > 1)
+    run_batch(o, scenario, summary);
+  else
+    run_single(o, scenario, out, summary);
 }
 
 }  // namespace
@@ -180,9 +227,12 @@ void register_servo_command(CLI::App& app) {
   cmd->add_option("scenario", o->scenario, "Scenario file (YAML, see scenarios/)")->check(CLI::ExistingFile)->capture_default_str();
   cmd->add_option("--tracker", o->tracker, "Tracker in the loop instead of the scenario's: icgp, visp or oracle")
       ->check(CLI::IsMember({"icgp", "visp", "oracle"}));
-  cmd->add_option("--trials", o->trials, "Batch: runs from random starts within the scenario's trial ranges")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", o->seed, "Seed of the noise and of the random starts (default: the scenario's)");
+  cmd->add_option("--trials", o->trials,
+                  "Batch: runs from random starts within the scenario's trial ranges (Ctrl-C stops it and writes "
+                  "the trials done)")
+      ->check(integer_in(1, kMaxTrials));
+  cmd->add_option("--seed", o->seed, "Seed of the noise and of the random starts (default: the scenario's)")
+      ->check(integer_in(0, std::numeric_limits<unsigned>::max()));
   cmd->add_flag("--compare", o->compare, "Run the oracle, visp and icgp trackers on identical trials, one table");
   cmd->add_option("--summary", o->summary, "Summary JSON (default: OUT/summary.json)");
   cmd->add_option("--out", o->out, "Folder for the log and plots (default: out/servo/<scenario name>)");

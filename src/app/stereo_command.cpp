@@ -15,6 +15,7 @@
 
 #include "bench_runner.h"
 #include "commands.h"
+#include "option_ranges.h"
 #include "icgp/base/camera_names.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
@@ -302,7 +303,7 @@ void register_stereo_command(CLI::App& app) {
                   "icgp tracker configuration (YAML); default: icgp's defaults (a sequence folder's icgp.yaml is not "
                   "read)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all)")->check(integer_in(1, kMaxFramesRead));
   cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...], ...}");
   cmd->add_flag("--stereo-camera-alone", o->stereo_camera_alone,
                "Also track with the stereo camera (Camera3) alone, its pose moved into Camera1 for the errors");

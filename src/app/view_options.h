@@ -6,6 +6,7 @@
 
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
+#include "option_ranges.h"
 
 namespace icgp::app {
 
@@ -35,16 +36,21 @@ struct ViewOptions {
   }
 };
 
+/// The view's options; check_image_pixels(v.width, v.height, ...) belongs in the command's
+/// callback, once both sides are known.
 inline void add_view_options(CLI::App& cmd, ViewOptions& v) {
-  cmd.add_option("--width", v.width, "Image width in pixels")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd.add_option("--height", v.height, "Image height in pixels")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd.add_option("--focal", v.focal, "Focal length in pixels")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd.add_option("--azimuth", v.azimuth, "Camera azimuth about the body y axis, degrees")->capture_default_str();
-  cmd.add_option("--elevation", v.elevation, "Camera elevation, degrees")->capture_default_str();
-  cmd.add_option("--distance", v.distance, "Camera distance to the body origin, metres (0: frame the object)")
-      ->check(CLI::NonNegativeNumber)
+  const yaml::Interval degrees{-360.0, 360.0};
+  cmd.add_option("--width", v.width, "Image width in pixels")->check(image_side())->capture_default_str();
+  cmd.add_option("--height", v.height, "Image height in pixels")->check(image_side())->capture_default_str();
+  cmd.add_option("--focal", v.focal, "Focal length in pixels")->check(number_in(kFocalPx))->capture_default_str();
+  cmd.add_option("--azimuth", v.azimuth, "Camera azimuth about the body y axis, degrees")
+      ->check(number_in(degrees))
       ->capture_default_str();
-  cmd.add_option("--roll", v.roll, "Roll about the optical axis, degrees")->capture_default_str();
+  cmd.add_option("--elevation", v.elevation, "Camera elevation, degrees")->check(number_in(degrees))->capture_default_str();
+  cmd.add_option("--distance", v.distance, "Camera distance to the body origin, metres (0: frame the object)")
+      ->check(number_in({0.0, 1000.0}))
+      ->capture_default_str();
+  cmd.add_option("--roll", v.roll, "Roll about the optical axis, degrees")->check(number_in(degrees))->capture_default_str();
 }
 
 }  // namespace icgp::app

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -22,6 +23,27 @@ constexpr Rule<int> kNonNegativeInt{"a non-negative integer", [](const int& v) {
 constexpr Rule<bool> kBool{"true or false", any<bool>};
 constexpr Rule<std::string> kString{"a string", any<std::string>};
 constexpr Rule<std::string> kNonEmptyString{"a non-empty string", [](const std::string& v) { return !v.empty(); }};
+
+bool Interval::contains(double value) const {
+  if (!std::isfinite(value)) return false;
+  const bool above_min = open_below ? value > min : value >= min;
+  const bool below_max = open_above ? value < max : value <= max;
+  return above_min && below_max;
+}
+
+std::string Interval::text() const {
+  return (open_below ? "(" : "[") + plain_number(min) + ", " + plain_number(max) + (open_above ? ")" : "]");
+}
+
+std::string plain_number(double value) {
+  char text[32];
+  // Whole numbers up to 2^53 are exact in a double: print every digit, no exponent.
+  if (std::isfinite(value) && std::abs(value) <= 9007199254740992.0 && value == std::trunc(value))
+    std::snprintf(text, sizeof text, "%.0f", value);
+  else
+    std::snprintf(text, sizeof text, "%.15g", value);
+  return text;
+}
 
 std::string describe(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "nothing";
@@ -63,6 +85,19 @@ std::vector<Value> Value::elements(const std::string& what) const {
   std::vector<Value> values;
   for (std::size_t i = 0; i < node.size(); ++i) values.push_back({node[i], at.element(i)});
   return values;
+}
+
+double Value::number_in(const Interval& range) const {
+  const std::optional<double> value = convert<double>(node);
+  if (!value || !range.contains(*value)) expected("a number in " + range.text());
+  return *value;
+}
+
+long long Value::integer_in(long long min, long long max) const {
+  const std::optional<long long> value = convert<long long>(node);
+  if (!value || *value < min || *value > max)
+    expected("an integer in " + Interval{static_cast<double>(min), static_cast<double>(max)}.text());
+  return *value;
 }
 
 namespace {

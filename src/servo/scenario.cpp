@@ -5,12 +5,14 @@
 // <value>".
 #include "icgp/servo/scenario.h"
 
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "icgp/base/resource_limits.h"
 #include "icgp/io/yaml_reader.h"
 #include "icgp/modality/cue_kind.h"
 
@@ -20,31 +22,52 @@ namespace {
 namespace fs = std::filesystem;
 
 using yaml::any;
+using yaml::Interval;
 using yaml::kBool;
-using yaml::kFraction;
 using yaml::kNonEmptyString;
-using yaml::kNonNegative;
-using yaml::kNonNegativeInt;
-using yaml::kNumber;
-using yaml::kPositive;
-using yaml::kPositiveInt;
 using yaml::kString;
 using yaml::Map;
 using yaml::Rule;
 using yaml::Value;
 
-const Rule<double> kProbability{"a number in [0, 1)", [](const double& v) { return v >= 0.0 && v < 1.0; }};
-const Rule<double> kAngleUpTo90{"a number in (0, 90]", [](const double& v) { return v > 0.0 && v <= 90.0; }};
+// The range of every number of a scenario (docs/servo.md, "Limits"). They are far beyond any
+// real setup: their job is to refuse values that would exhaust memory or time (a camera of
+// 10^5 px a side, a rate of 10^9 Hz), overflow the arithmetic of a run, or make the
+// simulation meaningless (a velocity of 10^300 m/s), naming the field, before anything runs.
+constexpr Interval kCoordinate{-100.0, 100.0};          ///< m: pose translations, occluder placement
+constexpr Interval kAngleDeg{-360.0, 360.0};            ///< deg: θu components, joint angles
+constexpr Interval kObjectVelocity{-10.0, 10.0};        ///< m/s, per axis
+constexpr Interval kOccluderVelocity{-100.0, 100.0};    ///< m/s, per axis
+constexpr Interval kOccluderSize{0.0, 100.0};           ///< m, per edge
+constexpr Interval kSimulatedTime{0.0, 86400.0};        ///< s: motion and occluder times, settle time
+constexpr Interval kMaxTime{0.0, 86400.0, true};        ///< s: stop.max_time (a day; steps bound it further)
+constexpr Interval kRateHz{0.0, 1000.0, true};          ///< camera frames per second
+constexpr Interval kFocalPx{0.0, 100000.0, true};       ///< px
+constexpr Interval kPrincipalPointPx{-kMaxImageSide, 2.0 * kMaxImageSide};  ///< px, may lie outside the image
+constexpr Interval kBackgroundDistance{0.0, 100.0};    ///< m
+constexpr Interval kLightDirection{-1000.0, 1000.0};    ///< per axis; normalised, only its direction counts
+constexpr Interval kFraction{0.0, 1.0};
+constexpr Interval kProbability{0.0, 1.0, false, true};  ///< [0, 1): 1 would drop every frame or pixel
+constexpr Interval kColorSigma{0.0, 255.0};             ///< 8-bit levels
+constexpr Interval kDepthSigmaAt1m{0.0, 1.0};           ///< m
+constexpr Interval kGrazingAngleDeg{0.0, 90.0, true};
+constexpr long long kMaxEdgeDropoutPx = 100;            ///< a (2r+1)² dilation per frame
+constexpr Interval kGain{0.0, 1000.0, true};            ///< 1/s
+constexpr Interval kGainSlope{0.0, 100000.0, true};
+constexpr Interval kLinearVelocity{0.0, 10.0, true};    ///< m/s
+constexpr Interval kAngularVelocityDeg{0.0, 3600.0, true};  ///< deg/s
+constexpr Interval kThresholdMm{0.0, 1000.0};           ///< convergence thresholds and trial offsets
+constexpr Interval kThresholdDeg{0.0, 180.0};
 
-/// A list of exactly N numbers, each following `rule` ("a list of 3 non-negative numbers").
+/// A list of exactly N numbers, each within `range` ("a list of 3 numbers in [-100, 100]").
 template <int N>
-Eigen::Matrix<double, N, 1> numbers(const Value& v, const Rule<double>& rule = kNumber) {
-  const std::string what = "a list of " + std::to_string(N) + " " + std::string(rule.expected).substr(2) + "s";
+Eigen::Matrix<double, N, 1> numbers(const Value& v, const Interval& range) {
+  const std::string what = "a list of " + std::to_string(N) + " numbers in " + range.text();
   if (!v.node.IsSequence() || v.node.size() != static_cast<std::size_t>(N)) v.expected(what);
   Eigen::Matrix<double, N, 1> x;
   for (int i = 0; i < N; ++i) {
     const std::optional<double> element = yaml::convert<double>(v.node[i]);
-    if (!element || !rule.ok(*element)) v.expected(what);
+    if (!element || !range.contains(*element)) v.expected(what);
     x[i] = *element;
   }
   return x;
@@ -53,8 +76,8 @@ Eigen::Matrix<double, N, 1> numbers(const Value& v, const Rule<double>& rule = k
 /// {t: [x, y, z] metres, r_deg: [ux, uy, uz] θu degrees}.
 Pose pose(const Value& v) {
   const Map s(v, {"t", "r_deg"});
-  const Eigen::Vector3d t = numbers<3>(s.required("t"));
-  const Eigen::Vector3d r = numbers<3>(s.required("r_deg")) * kDegree;
+  const Eigen::Vector3d t = numbers<3>(s.required("t"), kCoordinate);
+  const Eigen::Vector3d r = numbers<3>(s.required("r_deg"), kAngleDeg) * kDegree;
   return Pose::from_rotation_vector(r, t);
 }
 
@@ -69,21 +92,28 @@ Pose object_pose(const Value& v) {
 }
 
 /// {width, height, focal} or {fu, fv, pu, pv, width, height}. Keys not given keep the value
-/// of `base`, except the principal point, which is the image centre unless given.
+/// of `base`, except the principal point, which is the image centre unless given. The image
+/// is bounded per side and in pixels (icgp/base/resource_limits.h), so that no frame the
+/// simulator allocates can exhaust memory.
 Intrinsics intrinsics(const Value& v, const Intrinsics& base) {
   const Map s(v, {"width", "height", "focal", "fu", "fv", "pu", "pv"});
   Intrinsics k = base;
-  if (auto x = s.get("width")) k.width = x->as(kPositiveInt);
-  if (auto x = s.get("height")) k.height = x->as(kPositiveInt);
+  if (auto x = s.get("width")) k.width = static_cast<int>(x->integer_in(1, kMaxImageSide));
+  if (auto x = s.get("height")) k.height = static_cast<int>(x->integer_in(1, kMaxImageSide));
+  const long long pixels = static_cast<long long>(k.width) * k.height;
+  if (pixels > kMaxImagePixels)
+    v.at.fail(std::to_string(k.width) + " x " + std::to_string(k.height) + " = " + std::to_string(pixels) +
+              " pixels, more than the " + std::to_string(kMaxImagePixels) + " (" + std::to_string(kMaxImageSide) +
+              " x " + std::to_string(kMaxImagePixels / kMaxImageSide) + ") an image may have");
   if (auto x = s.get("focal")) {
     if (s.get("fu") || s.get("fv")) x->at.fail("give either focal or fu and fv, not both");
-    k.fu = k.fv = x->as(kPositive);
+    k.fu = k.fv = x->number_in(kFocalPx);
   }
-  if (auto x = s.get("fu")) k.fu = x->as(kPositive);
-  if (auto x = s.get("fv")) k.fv = x->as(kPositive);
+  if (auto x = s.get("fu")) k.fu = x->number_in(kFocalPx);
+  if (auto x = s.get("fv")) k.fv = x->number_in(kFocalPx);
   const Intrinsics centred = Intrinsics::centred(k.width, k.height, 1.0);
-  k.pu = s.get("pu") ? s.get("pu")->as(kNumber) : centred.pu;
-  k.pv = s.get("pv") ? s.get("pv")->as(kNumber) : centred.pv;
+  k.pu = s.get("pu") ? s.get("pu")->number_in(kPrincipalPointPx) : centred.pu;
+  k.pv = s.get("pv") ? s.get("pv")->number_in(kPrincipalPointPx) : centred.pv;
   return k;
 }
 
@@ -133,7 +163,7 @@ std::string model(const Value& v, const std::string& scenario_dir, const std::st
 
 void read_arm(const Value& v, ArmSpec& arm) {
   const Map s(v, {"initial_joints_deg", "eMo"});
-  if (auto x = s.get("initial_joints_deg")) arm.initial_joints = numbers<6>(*x) * kDegree;
+  if (auto x = s.get("initial_joints_deg")) arm.initial_joints = numbers<6>(*x, kAngleDeg) * kDegree;
   if (auto x = s.get("eMo")) arm.eMo = pose(*x);
 }
 
@@ -145,19 +175,19 @@ void read_object(const Value& v, ObjectSpec& object, const std::string& scenario
       object.regions.push_back(model(region, scenario_dir, models_dir));
   if (auto x = s.get("motion")) {
     const Map motion(*x, {"velocity", "start", "duration"});
-    if (auto y = motion.get("velocity")) object.linear_velocity = numbers<3>(*y);
-    if (auto y = motion.get("start")) object.motion_start = y->as(kNonNegative);
-    if (auto y = motion.get("duration")) object.motion_duration = y->as(kNonNegative);
+    if (auto y = motion.get("velocity")) object.linear_velocity = numbers<3>(*y, kObjectVelocity);
+    if (auto y = motion.get("start")) object.motion_start = y->number_in(kSimulatedTime);
+    if (auto y = motion.get("duration")) object.motion_duration = y->number_in(kSimulatedTime);
   }
 }
 
 OccluderSpec read_occluder(const Value& v) {
   const Map s(v, {"size", "start_position", "velocity", "start"});
   OccluderSpec occluder;
-  if (auto x = s.get("size")) occluder.size = numbers<3>(*x, kNonNegative);
-  if (auto x = s.get("start_position")) occluder.start_position_in_camera = numbers<3>(*x);
-  if (auto x = s.get("velocity")) occluder.velocity_in_camera = numbers<3>(*x);
-  if (auto x = s.get("start")) occluder.start = x->as(kNonNegative);
+  if (auto x = s.get("size")) occluder.size = numbers<3>(*x, kOccluderSize);
+  if (auto x = s.get("start_position")) occluder.start_position_in_camera = numbers<3>(*x, kCoordinate);
+  if (auto x = s.get("velocity")) occluder.velocity_in_camera = numbers<3>(*x, kOccluderVelocity);
+  if (auto x = s.get("start")) occluder.start = x->number_in(kSimulatedTime);
   return occluder;
 }
 
@@ -166,29 +196,29 @@ void read_background(const Value& v, BackgroundSpec& background, const fs::path&
   if (auto x = s.get("enabled")) background.enabled = x->as(kBool);
   if (auto x = s.get("texture"))
     if (!x->node.IsNull()) background.texture = existing_file(*x, scenario_dir);
-  if (auto x = s.get("distance")) background.distance = x->as(kNonNegative);
+  if (auto x = s.get("distance")) background.distance = x->number_in(kBackgroundDistance);
 }
 
 void read_lighting(const Value& v, LightingSpec& lighting) {
   const Map s(v, {"direction", "ambient", "diffuse"});
   if (auto x = s.get("direction")) {
-    lighting.direction_in_camera = numbers<3>(*x);
+    lighting.direction_in_camera = numbers<3>(*x, kLightDirection);
     if (!(lighting.direction_in_camera.norm() > 0.0)) x->expected("a non-zero direction");
   }
-  if (auto x = s.get("ambient")) lighting.ambient = x->as(kFraction);
-  if (auto x = s.get("diffuse")) lighting.diffuse = x->as(kFraction);
+  if (auto x = s.get("ambient")) lighting.ambient = x->number_in(kFraction);
+  if (auto x = s.get("diffuse")) lighting.diffuse = x->number_in(kFraction);
 }
 
 void read_noise(const Value& v, NoiseSpec& noise) {
   const Map s(v, {"color_sigma", "depth_sigma_at_1m", "depth_dropout", "grazing_angle_deg", "edge_dropout_px",
                   "motion_blur", "frame_drop"});
-  if (auto x = s.get("color_sigma")) noise.color_sigma = x->as(kNonNegative);
-  if (auto x = s.get("depth_sigma_at_1m")) noise.depth_sigma_at_1m = x->as(kNonNegative);
-  if (auto x = s.get("depth_dropout")) noise.depth_dropout = x->as(kProbability);
-  if (auto x = s.get("grazing_angle_deg")) noise.grazing_angle_deg = x->as(kAngleUpTo90);
-  if (auto x = s.get("edge_dropout_px")) noise.depth_edge_holes_px = x->as(kNonNegativeInt);
-  if (auto x = s.get("motion_blur")) noise.motion_blur = x->as(kFraction);
-  if (auto x = s.get("frame_drop")) noise.frame_drop = x->as(kProbability);
+  if (auto x = s.get("color_sigma")) noise.color_sigma = x->number_in(kColorSigma);
+  if (auto x = s.get("depth_sigma_at_1m")) noise.depth_sigma_at_1m = x->number_in(kDepthSigmaAt1m);
+  if (auto x = s.get("depth_dropout")) noise.depth_dropout = x->number_in(kProbability);
+  if (auto x = s.get("grazing_angle_deg")) noise.grazing_angle_deg = x->number_in(kGrazingAngleDeg);
+  if (auto x = s.get("edge_dropout_px")) noise.depth_edge_holes_px = static_cast<int>(x->integer_in(0, kMaxEdgeDropoutPx));
+  if (auto x = s.get("motion_blur")) noise.motion_blur = x->number_in(kFraction);
+  if (auto x = s.get("frame_drop")) noise.frame_drop = x->number_in(kProbability);
 }
 
 void read_camera(const Value& v, CameraSpec& camera) {
@@ -197,7 +227,7 @@ void read_camera(const Value& v, CameraSpec& camera) {
   camera.depth = camera.color;
   if (auto x = s.get("depth")) camera.depth = intrinsics(*x, camera.color);
   if (auto x = s.get("depth_T_color")) camera.depth_T_color = pose(*x);
-  if (auto x = s.get("rate_hz")) camera.rate_hz = x->as(kPositive);
+  if (auto x = s.get("rate_hz")) camera.rate_hz = x->number_in(kRateHz);
   if (auto x = s.get("noise")) read_noise(*x, camera.noise);
 }
 
@@ -221,14 +251,14 @@ void read_tracker(const Value& v, TrackerSpec& tracker, const fs::path& scenario
 
 void read_gain(const Value& v, GainSpec& gain) {
   if (v.node.IsScalar()) {
-    gain.at_zero = gain.at_infinity = v.as(kPositive);
+    gain.at_zero = gain.at_infinity = v.number_in(kGain);
     return;
   }
-  if (!v.node.IsMap()) v.expected("a positive number or a map with the keys at_zero, at_infinity, slope_at_zero");
+  if (!v.node.IsMap()) v.expected("a number in " + kGain.text() + " or a map with the keys at_zero, at_infinity, slope_at_zero");
   const Map s(v, {"at_zero", "at_infinity", "slope_at_zero"});
-  if (auto x = s.get("at_zero")) gain.at_zero = x->as(kPositive);
-  if (auto x = s.get("at_infinity")) gain.at_infinity = x->as(kPositive);
-  if (auto x = s.get("slope_at_zero")) gain.slope_at_zero = x->as(kPositive);
+  if (auto x = s.get("at_zero")) gain.at_zero = x->number_in(kGain);
+  if (auto x = s.get("at_infinity")) gain.at_infinity = x->number_in(kGain);
+  if (auto x = s.get("slope_at_zero")) gain.slope_at_zero = x->number_in(kGainSlope);
 }
 
 void read_control(const Value& v, ControlSpec& control) {
@@ -236,26 +266,42 @@ void read_control(const Value& v, ControlSpec& control) {
   if (auto x = s.get("law"))
     control.law = x->choice<ControlLawKind>({{"pbvs", ControlLawKind::kPbvs}, {"ibvs", ControlLawKind::kIbvs}});
   if (auto x = s.get("gain")) read_gain(*x, control.gain);
-  if (auto x = s.get("max_linear_velocity")) control.max_linear_velocity = x->as(kPositive);
-  if (auto x = s.get("max_angular_velocity_deg")) control.max_angular_velocity = x->as(kPositive) * kDegree;
-  if (auto x = s.get("max_joint_velocity_deg")) control.max_joint_velocity = x->as(kPositive) * kDegree;
+  if (auto x = s.get("max_linear_velocity")) control.max_linear_velocity = x->number_in(kLinearVelocity);
+  if (auto x = s.get("max_angular_velocity_deg")) control.max_angular_velocity = x->number_in(kAngularVelocityDeg) * kDegree;
+  if (auto x = s.get("max_joint_velocity_deg")) control.max_joint_velocity = x->number_in(kAngularVelocityDeg) * kDegree;
 }
 
 void read_stop(const Value& v, StopSpec& stop) {
   const Map s(v, {"translation_mm", "rotation_deg", "settle_time", "max_time"});
-  if (auto x = s.get("translation_mm")) stop.converged_translation = x->as(kNonNegative) * 1e-3;
-  if (auto x = s.get("rotation_deg")) stop.converged_rotation = x->as(kNonNegative) * kDegree;
-  if (auto x = s.get("settle_time")) stop.settle_time = x->as(kNonNegative);
-  if (auto x = s.get("max_time")) stop.max_time = x->as(kPositive);
+  if (auto x = s.get("translation_mm")) stop.converged_translation = x->number_in(kThresholdMm) * 1e-3;
+  if (auto x = s.get("rotation_deg")) stop.converged_rotation = x->number_in(kThresholdDeg) * kDegree;
+  if (auto x = s.get("settle_time")) stop.settle_time = x->number_in(kSimulatedTime);
+  if (auto x = s.get("max_time")) stop.max_time = x->number_in(kMaxTime);
 }
 
 void read_trials(const Value& v, TrialSpec& trials) {
   const Map s(v, {"translation_mm", "rotation_deg"});
-  if (auto x = s.get("translation_mm")) trials.translation = x->as(kNonNegative) * 1e-3;
-  if (auto x = s.get("rotation_deg")) trials.rotation = x->as(kNonNegative) * kDegree;
+  if (auto x = s.get("translation_mm")) trials.translation = x->number_in(kThresholdMm) * 1e-3;
+  if (auto x = s.get("rotation_deg")) trials.rotation = x->number_in(kThresholdDeg) * kDegree;
 }
 
 }  // namespace
+
+double simulated_steps(double max_time, double rate_hz) {
+  const double dt = 1.0 / rate_hz;
+  return std::ceil(max_time / dt) + 1.0;
+}
+
+void check_run_length(const Scenario& scenario) {
+  const double steps = simulated_steps(scenario.stop.max_time, scenario.camera.rate_hz);
+  if (steps >= 1.0 && steps <= kMaxSimulatedSteps) return;
+  // A scenario built in code has no file to name.
+  const std::string where = scenario.file.empty() ? "scenario '" + scenario.name + "'" : scenario.file;
+  throw ScenarioError(where + ": stop.max_time: " + yaml::plain_number(scenario.stop.max_time) +
+                      " s at camera.rate_hz " + yaml::plain_number(scenario.camera.rate_hz) + " Hz is " +
+                      yaml::plain_number(steps) + " simulated steps, outside the [1, " +
+                      yaml::plain_number(kMaxSimulatedSteps) + "] a run may take (lower max_time or rate_hz)");
+}
 
 std::string resolve_model_path(const std::string& reference, const std::string& scenario_dir,
                                const std::string& models_dir) {
@@ -291,6 +337,7 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) t
   if (auto x = s.get("control")) read_control(*x, scenario.control);
   if (auto x = s.get("stop")) read_stop(*x, scenario.stop);
   if (auto x = s.get("trials")) read_trials(*x, scenario.trials);
+  check_run_length(scenario);
   if (auto x = s.get("seed")) scenario.seed = x->as(Rule<unsigned>{"a non-negative integer", any<unsigned>});
   return scenario;
 } catch (const yaml::Error& e) {

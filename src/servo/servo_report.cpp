@@ -79,7 +79,8 @@ JsonObject summary_json(const TrialsSummary& s) {
       // null when no run converged (-1 in TrialsSummary).
       .add("converged_time_s_median", s.converged_time_median >= 0.0 ? s.converged_time_median : kNaN)
       .add("track_t_mm", pair("mean", s.mean_track_t * kMm, "max", s.max_track_t * kMm))
-      .add("track_r_deg", pair("mean", s.mean_track_r * kDeg, "max", s.max_track_r * kDeg));
+      .add("track_r_deg", pair("mean", s.mean_track_r * kDeg, "max", s.max_track_r * kDeg))
+      .add("interrupted", s.interrupted);
 }
 
 void write_text_file(const std::string& path, const std::string& text, const char* what) {
@@ -255,6 +256,7 @@ TrialsSummary summarise(const std::vector<ServoResult>& results, const StopSpec&
   s.scenario = results.front().scenario;
   s.tracker = results.front().tracker;
   s.trials = static_cast<int>(results.size());
+  s.interrupted = std::any_of(results.begin(), results.end(), [](const ServoResult& r) { return r.interrupted; });
 
   std::vector<double> final_t, final_r, converged_times, track_ms, steps_per_s;
   double sum_track_t = 0.0, sum_track_r = 0.0;
@@ -311,6 +313,9 @@ void print_run(std::ostream& out, const ServoResult& r, const StopSpec& stop) {
   text += format("tracker            %s (seed %u)\n", r.tracker.c_str(), r.seed);
   if (r.converged)
     text += format("converged          yes, at step %d (%.2f s simulated)\n", r.converged_step, r.converged_time);
+  else if (r.interrupted)
+    text += format("converged          no (interrupted at %.2f s simulated, %zu steps)\n", r.steps.back().time,
+                   r.steps.size());
   else
     text += format("converged          no (limit %.1f s simulated, %zu steps)\n", stop.max_time, r.steps.size());
   text += format("final error        %.3f mm, %.3f deg to the desired pose (thresholds %.3g mm, %.3g deg): %s\n",

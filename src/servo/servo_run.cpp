@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 
+#include "icgp/base/stop_request.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/servo/servo_controller.h"
 #include "icgp/servo/simulated_robot.h"
@@ -85,6 +86,7 @@ void summarise_tracking(ServoResult& result) {
 }  // namespace
 
 ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) {
+  check_run_length(original);
   Scenario scenario = original;
   scenario.initial_cMo = options.start_offset * original.initial_cMo;
   const vpHomogeneousMatrix desired_cMo = to_homogeneous_matrix(scenario.desired_cMo);
@@ -116,8 +118,9 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   PoseEstimate estimate;
   bool stopped = false;
   const auto loop_begin = Clock::now();
-  const int max_steps = static_cast<int>(std::ceil(scenario.stop.max_time / dt));
-  for (int k = 0; k <= max_steps; ++k) {
+  // check_run_length bounds it to [1, kMaxSimulatedSteps]: the conversion cannot overflow.
+  const int steps = static_cast<int>(simulated_steps(scenario.stop.max_time, scenario.camera.rate_hz));
+  for (int k = 0; k < steps; ++k) {
     ServoStep step;
     step.time = k * dt;
     const vpHomogeneousMatrix wMc = robot->world_T_camera();
@@ -174,6 +177,11 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
       result.converged = true;
       result.converged_time = convergence.since();
       result.converged_step = static_cast<int>(std::lround(convergence.since() / dt));
+      break;
+    }
+    // Polled after the step is logged, so that an interrupted run has at least one.
+    if (stop_requested()) {
+      result.interrupted = true;
       break;
     }
   }

@@ -3,9 +3,12 @@
 // with icgp in the loop (checked against the ground truth), and a tracker that reports lost
 // stops the robot within the step.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <sstream>
 
+#include "icgp/base/stop_request.h"
 #include "icgp/servo/scenario.h"
+#include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_controller.h"
 #include "icgp/servo/servo_run.h"
 #include "../unit/test_temp_dir.h"
@@ -67,6 +70,12 @@ class FailingTracker : public PoseEstimator {
   int first_lost_, count_, steps_ = 0;
 };
 
+/// Clears the process-wide stop request when a test ends, however it ends, so that it does
+/// not stop the tests after it.
+struct StopRequestReset {
+  ~StopRequestReset() { icgp::clear_stop_request(); }
+};
+
 }  // namespace
 
 TEST_CASE("servo: PBVS with the oracle settles within half the thresholds") {
@@ -124,4 +133,77 @@ TEST_CASE("servo: random trial starts stay within the scenario's ranges and repe
     CHECK(offset.matrix() == perturbed_start(trials, 7, i).matrix());
   }
   CHECK(perturbed_start(trials, 7, 0).matrix() != perturbed_start(trials, 8, 0).matrix());
+}
+
+TEST_CASE("servo: a stop request ends a run after the step it comes in, marked interrupted") {
+  const StopRequestReset reset;
+  ServoRunOptions options = quiet();
+  static constexpr std::size_t kStopAt = 5;  // the step during which the stop is requested
+  std::size_t steps = 0;
+  options.on_step = [&steps](const RgbdCapture&, const ServoStep&) {
+    if (steps++ == kStopAt) icgp::request_stop();
+  };
+  const ServoResult result = run_servo(small_scenario("pbvs", "oracle"), options);
+  CHECK(result.interrupted);
+  CHECK_FALSE(result.converged);
+  CHECK(result.steps.size() == kStopAt + 1);  // steps 0..kStopAt, all logged
+  CHECK(result.final_t == result.steps.back().servo_t);
+}
+
+TEST_CASE("servo: a run length out of bounds is refused before anything is rendered") {
+  Scenario scenario = small_scenario("pbvs", "oracle");
+  scenario.stop.max_time = 1e300;  // built in code: load_scenario would have refused it
+  CHECK_THROWS_WITH(run_servo(scenario, quiet()),
+                    Catch::Matchers::Contains("stop.max_time: 1e+300 s at camera.rate_hz 30 Hz is 3e+301 simulated "
+                                              "steps, outside the [1, 1000000]"));
+  scenario.stop.max_time = 8.0;
+  scenario.camera.rate_hz = 1e12;
+  CHECK_THROWS_AS(run_servo(scenario, quiet()), ScenarioError);
+  scenario.camera.rate_hz = std::nan("");
+  CHECK_THROWS_AS(run_servo(scenario, quiet()), ScenarioError);
+  scenario.camera.rate_hz = 30.0;
+  scenario.stop.max_time = -1.0;  // no step at all: refused too, rather than an empty log
+  CHECK_THROWS_AS(run_servo(scenario, quiet()), ScenarioError);
+}
+
+TEST_CASE("servo: a batch stopped early keeps only the trials every tracker finished") {
+  const StopRequestReset reset;
+  Scenario scenario = small_scenario("pbvs", "oracle");
+  scenario.stop.max_time = 0.5;  // 16 steps: the bookkeeping is under test, not convergence
+  const std::vector<TrackerKind> trackers = {TrackerKind::kOracle, TrackerKind::kOracle};
+
+  SECTION("between runs, in the middle of a trial") {
+    std::vector<std::pair<int, std::size_t>> seen;  // (trial, steps) of each run done
+    const TrialBatch batch = run_trials(scenario, trackers, 5, [&](int trial, const ServoResult& run) {
+      seen.emplace_back(trial, run.steps.size());
+      if (seen.size() == 3) icgp::request_stop();  // trial 0 by both, trial 1 by the first only
+    });
+    // No run starts after the request.
+    CHECK(seen == std::vector<std::pair<int, std::size_t>>{{0, 16}, {0, 16}, {1, 16}});
+    CHECK(batch.interrupted);
+    CHECK(batch.trials_done == 1);
+    REQUIRE(batch.runs.size() == 2);
+    CHECK((batch.runs[0].size() == 1 && batch.runs[1].size() == 1));
+    // Identical trials: the same start (the same first true pose) for both trackers.
+    const PoseError start = pose_error(batch.runs[0][0].steps.front().cMo_true, batch.runs[1][0].steps.front().cMo_true);
+    CHECK((start.translation == 0.0 && start.rotation == 0.0));
+  }
+  SECTION("within a run: the run cut short is left out") {
+    ServoRunOptions each_run;
+    int steps = 0;
+    // Trial 0 takes 16 steps; the request comes during trial 1's 5th step.
+    each_run.on_step = [&steps](const RgbdCapture&, const ServoStep&) {
+      if (++steps == 16 + 5) icgp::request_stop();
+    };
+    int runs_done = 0;
+    const TrialBatch batch =
+        run_trials(scenario, {TrackerKind::kOracle}, 5, [&](int, const ServoResult&) { ++runs_done; }, each_run);
+    CHECK(steps == 16 + 5);  // the run stopped at the step of the request
+    CHECK(runs_done == 1);
+    CHECK(batch.interrupted);
+    CHECK(batch.trials_done == 1);
+    REQUIRE(batch.runs.size() == 1);
+    REQUIRE(batch.runs[0].size() == 1);
+    CHECK_FALSE(batch.runs[0][0].interrupted);
+  }
 }

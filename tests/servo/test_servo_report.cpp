@@ -235,9 +235,10 @@ TEST_CASE("write_summary_json writes the contract keys in mm and degrees", "[ser
   REQUIRE(json.IsMap());
   for (const char* key : {"scenario", "tracker", "trials", "converged", "success_rate", "final_t_mm", "final_r_deg",
                           "median_track_ms", "steps_per_s", "safety_stops", "recovered", "converged_time_s_median",
-                          "track_t_mm", "track_r_deg"})
+                          "track_t_mm", "track_r_deg", "interrupted"})
     CHECK(json[key].IsDefined());
-  CHECK(json.size() == 14);
+  CHECK(json.size() == 15);
+  CHECK_FALSE(json["interrupted"].as<bool>());
   CHECK(json["scenario"].as<std::string>() == "pbvs_box");
   CHECK(json["tracker"].as<std::string>() == "icgp");
   CHECK(json["trials"].as<int>() == 4);

@@ -4,6 +4,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "../unit/test_temp_dir.h"
 #include "icgp/servo/scenario.h"
@@ -242,13 +245,13 @@ TEST_CASE("scenario errors name the file and the field") {
   }
   SECTION("wrong types") {
     CHECK(error(kMinimal + "control: {gain: fast}\n") ==
-          file + ": control.gain: expected a positive number, got 'fast'");
+          file + ": control.gain: expected a number in (0, 1000], got 'fast'");
     CHECK_THAT(error(kMinimal + "camera: {rate_hz: [30]}\n"),
-               Contains(file + ": camera.rate_hz: expected a positive number, got [30]"));
+               Contains(file + ": camera.rate_hz: expected a number in (0, 1000], got [30]"));
     CHECK_THAT(error(kMinimal + "camera: {color: {width: 640.5}}\n"),
-               Contains(file + ": camera.color.width: expected a positive integer, got 640.5"));
+               Contains(file + ": camera.color.width: expected an integer in [1, 8192], got 640.5"));
     CHECK_THAT(error(kMinimal + "occluder: {size: [1, 2]}\n"),
-               Contains(file + ": occluder.size: expected a list of 3 non-negative numbers, got [1, 2]"));
+               Contains(file + ": occluder.size: expected a list of 3 numbers in [0, 100], got [1, 2]"));
     CHECK_THAT(error(kMinimal + "background: {enabled: maybe}\n"),
                Contains(file + ": background.enabled: expected true or false, got 'maybe'"));
     CHECK_THAT(error(kMinimal + "control: [pbvs]\n"), Contains(file + ": control: expected a map with the keys law"));
@@ -261,12 +264,12 @@ TEST_CASE("scenario errors name the file and the field") {
     CHECK_THAT(error(kMinimal + "camera: {noise: {motion_blur: 1.01}}\n"),
                Contains(file + ": camera.noise.motion_blur: expected a number in [0, 1]"));
     CHECK_THAT(error(kMinimal + "camera: {noise: {edge_dropout_px: -1}}\n"),
-               Contains(file + ": camera.noise.edge_dropout_px: expected a non-negative integer, got -1"));
+               Contains(file + ": camera.noise.edge_dropout_px: expected an integer in [0, 100], got -1"));
     CHECK_THAT(error(kMinimal + "control: {gain: {at_zero: 0}}\n"),
-               Contains(file + ": control.gain.at_zero: expected a positive number, got 0"));
+               Contains(file + ": control.gain.at_zero: expected a number in (0, 1000], got 0"));
     CHECK_THAT(error(kMinimal + "control: {max_angular_velocity_deg: -30}\n"),
-               Contains(file + ": control.max_angular_velocity_deg: expected a positive number, got -30"));
-    CHECK_THAT(error(kMinimal + "stop: {max_time: 0}\n"), Contains(file + ": stop.max_time: expected a positive"));
+               Contains(file + ": control.max_angular_velocity_deg: expected a number in (0, 3600], got -30"));
+    CHECK_THAT(error(kMinimal + "stop: {max_time: 0}\n"), Contains(file + ": stop.max_time: expected a number in (0, 86400], got 0"));
     CHECK_THAT(error(kMinimal + "seed: -1\n"), Contains(file + ": seed: expected a non-negative integer, got -1"));
     CHECK_THAT(error("object: {model: textured_box}\nstart: {t: [0, 0, -0.4], r_deg: [0, 0, 0]}\n"
                      "desired: {t: [0, 0, 0.35], r_deg: [0, 0, 0]}\n"),
@@ -305,6 +308,99 @@ TEST_CASE("scenario errors name the file and the field") {
     CHECK_THAT(error(kMinimal + "tracker: {config: icgp.yaml}\n"),
                Contains(file + ": tracker.config: ") && Contains((dir.path() / "icgp.yaml").string()));
   }
+}
+
+TEST_CASE("every number of a scenario is bounded, and a refusal names the field, the value and the range") {
+  TempDir dir("icgp-scenario");
+  const std::string file = (dir.path() / "bad.yaml").string();
+  // Each: a scenario with one value out of its range, and the whole message it must give.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"camera: {color: {width: 100000}}", "camera.color.width: expected an integer in [1, 8192], got 100000"},
+      {"camera: {color: {height: 0}}", "camera.color.height: expected an integer in [1, 8192], got 0"},
+      {"camera: {depth: {width: 30000000000}}",
+       "camera.depth.width: expected an integer in [1, 8192], got 30000000000"},
+      {"camera: {color: {focal: 1e9}}", "camera.color.focal: expected a number in (0, 100000], got 1e9"},
+      {"camera: {color: {pu: -1e6}}", "camera.color.pu: expected a number in [-8192, 16384], got -1e6"},
+      {"camera: {rate_hz: 1e12}", "camera.rate_hz: expected a number in (0, 1000], got 1e12"},
+      {"camera: {rate_hz: .nan}", "camera.rate_hz: expected a number in (0, 1000], got .nan"},
+      {"camera: {noise: {color_sigma: 1000}}", "camera.noise.color_sigma: expected a number in [0, 255], got 1000"},
+      {"camera: {noise: {depth_sigma_at_1m: 2}}",
+       "camera.noise.depth_sigma_at_1m: expected a number in [0, 1], got 2"},
+      {"camera: {noise: {edge_dropout_px: 1000000}}",
+       "camera.noise.edge_dropout_px: expected an integer in [0, 100], got 1000000"},
+      {"stop: {max_time: 1e300}", "stop.max_time: expected a number in (0, 86400], got 1e300"},
+      {"stop: {max_time: .inf}", "stop.max_time: expected a number in (0, 86400], got .inf"},
+      {"stop: {settle_time: 1e9}", "stop.settle_time: expected a number in [0, 86400], got 1e9"},
+      {"stop: {translation_mm: 5000}", "stop.translation_mm: expected a number in [0, 1000], got 5000"},
+      {"stop: {rotation_deg: 181}", "stop.rotation_deg: expected a number in [0, 180], got 181"},
+      {"trials: {translation_mm: 1e6}", "trials.translation_mm: expected a number in [0, 1000], got 1e6"},
+      {"trials: {rotation_deg: -1}", "trials.rotation_deg: expected a number in [0, 180], got -1"},
+      {"control: {gain: 1e9}", "control.gain: expected a number in (0, 1000], got 1e9"},
+      {"control: {gain: {slope_at_zero: 1e9}}",
+       "control.gain.slope_at_zero: expected a number in (0, 100000], got 1e9"},
+      {"control: {max_linear_velocity: 1e300}",
+       "control.max_linear_velocity: expected a number in (0, 10], got 1e300"},
+      {"control: {max_joint_velocity_deg: 1e5}",
+       "control.max_joint_velocity_deg: expected a number in (0, 3600], got 1e5"},
+      {"arm: {initial_joints_deg: [0, 0, 1000, 0, 0, 0]}",
+       "arm.initial_joints_deg: expected a list of 6 numbers in [-360, 360], got [0, 0, 1000, 0, 0, 0]"},
+      {"arm: {eMo: {t: [0, 0, 1e10], r_deg: [0, 0, 0]}}",
+       "arm.eMo.t: expected a list of 3 numbers in [-100, 100], got [0, 0, 1e10]"},
+      {"object: {model: textured_box, motion: {velocity: [1e3, 0, 0]}}",
+       "object.motion.velocity: expected a list of 3 numbers in [-10, 10], got [1e3, 0, 0]"},
+      {"object: {model: textured_box, motion: {duration: 1e20}}",
+       "object.motion.duration: expected a number in [0, 86400], got 1e20"},
+      {"occluder: {velocity: [1e300, 0, 0]}",
+       "occluder.velocity: expected a list of 3 numbers in [-100, 100], got [1e300, 0, 0]"},
+      {"occluder: {start: -1}", "occluder.start: expected a number in [0, 86400], got -1"},
+      {"background: {distance: 1e6}", "background.distance: expected a number in [0, 100], got 1e6"},
+      {"lighting: {direction: [0, 0, 1e308]}",
+       "lighting.direction: expected a list of 3 numbers in [-1000, 1000], got [0, 0, 1e308]"},
+  };
+  for (const auto& [yaml, message] : cases) {
+    INFO(yaml);
+    // `object:` given here replaces the minimal scenario's (a key may not come twice).
+    const bool has_object = yaml.rfind("object:", 0) == 0;
+    const std::string text = has_object ? yaml + "\nstart: {t: [0, 0, 0.45], r_deg: [0, 0, 0]}\n"
+                                                 "desired: {t: [0, 0, 0.35], r_deg: [0, 0, 0]}\n"
+                                          : kMinimal + yaml + "\n";
+    CHECK(error_of(dir, text) == file + ": " + message);
+  }
+  CHECK(error_of(dir, "object: {model: textured_box}\nstart: {t: [0, 0, 1e300], r_deg: [0, 0, 0]}\n"
+                      "desired: {t: [0, 0, 0.35], r_deg: [0, 0, 0]}\n") ==
+        file + ": start.t: expected a list of 3 numbers in [-100, 100], got [0, 0, 1e300]");
+  CHECK(error_of(dir, kMinimal.substr(0, kMinimal.find("desired")) + "desired: {t: [0, 0, 0.35], r_deg: [0, 720, 0]}\n") ==
+        file + ": desired.r_deg: expected a list of 3 numbers in [-360, 360], got [0, 720, 0]");
+}
+
+TEST_CASE("a scenario camera is bounded in pixels, not only per side") {
+  TempDir dir("icgp-scenario");
+  const std::string file = (dir.path() / "bad.yaml").string();
+  // 8192 x 4096 = 33554432 pixels is the most: 8K UHD fits, a square of the longest side does not.
+  const Scenario largest =
+      load_scenario(dir.write("largest.yaml", kMinimal + "camera: {color: {width: 8192, height: 4096}}\n"), ICGP_MODELS_DIR);
+  CHECK((largest.camera.color.width == 8192 && largest.camera.color.height == 4096));
+  CHECK(error_of(dir, kMinimal + "camera: {color: {width: 8192, height: 8192}}\n") ==
+        file + ": camera.color: 8192 x 8192 = 67108864 pixels, more than the 33554432 (8192 x 4096) an image may have");
+  CHECK(error_of(dir, kMinimal + "camera: {depth: {width: 4097, height: 8192}}\n") ==
+        file + ": camera.depth: 4097 x 8192 = 33562624 pixels, more than the 33554432 (8192 x 4096) an image may have");
+}
+
+TEST_CASE("a scenario run is bounded in simulated steps (stop.max_time x camera.rate_hz)") {
+  TempDir dir("icgp-scenario");
+  const std::string file = (dir.path() / "bad.yaml").string();
+  // At 16 Hz (a period of 1/16 s, exact in binary), max_time T takes 16 T periods plus the
+  // capture at t = 0: 62499.9375 s is exactly 1000000 steps, the most a run may take.
+  const Scenario longest = load_scenario(
+      dir.write("longest.yaml", kMinimal + "camera: {rate_hz: 16}\nstop: {max_time: 62499.9375}\n"), ICGP_MODELS_DIR);
+  CHECK(icgp::servo::simulated_steps(longest.stop.max_time, longest.camera.rate_hz) == 1000000.0);
+  CHECK(error_of(dir, kMinimal + "camera: {rate_hz: 16}\nstop: {max_time: 62500}\n") ==
+        file + ": stop.max_time: 62500 s at camera.rate_hz 16 Hz is 1000001 simulated steps, outside the [1, 1000000] "
+               "a run may take (lower max_time or rate_hz)");
+  CHECK_THAT(error_of(dir, kMinimal + "camera: {rate_hz: 1000}\nstop: {max_time: 86400}\n"),
+             Contains("stop.max_time: 86400 s at camera.rate_hz 1000 Hz is 86400001 simulated steps"));
+  CHECK(icgp::servo::simulated_steps(10.0, 30.0) == 301.0);
+  CHECK(icgp::servo::simulated_steps(0.01, 30.0) == 2.0);
 }
 
 TEST_CASE("every scenario shipped in scenarios/ loads") {

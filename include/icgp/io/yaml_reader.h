@@ -74,6 +74,23 @@ extern const Rule<bool> kBool;           ///< "true or false"
 extern const Rule<std::string> kString;  ///< "a string"; `key:` alone is the empty string
 extern const Rule<std::string> kNonEmptyString;  ///< "a non-empty string"
 
+/// The numbers a value may take, written as the messages write them: "[0, 8192]",
+/// "(0, 1000]", "[0, 1)". Bounded on both sides, so that no value can ask for unbounded
+/// memory or time; the readers share it to word every range the same way.
+struct Interval {
+  double min = 0.0;
+  double max = 0.0;
+  bool open_below = false;  ///< min itself is outside: (min, …
+  bool open_above = false;  ///< max itself is outside: …, max)
+
+  /// Finite and within the bounds (NaN and infinities are not).
+  bool contains(double value) const;
+  std::string text() const;
+};
+
+/// A number as a person writes it: 1000000 rather than 1e+06, 0.5, -360.
+std::string plain_number(double value);
+
 /// A value as the file wrote it, for messages: numbers as they are, other text quoted
 /// ('fast'), lists in brackets, "a map", "nothing" for `key:` alone.
 std::string describe(const YAML::Node& node);
@@ -108,6 +125,12 @@ struct Value {
     if (!value || !rule.ok(*value)) expected(rule.expected);
     return std::move(*value);
   }
+
+  /// A number within `range`; "expected a number in <range>, got <value>" otherwise.
+  double number_in(const Interval& range) const;
+  /// An integer within [min, max]; "expected an integer in [min, max], got <value>"
+  /// otherwise (1.5 and 10^20 included, which do not convert).
+  long long integer_in(long long min, long long max) const;
 
   /// The option the value names; "expected one of <names>" otherwise.
   template <typename E>

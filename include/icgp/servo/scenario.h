@@ -19,7 +19,7 @@ namespace icgp::servo {
 constexpr double kDegree = kPi / 180.0;
 
 /// A scenario file that cannot be used. The message names the file and the field
-/// ("scenarios/x.yaml: control.gain: expected a positive number, got 'fast'").
+/// ("scenarios/x.yaml: control.gain: expected a number in (0, 1000], got 'fast'").
 class ScenarioError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -181,9 +181,29 @@ struct Scenario {
   unsigned seed = 1;  ///< noise and randomised starts
 };
 
+/// The most steps one run may take (stop.max_time x camera.rate_hz): a million, about
+/// 9 hours at the 30 steps/s of a 640x480 run here, and the per-step log of a run
+/// (ServoResult::steps) stays under a gigabyte. docs/servo.md lists every bound.
+inline constexpr double kMaxSimulatedSteps = 1e6;
+
+/// The steps of a run that reaches `max_time` seconds at `rate_hz` frames per second: the
+/// capture at t = 0 and one per frame period up to max_time (run_servo's loop). A double,
+/// so that no rate or time can overflow it; +inf or NaN for nonsense, never below 1 for
+/// positive inputs.
+double simulated_steps(double max_time, double rate_hz);
+
+/// Throws ScenarioError naming the file and stop.max_time unless a run of `scenario` takes
+/// 1 to kMaxSimulatedSteps steps. Each step renders and tracks a frame and keeps a line of
+/// log, so the bound keeps a run within hours and its log in memory. load_scenario checks
+/// it (only a max_time the file gives can exceed it: the default 20 s at the highest rate is
+/// 20001 steps), and run_servo again for scenarios built in code.
+void check_run_length(const Scenario& scenario);
+
 /// Reads and validates a scenario. Relative paths in it are resolved against the file's
 /// folder, model names against `models_dir`. Throws ScenarioError naming the file and the
-/// field for anything missing, unknown, of the wrong type or out of range.
+/// field for anything missing, unknown, of the wrong type or out of range, with the range:
+/// every number is bounded (docs/servo.md, "Limits"), image sizes by
+/// icgp/base/resource_limits.h and the length of a run by kMaxSimulatedSteps.
 Scenario load_scenario(const std::string& path, const std::string& models_dir);
 
 /// The mesh file of a model reference of the scenario (ObjectSpec::model, regions): a

@@ -28,6 +28,9 @@ struct TrialsSummary {
   double steps_per_s = 0.0;  ///< median over runs
   int safety_stops = 0;      ///< over all runs
   int recovered = 0;         ///< runs with safety stops that recovered
+  /// A stop request ended the work early: a run of these was cut short, or (set by the
+  /// batch) the batch stopped before all its trials and `trials` counts those done.
+  bool interrupted = false;
 };
 
 /// `success` of a run: it converged and its true final error is within `stop`'s thresholds.
@@ -41,7 +44,8 @@ void print_summaries(std::ostream& out, const std::vector<TrialsSummary>& summar
 
 /// The machine-readable summary: {"scenario", "tracker", "trials", "converged",
 /// "success_rate", "final_t_mm": {"median", "max"}, "final_r_deg": {"median", "max"},
-/// "median_track_ms", "steps_per_s", "safety_stops"} plus the other TrialsSummary fields;
+/// "median_track_ms", "steps_per_s", "safety_stops"} plus the other TrialsSummary fields
+/// ("interrupted": true when a stop request cut the work short);
 /// with several summaries (--compare) an array of them.
 void write_summary_json(const std::vector<TrialsSummary>& summaries, const std::string& path);
 

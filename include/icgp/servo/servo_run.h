@@ -46,6 +46,9 @@ struct ServoResult {
   int safety_stops = 0;      ///< times the tracker was lost and the robot stopped
   bool recovered = true;     ///< after the last safety stop, tracking resumed (not lost at the end)
   int joint_limit_stops = 0;
+  /// A stop was requested (icgp::request_stop, SIGINT) and the run ended at the step it was
+  /// seen, before converging or reaching its time limit.
+  bool interrupted = false;
   std::vector<ServoStep> steps;
 };
 
@@ -66,7 +69,9 @@ struct ServoRunOptions {
 /// velocity is zero (safety stop) and the tracker restarts at the last pose it did not
 /// report lost, until it tracks again. The run converges when the servo
 /// error as the tracker estimates it stays within the scenario's thresholds for its settle
-/// time, after any target motion has ended.
+/// time, after any target motion has ended. A stop request (icgp::stop_requested()) ends the
+/// run after the current step, marked interrupted. Throws ScenarioError when the scenario's
+/// run length is out of bounds (check_run_length).
 ServoResult run_servo(const Scenario& scenario, const ServoRunOptions& options = {});
 
 /// The start offset of trial `trial` of a batch seeded with `seed`: a translation and a

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/servo/servo_batch.h"
+
+#include <utility>
+
+#include "icgp/base/stop_request.h"
+
+namespace icgp::servo {
+namespace {
+
+ServoResult run_trial(const Scenario& scenario, int trial, ServoRunOptions run) {
+  run.seed = scenario.seed + static_cast<unsigned>(trial);
+  run.start_offset = perturbed_start(scenario.trials, scenario.seed, trial);
+  run.progress = false;  // a batch reports per run instead (RunDone)
+  return run_servo(scenario, run);
+}
+
+}  // namespace
+
+TrialBatch run_trials(const Scenario& scenario, const std::vector<TrackerKind>& trackers, int trials,
+                      const RunDone& on_run, const ServoRunOptions& each_run) {
+  TrialBatch batch;
+  batch.runs.resize(trackers.size());
+  for (int i = 0; i < trials; ++i) {
+    std::vector<ServoResult> trial;
+    for (const TrackerKind tracker : trackers) {
+      // Between runs here; within a run, run_servo polls at every step.
+      if (stop_requested()) {
+        batch.interrupted = true;
+        return batch;
+      }
+      Scenario s = scenario;
+      s.tracker.kind = tracker;
+      trial.push_back(run_trial(s, i, each_run));
+      if (trial.back().interrupted) {
+        batch.interrupted = true;
+        return batch;
+      }
+      if (on_run) on_run(i, trial.back());
+    }
+    for (std::size_t k = 0; k < trackers.size(); ++k) batch.runs[k].push_back(std::move(trial[k]));
+    ++batch.trials_done;
+  }
+  return batch;
+}
+
+}  // namespace icgp::servo
