@@ -2,9 +2,11 @@
 #include <iostream>
 
 #include "commands.h"
+#include "icgp/base/stop_request.h"
 
 int main(int argc, char** argv) {
   using icgp::app::kExitError;
+  using icgp::app::kExitInterrupted;
   CLI::App app{"icgp: ICG+ multi-modality 6-DoF object tracking for ViSP"};
   app.require_subcommand(1);
   // Command-line errors read like every other error of the program: one line, its status.
@@ -26,6 +28,9 @@ int main(int argc, char** argv) {
   } catch (const icgp::app::CommandOutcome& e) {
     std::cerr << "icgp: " << e.what() << "\n";
     return e.status();
+  } catch (const icgp::StopRequested& e) {
+    std::cerr << "icgp: " << e.what() << "\n";
+    return kExitInterrupted;
   } catch (const std::exception& e) {
     std::cerr << "icgp: error: " << e.what() << "\n";
     return kExitError;

@@ -10,6 +10,7 @@
 
 #include "commands.h"
 #include "option_ranges.h"
+#include "icgp/base/stop_request.h"
 #include "icgp/model/model_cache.h"
 #include "icgp/visp/cao_mesh_loader.h"
 
@@ -29,6 +30,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 void run_model(const ModelOptions& o) {
+  install_stop_on_sigint();  // generation stops between views; nothing is left half written
   // Generation renders on one thread per core already; llvmpipe's own raster threads on top
   // would oversubscribe the cores (measured: 22 s instead of 17 s for the default models).
   // Read when the first context is made, so set before that; a user's setting wins.
