@@ -46,12 +46,31 @@ unsigned int import_flags() {
          aiProcess_SortByPType | aiProcess_RemoveComponent | aiProcess_ValidateDataStructure;
 }
 
+/// Checked on the file's own vertices: joining identical vertices would merge a NaN vertex
+/// into another one and hide it.
+void check_finite_vertices(const aiScene& scene, const std::string& path) {
+  for (unsigned int m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned int i = 0; i < mesh.mNumVertices; ++i) {
+      const aiVector3D& v = mesh.mVertices[i];
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+        throw std::invalid_argument("load_mesh: '" + path + "': mesh " + std::to_string(m) + " vertex " + std::to_string(i) +
+                                    " is (" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " +
+                                    std::to_string(v.z) + ") (expected finite coordinates)");
+    }
+  }
+}
+
 const aiScene* read_scene(Assimp::Importer& importer, const std::string& path) {
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
                                                           aiComponent_COLORS | aiComponent_BONEWEIGHTS |
                                                           aiComponent_ANIMATIONS | aiComponent_LIGHTS |
                                                           aiComponent_CAMERAS);
-  const aiScene* scene = importer.ReadFile(path, import_flags());
+  const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+  if (scene == nullptr)
+    fail(path, std::string("cannot be read as a triangle mesh: ") + importer.GetErrorString());
+  check_finite_vertices(*scene, path);
+  scene = importer.ApplyPostProcessing(import_flags());
   if (scene == nullptr)
     fail(path, std::string("cannot be read as a triangle mesh: ") + importer.GetErrorString());
   return scene;
