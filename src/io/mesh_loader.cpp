@@ -12,6 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "mesh_file_check.h"
+
 namespace icgp {
 namespace {
 
@@ -181,6 +183,7 @@ MeshPart part_of(const aiMesh& mesh, const aiScene& scene, const std::string& pa
 Mesh load_mesh(const std::string& path, const MeshLoadOptions& options) {
   check_scale(path, options.scale);
   check_is_file(path);
+  check_mesh_file_structure(path);
   Assimp::Importer importer;  // owns the scene: keep it alive while copying
   const aiScene& scene = *read_scene(importer, path);
   Mesh mesh;
