@@ -2,6 +2,7 @@
 #include "icgp/visp/visp_camera_xml.h"
 
 #include <array>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -31,12 +32,38 @@ std::string number_text(double value) {
 /// camera of this value tells which fields the file gives: no file writes it.
 constexpr double kNotInFile = std::numeric_limits<double>::lowest();
 
+/// ViSP's parser reads the leading number of an element's text and drops the rest
+/// (<u0>3x</u0> is 3), so the text of every intrinsics element is checked first.
+void check_number_elements(const std::string& path) {
+  constexpr std::uintmax_t kMaxBytes = 1 << 20;
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error || size > kMaxBytes)
+    fail(path, std::to_string(size) + " bytes (expected an XML file of at most " + std::to_string(kMaxBytes) + " bytes)");
+  std::ifstream in(path, std::ios::binary);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  for (const std::string tag : {"px", "py", "u0", "v0"}) {
+    const std::string open = "<" + tag + ">", close = "</" + tag + ">";
+    for (std::size_t at = text.find(open); at != std::string::npos; at = text.find(open, at + 1)) {
+      const std::size_t begin = at + open.size(), end = text.find(close, begin);
+      if (end == std::string::npos) break;  // malformed XML: ViSP's parser says so
+      const std::string value = text.substr(begin, end - begin);
+      char* stop = nullptr;
+      const double number = std::strtod(value.c_str(), &stop);
+      while (stop && (*stop == ' ' || *stop == '\t' || *stop == '\r' || *stop == '\n')) ++stop;
+      if (value.empty() || stop == value.c_str() || *stop != '\0' || !std::isfinite(number))
+        fail(path, "<camera> <" + tag + ">: '" + value.substr(0, 40) + "' (expected a finite number)");
+    }
+  }
+}
+
 }  // namespace
 
 Intrinsics read_visp_camera_xml(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) fail(path, "no such file");
   if (!std::filesystem::is_regular_file(path, error) || !std::ifstream(path)) fail(path, "cannot read the file");
+  check_number_elements(path);
 
   // Any parser type but PROJECTION_ERROR_PARSER reads <camera>; the edge parser reads the
   // fewest other blocks.

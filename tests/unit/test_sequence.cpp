@@ -352,12 +352,15 @@ TEST_CASE("ViSP camera XML: errors name the file and the field, ViSP's parser st
         file + ": no <camera> block with <px>, <py>, <u0> and <v0>");
   CHECK(error("<conf><camera><px>700</px><py>700</py><u0>320</u0></camera></conf>") ==
         file + ": <camera> block has no <v0>");
-  CHECK_THAT(error("<conf><camera><px>abc</px><py>700</py><u0>320</u0><v0>240</v0></camera></conf>"),
-             Contains(file + ": <camera>: ") && Contains("px") && Contains("positive"));
+  CHECK(error("<conf><camera><px>abc</px><py>700</py><u0>320</u0><v0>240</v0></camera></conf>") ==
+        file + ": <camera> <px>: 'abc' (expected a finite number)");
+  // ViSP's parser would read 3 and drop the x.
+  CHECK(error("<conf><camera><px>700</px><py>700</py><u0>3x</u0><v0>240</v0></camera></conf>") ==
+        file + ": <camera> <u0>: '3x' (expected a finite number)");
   CHECK(error("<conf><camera><px>700</px><py>-700</py><u0>320</u0><v0>240</v0></camera></conf>") ==
         file + ": <camera> <py> must be a finite positive number, got -700");
   CHECK(error("<conf><camera><px>700</px><py>700</py><u0>inf</u0><v0>240</v0></camera></conf>") ==
-        file + ": <camera> <u0> must be a finite number, got inf");
+        file + ": <camera> <u0>: 'inf' (expected a finite number)");
   CHECK_THAT(error("<conf><camera><px>700</px>"), Contains(file + ": not an XML file"));
 }
 
