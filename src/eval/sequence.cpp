@@ -137,6 +137,7 @@ void check_jpeg_complete(const fs::path& path) {
   if (extension != ".jpg" && extension != ".jpeg") return;
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   const std::streamoff size = in.tellg();
+  if (size < 0) fail(path, "cannot be read");
   const std::streamoff tail_size = std::min<std::streamoff>(size, 1024);
   std::string tail(static_cast<std::size_t>(tail_size), '\0');
   in.seekg(size - tail_size);
