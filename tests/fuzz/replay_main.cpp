@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Replays saved inputs through a fuzz target without libFuzzer, so that the normal build
 // runs every seed and every input that once crashed: `fuzz_replay_<target> DIR...` feeds
-// each file of each DIR (sorted, dot files skipped) to LLVMFuzzerTestOneInput. A crash
+// each file of each DIR (sorted, dot files skipped) to LLVMFuzzerTestOneInput, after the
+// target's LLVMFuzzerInitialize when it has one. A crash
 // ends the process as it would end the fuzzer; a DIR given with --nonempty must hold at
 // least one input, so that a lost corpus does not pass silently.
 #include <algorithm>
@@ -15,6 +16,8 @@
 #include <vector>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
+// Optional, as for libFuzzer: a target's one-time set-up.
+extern "C" __attribute__((weak)) int LLVMFuzzerInitialize(int* argc, char*** argv);
 
 namespace {
 
@@ -37,6 +40,7 @@ std::vector<std::uint8_t> read_bytes(const fs::path& file) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (LLVMFuzzerInitialize) LLVMFuzzerInitialize(&argc, &argv);
   int replayed = 0;
   bool nonempty = false;
   for (int i = 1; i < argc; ++i) {

@@ -170,9 +170,19 @@ class TrackerFixture {
 
 }  // namespace
 
+namespace {
+std::unique_ptr<TrackerFixture> fixture;
+}  // namespace
+
+/// The set-up, models generated on the first run (seconds, more under ASan), happens here,
+/// before libFuzzer's per-input timeout starts counting.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  fixture = std::make_unique<TrackerFixture>();
+  return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static TrackerFixture fixture;  // set up once: models are generated on its first track
   InputBytes input(data, size);
-  icgp::fuzz::refusing_cleanly([&] { fixture.track_one(input); });
+  icgp::fuzz::refusing_cleanly([&] { fixture->track_one(input); });
   return 0;
 }
