@@ -188,9 +188,10 @@ void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& imag
                                                    std::to_string(depth.height) +
                                                    " (an organised cloud has one point per pixel)");
     const unsigned int width = depth.width;
+    // Init-captures: C++17 does not let a lambda capture a structured binding (clang refuses).
     icgp::visp_detail::read_cloud(
-        depth, [cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); },
-        [cloud, width](int row, int col) {
+        depth, [cloud = cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); },
+        [cloud = cloud, width](int row, int col) {
           const vpColVector& point = (*cloud)[static_cast<std::size_t>(row) * width + col];
           return point.size() >= 3 ? static_cast<float>(point[2]) : 0.f;
         },
