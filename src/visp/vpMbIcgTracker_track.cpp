@@ -235,8 +235,10 @@ void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& imag
                                                    std::to_string(depth.height) +
                                                    " (an organised cloud has one point per pixel)");
     const unsigned int width = depth.width;
+    // Init-captures: C++17 does not let a lambda capture a structured binding (clang refuses).
     icgp::visp_detail::read_cloud(
-        depth, [cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); }, camera.parameters);
+        depth, [cloud = cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); },
+        camera.parameters);
     depths.push_back(std::move(depth));
   }
   track_frame(images, depths, "track");
