@@ -28,7 +28,7 @@ void ViewpointModelParams::validate() const {
           "sphere_radius must be positive (got " + std::to_string(sphere_radius) + ")");
   require(image_size >= 16 && image_size <= kMaxImageSize, "image_size must be from 16 to " + std::to_string(kMaxImageSize) +
                                                                  " px (got " + std::to_string(image_size) + ")");
-  require(image_margin >= 0 && 2 * image_margin < image_size - 2,
+  require(image_margin >= 0 && 2LL * image_margin < image_size - 2LL,  // 64-bit: a cache header may hold any int
           "image_margin must be non-negative and leave room for the object (got " + std::to_string(image_margin) +
               " px of " + std::to_string(image_size) + ")");
   require(n_points >= 1 && n_points <= kMaxPoints,
