@@ -44,10 +44,15 @@ void check_ply(const std::string& path, std::ifstream& in, std::uintmax_t file_s
   std::string header(kMaxPlyHeaderBytes, '\0');
   in.read(header.data(), static_cast<std::streamsize>(header.size()));
   header.resize(static_cast<std::size_t>(in.gcount()));
-  const std::size_t end = header.find("end_header");
   if (header.compare(0, 3, "ply") != 0) refuse(path, "PLY file without the 'ply' magic line");
-  if (end == std::string::npos)
-    refuse(path, "PLY header without 'end_header' in its first " + std::to_string(kMaxPlyHeaderBytes) + " bytes");
+  // The header ends at a line that is "end_header" and nothing else (assimp hung on a file
+  // whose end_header was the tail of a property line).
+  std::size_t end = header.find("\nend_header");
+  while (end != std::string::npos && end + 11 < header.size() && header[end + 11] != '\n' && header[end + 11] != '\r')
+    end = header.find("\nend_header", end + 1);
+  if (end == std::string::npos || end + 11 >= header.size())
+    refuse(path, "PLY header without an 'end_header' line in its first " + std::to_string(kMaxPlyHeaderBytes) + " bytes");
+  ++end;  // the line itself
   const std::size_t body_start = header.find('\n', end);
   const std::uintmax_t body_bytes = body_start == std::string::npos ? 0 : file_size - (body_start + 1);
 
