@@ -24,35 +24,6 @@ namespace {
 
 const std::string kTeaboxCao = (test::kTeaboxBlender / "teabox.cao").string();
 
-/// A tracker with the teabox model and the cameras of `frame`, as track_rgbd_sequence
-/// sets them up; initialised at the ground truth when `initialise`.
-struct RgbdFixture {
-  std::vector<Frame> frames = test::teabox_frames(1);
-  const Frame& frame = frames.front();
-  VispRgbdFrame input;
-  vpMbIcgTracker tracker{kRgbdTrackerTypes};
-  std::map<std::string, const vpImage<unsigned char>*> images;
-  std::map<std::string, const std::vector<vpColVector>*> clouds;
-  std::map<std::string, unsigned int> widths, heights;
-
-  explicit RgbdFixture(bool initialise) {
-    test::configure_for_tests(tracker);
-    input.convert(frame);
-    tracker.loadModel(kTeaboxCao, kTeaboxCao);
-    tracker.setCameraParameters(to_camera_parameters(frame.colors.front().intrinsics),
-                                to_camera_parameters(frame.depths.front().intrinsics));
-    tracker.setCameraTransformationMatrix(kDepthCamera,
-                                          to_homogeneous_matrix(frame.depths.front().camera_T_reference));
-    if (initialise) tracker.initFromPose(input.grey, to_homogeneous_matrix(*frame.truth()));
-    images = {{kColorCamera, &input.grey}};
-    clouds = {{kDepthCamera, &input.point_cloud}};
-    widths = {{kDepthCamera, input.depth_width}};
-    heights = {{kDepthCamera, input.depth_height}};
-  }
-
-  void track() { tracker.track(images, clouds, widths, heights); }
-};
-
 }  // namespace
 
 TEST_CASE("vpMbIcgTracker: missing and unsupported files are ViSP exceptions naming the file") {
@@ -103,14 +74,15 @@ TEST_CASE("vpMbIcgTracker: setModalities refuses a name that is no cue, naming i
 }
 
 TEST_CASE("vpMbIcgTracker: tracking before initFromPose is a vpTrackingException") {
-  RgbdFixture f(false);
+  test::RgbdTeabox f(1);
   const vpTrackingException e = vp_exception_of<vpTrackingException>([&] { f.track(); });
   CHECK(e.getCode() == vpTrackingException::initializationError);
   CHECK_THAT(e.getStringMessage(), Contains("initFromPose"));
 }
 
 TEST_CASE("vpMbIcgTracker: RGB-D maps with an unknown camera or a cloud of the wrong size are refused") {
-  RgbdFixture f(true);
+  test::RgbdTeabox f(1);
+  f.init_at_truth();
 
   SECTION("unknown camera in the point cloud maps") {
     for (auto* map : {&f.widths, &f.heights}) (*map)["Camera3"] = (*map)[kDepthCamera];
@@ -134,7 +106,8 @@ TEST_CASE("vpMbIcgTracker: RGB-D maps with an unknown camera or a cloud of the w
 }
 
 TEST_CASE("vpMbIcgTracker: width and height 0 in the cloud maps mean no depth this frame, as in ViSP") {
-  RgbdFixture f(true);
+  test::RgbdTeabox f(1);
+  f.init_at_truth();
   const std::vector<Frame> frames = test::teabox_frames(8);
   const std::vector<vpColVector> empty_cloud;
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -165,7 +138,8 @@ TEST_CASE("vpMbIcgTracker: width and height 0 in the cloud maps mean no depth th
 }
 
 TEST_CASE("vpMbIcgTracker: resetTracker keeps the camera transformation matrix, as vpMbGenericTracker does") {
-  RgbdFixture f(true);
+  test::RgbdTeabox f(1);
+  f.init_at_truth();
   const std::vector<Frame> frames = test::teabox_frames(6);
   // What ViSP's RGB-D example does after a reset: settings, model, cameras and pose again,
   // but not the depth camera's extrinsics (here a 10 cm baseline).
@@ -188,7 +162,8 @@ TEST_CASE("vpMbIcgTracker: resetTracker keeps the camera transformation matrix, 
 }
 
 TEST_CASE("vpMbIcgTracker: track(I) with the depth cue alone is a vpException naming the call") {
-  RgbdFixture f(true);
+  test::RgbdTeabox f(1);
+  f.init_at_truth();
   f.tracker.setModalities({"depth"});
   f.tracker.initFromPose(f.input.grey, to_homogeneous_matrix(*f.frame.truth()));
   const vpException e = vp_exception_of([&] { f.tracker.track(f.input.grey); });

@@ -14,6 +14,7 @@
 #include "icgp/eval/metrics.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
+#include "test_temp_dir.h"
 #include "vpmbicgtracker_test_setup.h"
 
 using namespace icgp;
@@ -23,47 +24,6 @@ namespace {
 
 const std::string kTeaboxCao = (test::kTeaboxBlender / "teabox.cao").string();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-/// A file in the temporary directory with `text`, removed with the object.
-struct TempFile {
-  std::filesystem::path path;
-  TempFile(const std::string& name, const std::string& text)
-      : path(std::filesystem::temp_directory_path() / ("icgp-exceptions-" + name)) {
-    std::ofstream(path) << text;
-  }
-  ~TempFile() { std::filesystem::remove(path); }
-};
-
-/// ViSP's RGB-D rig (colour "Camera1", depth "Camera2") with the teabox, initialised at the
-/// first frame's ground truth moved by `offset` (camera frame, metres).
-struct RgbdTracking {
-  std::vector<Frame> frames = test::teabox_frames(3);
-  const Frame& frame = frames.front();
-  VispRgbdFrame input;
-  vpMbIcgTracker tracker{kRgbdTrackerTypes};
-  std::map<std::string, const vpImage<unsigned char>*> images;
-  std::map<std::string, const std::vector<vpColVector>*> clouds;
-  std::map<std::string, unsigned int> widths, heights;
-
-  explicit RgbdTracking(const Eigen::Vector3d& offset = Eigen::Vector3d::Zero()) {
-    test::configure_for_tests(tracker);
-    input.convert(frame);
-    tracker.loadModel(kTeaboxCao, kTeaboxCao);
-    tracker.setCameraParameters(to_camera_parameters(frame.colors.front().intrinsics),
-                                to_camera_parameters(frame.depths.front().intrinsics));
-    tracker.setCameraTransformationMatrix(kDepthCamera,
-                                          to_homogeneous_matrix(frame.depths.front().camera_T_reference));
-    const Pose& truth = *frame.truth();
-    tracker.initFromPose(input.grey, to_homogeneous_matrix(Pose(truth.rotation(), truth.translation() + offset)));
-    images = {{kColorCamera, &input.grey}};
-    clouds = {{kDepthCamera, &input.point_cloud}};
-    widths = {{kDepthCamera, input.depth_width}};
-    heights = {{kDepthCamera, input.depth_height}};
-  }
-
-  void track() { tracker.track(images, clouds, widths, heights); }
-  Pose pose() const { return to_pose(tracker.getPose()); }
-};
 
 /// Every point of `cloud` set to (x, y, z).
 void fill(std::vector<vpColVector>& cloud, double x, double y, double z) {
@@ -100,22 +60,25 @@ TEST_CASE("vpMbIcgTracker exceptions: files are ioError when missing or unreadab
     CHECK_THAT(e.getStringMessage(), Contains("is not a regular file"));
   }
   SECTION("a model file that is no mesh") {
-    const TempFile garbage("garbage.obj", "this is not a mesh\n\x01\x02\x03");
-    const vpException e = test::vp_exception_of([&] { tracker.loadModel(garbage.path.string()); });
+    const test::TempDir dir("icgp-exceptions");
+    const std::string garbage = dir.write("garbage.obj", "this is not a mesh\n\x01\x02\x03");
+    const vpException e = test::vp_exception_of([&] { tracker.loadModel(garbage); });
     CHECK(e.getCode() == vpException::badValue);
     CHECK_THAT(e.getStringMessage(), Contains("vpMbIcgTracker::loadModel") && Contains("garbage.obj"));
     CHECK(tracker.getNbPolygon() == 0);  // nothing of it was kept
   }
   SECTION("malformed YAML configuration") {
-    const TempFile yaml("malformed.yaml", "region_model: {n_divides: [3\n");
-    const vpException e = test::vp_exception_of([&] { tracker.loadConfigFile(yaml.path.string(), false); });
+    const test::TempDir dir("icgp-exceptions");
+    const std::string yaml = dir.write("malformed.yaml", "region_model: {n_divides: [3\n");
+    const vpException e = test::vp_exception_of([&] { tracker.loadConfigFile(yaml, false); });
     CHECK(e.getCode() == vpException::badValue);
     CHECK_THAT(e.getStringMessage(), Contains("vpMbIcgTracker::loadConfigFile") && Contains("malformed.yaml") &&
                                          Contains("YAML syntax error"));
   }
   SECTION("a YAML value out of its type") {
-    const TempFile yaml("wrong-type.yaml", "region_model: {n_divides: many}\n");
-    const vpException e = test::vp_exception_of([&] { tracker.loadConfigFile(yaml.path.string(), false); });
+    const test::TempDir dir("icgp-exceptions");
+    const std::string yaml = dir.write("wrong-type.yaml", "region_model: {n_divides: many}\n");
+    const vpException e = test::vp_exception_of([&] { tracker.loadConfigFile(yaml, false); });
     CHECK(e.getCode() == vpException::badValue);
     CHECK_THAT(e.getStringMessage(), Contains("n_divides") && Contains("wrong-type.yaml"));
   }
@@ -161,7 +124,8 @@ TEST_CASE("vpMbIcgTracker exceptions: tracking before initialisation is vpTracki
 }
 
 TEST_CASE("vpMbIcgTracker exceptions: clouds and depth of a wrong size are refused before anything is read") {
-  RgbdTracking t;
+  test::RgbdTeabox t(3);
+  t.init_at_truth();
   const unsigned int w = t.input.depth_width, h = t.input.depth_height;
 
   SECTION("a cloud that is not width x height") {
@@ -222,7 +186,8 @@ TEST_CASE("vpMbIcgTracker exceptions: a camera's image and depth of different si
 
 TEST_CASE("vpMbIcgTracker exceptions: a cloud without one valid measurement is no depth") {
   SECTION("with the colour cues: the frame is tracked by them, and said once") {
-    RgbdTracking t;
+    test::RgbdTeabox t(3);
+    t.init_at_truth();
     std::vector<vpColVector> nan_cloud = t.input.point_cloud;
     t.clouds[kDepthCamera] = &nan_cloud;
     for (std::size_t i = 1; i < t.frames.size(); ++i) {
@@ -249,7 +214,8 @@ TEST_CASE("vpMbIcgTracker exceptions: a cloud without one valid measurement is n
     CHECK(t.tracker.getNbFeaturesDepthDense() > 100);
   }
   SECTION("alone: vpTrackingException::notEnoughPointError, as vpMbGenericTracker's depth trackers") {
-    RgbdTracking t;
+    test::RgbdTeabox t(3);
+    t.init_at_truth();
     t.tracker.setModalities({"depth"});
     t.tracker.initFromPose(t.input.grey, to_homogeneous_matrix(*t.frame.truth()));
     std::vector<vpColVector> inf_cloud = t.input.point_cloud;
@@ -265,7 +231,8 @@ TEST_CASE("vpMbIcgTracker exceptions: a cloud without one valid measurement is n
 TEST_CASE("vpMbIcgTracker exceptions: a modality's failure inside the core is a vpTrackingException") {
   // The object 20 m to the side: where the cues start, the region cue finds no foreground
   // pixel and its std::runtime_error reaches the ViSP boundary.
-  RgbdTracking t(Eigen::Vector3d(20.0, 0.0, 0.0));
+  test::RgbdTeabox t(3);
+  t.init_at_truth(Eigen::Vector3d(20.0, 0.0, 0.0));
   const Pose truth = *t.frame.truth();
   const vpTrackingException e = test::vp_exception_of<vpTrackingException>([&] { t.track(); });
   CHECK(e.getCode() == vpTrackingException::fatalError);
@@ -278,7 +245,8 @@ TEST_CASE("vpMbIcgTracker exceptions: a modality's failure inside the core is a 
 }
 
 TEST_CASE("vpMbIcgTracker exceptions: a camera without valid parameters is badValue from the core's check") {
-  RgbdTracking t;
+  test::RgbdTeabox t(3);
+  t.init_at_truth();
   t.tracker.setCameraParameters(vpCameraParameters(-600.0, 600.0, 320.0, 240.0),
                                 to_camera_parameters(t.frame.depths.front().intrinsics));
   const vpException e = test::vp_exception_of([&] { t.track(); });

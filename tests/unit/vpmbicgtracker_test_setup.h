@@ -5,11 +5,15 @@
 
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "icgp/base/camera_names.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/tracker/tracker_config.h"
+#include "icgp/visp/conversions.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/visp_camera_xml.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 
@@ -37,6 +41,42 @@ inline void configure_for_tests(vpMbIcgTracker& tracker) {
   config.cache_dir = ICGP_TEST_CACHE_DIR;
   tracker.setTrackerConfig(config);
 }
+
+/// ViSP's RGB-D rig (colour "Camera1", depth "Camera2") tracking the teabox, set up as
+/// track_rgbd_sequence sets it up: the model and the cameras of the first of `n_frames`
+/// teabox-blender frames, whose input (grey image and point cloud) track() reads.
+struct RgbdTeabox {
+  std::vector<Frame> frames;
+  const Frame& frame;
+  VispRgbdFrame input;
+  vpMbIcgTracker tracker{kRgbdTrackerTypes};
+  std::map<std::string, const vpImage<unsigned char>*> images;
+  std::map<std::string, const std::vector<vpColVector>*> clouds;
+  std::map<std::string, unsigned int> widths, heights;
+
+  explicit RgbdTeabox(int n_frames) : frames(teabox_frames(n_frames)), frame(frames.front()) {
+    configure_for_tests(tracker);
+    input.convert(frame);
+    const std::string cao = (kTeaboxBlender / "teabox.cao").string();
+    tracker.loadModel(cao, cao);
+    tracker.setCameraParameters(to_camera_parameters(frame.colors.front().intrinsics),
+                                to_camera_parameters(frame.depths.front().intrinsics));
+    tracker.setCameraTransformationMatrix(kDepthCamera, to_homogeneous_matrix(frame.depths.front().camera_T_reference));
+    images = {{kColorCamera, &input.grey}};
+    clouds = {{kDepthCamera, &input.point_cloud}};
+    widths = {{kDepthCamera, input.depth_width}};
+    heights = {{kDepthCamera, input.depth_height}};
+  }
+
+  /// initFromPose at the first frame's ground truth moved by `offset` (camera frame, metres).
+  void init_at_truth(const Eigen::Vector3d& offset = Eigen::Vector3d::Zero()) {
+    const Pose& truth = *frame.truth();
+    tracker.initFromPose(input.grey, to_homogeneous_matrix(Pose(truth.rotation(), truth.translation() + offset)));
+  }
+
+  void track() { tracker.track(images, clouds, widths, heights); }
+  Pose pose() const { return to_pose(tracker.getPose()); }
+};
 
 /// The exception of type E (vpException or a subclass) that `call` throws; a failed check
 /// (and code -1) when it throws none. Any other exception reaches Catch and fails the test:
