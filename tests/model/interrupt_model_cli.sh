@@ -8,18 +8,10 @@ set -u
 icgp=$1 mesh=$2 out=$3
 rm -rf "$out" && mkdir -p "$out/cache"
 "$icgp" model "$mesh" --cache-dir "$out/cache" >"$out/stdout.txt" 2>"$out/stderr.txt" &
-pid=$!
-# Progress lines come every 3 s; the wait is bounded, not timed.
-for _ in $(seq 1200); do
-  grep -q 'views, .* s left' "$out/stderr.txt" && break
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.1
-done
 fail() { echo "FAIL: $1"; cat "$out/stdout.txt" "$out/stderr.txt"; exit 1; }
-grep -q 'views, .* s left' "$out/stderr.txt" || { kill -KILL "$pid" 2>/dev/null; fail "no progress line with the time left within 120 s"; }
-kill -INT "$pid"
-wait "$pid"
-status=$?
+. "$(dirname "$0")/../cli/interrupt_on_line.sh"
+interrupt_on_line $! "$out/stderr.txt" 'views, .* s left' || fail "no progress line with the time left within 120 s"
+status=$interrupted_status
 cat "$out/stderr.txt"
 [ "$status" -eq 130 ] || fail "exit status $status, expected 130"
 grep -q '^icgp: stopped on request while generating the region+depth model' "$out/stderr.txt" || fail "no 'stopped' line"

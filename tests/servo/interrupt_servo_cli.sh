@@ -9,20 +9,11 @@ icgp=$1 scenario=$2 out=$3
 rm -rf "$out" && mkdir -p "$out"
 "$icgp" servo "$scenario" --tracker oracle --trials 200 --out "$out" --summary "$out/summary.json" \
   >"$out/stdout.txt" 2>"$out/stderr.txt" &
-pid=$!
-# Wait for the first trial's line (a run is a few seconds; the wait is bounded, not timed).
-for _ in $(seq 1200); do
-  grep -q '^trial 1/200' "$out/stderr.txt" && break
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.1
-done
-if ! grep -q '^trial 1/200' "$out/stderr.txt"; then
-  kill -KILL "$pid" 2>/dev/null
+. "$(dirname "$0")/../cli/interrupt_on_line.sh"
+if ! interrupt_on_line $! "$out/stderr.txt" '^trial 1/200'; then
   echo "FAIL: no trial ended within 120 s"; cat "$out/stderr.txt"; exit 1
 fi
-kill -INT "$pid"
-wait "$pid"
-status=$?
+status=$interrupted_status
 cat "$out/stdout.txt" "$out/stderr.txt"
 fail() { echo "FAIL: $1"; exit 1; }
 [ "$status" -eq 130 ] || fail "exit status $status, expected 130"
