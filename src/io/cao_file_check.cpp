@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "icgp/io/file_extension.h"
+
 namespace icgp {
 namespace {
 
@@ -409,11 +411,6 @@ class CaoModelCheck {
 
 CaoFileSummary check_cao_file(const std::string& path) { return CaoModelCheck().run(path); }
 
-bool is_cao_path(const std::string& path) {
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".cao";
-}
+bool is_cao_path(const std::string& path) { return lower_extension(path) == ".cao"; }
 
 }  // namespace icgp

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "icgp/io/file_extension.h"
+
 namespace icgp {
 namespace {
 
@@ -19,13 +21,6 @@ constexpr std::size_t kMaxPlyHeaderBytes = 64 * 1024;
 
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {
   throw std::runtime_error("load_mesh: '" + path + "': " + what);
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
 }
 
 /// Bytes of one PLY scalar type; 0 for a name that is none.

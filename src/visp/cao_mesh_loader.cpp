@@ -1,14 +1,12 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/visp/cao_mesh_loader.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <stdexcept>
 #include <visp3/mbt/vpMbEdgeTracker.h>
 
 #include "icgp/io/cao_file_check.h"
+#include "icgp/io/file_extension.h"
 #include "icgp/io/mesh_loader.h"
 #include "icgp/visp/conversions.h"
 
@@ -37,13 +35,6 @@ class CaoGeometryCollector final : public vpMbEdgeTracker {
 
   CaoMeshBuilder& builder_;
 };
-
-std::string lower_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
 
 /// .cao and .wrl: the formats ViSP's vpMbTracker::loadModel reads (VRML through Coin3D).
 bool has_visp_model_extension(const std::string& path) {

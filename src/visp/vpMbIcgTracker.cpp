@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <visp3/mbt/vpMbtXmlGenericParser.h>
 
+#include "icgp/io/file_extension.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
 
@@ -25,11 +26,6 @@ static_assert(int{vpMbIcgTracker::EDGE_TRACKER} == int{icgp::CameraRig::kEdge} &
 
 namespace {
 
-std::string lower_extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
 
 void require_file(const std::string& path, const std::string& what) {
   std::error_code error;
@@ -56,7 +52,7 @@ std::unique_ptr<vpMbtXmlGenericParser> parse_visp_xml(const std::string& path, b
 
 /// .cao and .wrl: the files ViSP's own parser reads (vpMbTracker::loadModel).
 bool is_visp_model(const std::string& path) {
-  const std::string extension = lower_extension(path);
+  const std::string extension = icgp::lower_extension(path);
   return extension == ".cao" || extension == ".wrl";
 }
 
@@ -71,7 +67,7 @@ icgp::Mesh load_model_file(const std::string& path, const vpHomogeneousMatrix& T
     // As load_any_mesh: meshed in the file's frame, then placed with T. ViSP has already
     // applied T to the points of a .cao file (not of a .wrl), so the builder takes it off.
     const icgp::Pose pose = icgp::to_pose(T);
-    icgp::CaoMeshBuilder builder(path, {}, lower_extension(path) == ".cao" ? pose : icgp::Pose());
+    icgp::CaoMeshBuilder builder(path, {}, icgp::lower_extension(path) == ".cao" ? pose : icgp::Pose());
     icgp::Mesh mesh = builder.build([&] { visp_parse(builder); });
     mesh.transform(pose.cast<float>());
     return mesh;
@@ -231,7 +227,7 @@ void vpMbIcgTracker::loadConfigFile(const std::map<std::string, std::string>& ma
   guarded("loadConfigFile", [&] {
     for (const auto& [camera, file] : mapOfConfigFiles) {
       impl_->rig.at(camera, "loadConfigFile");
-      const std::string extension = lower_extension(file);
+      const std::string extension = icgp::lower_extension(file);
       if (extension == ".yaml" || extension == ".yml") {
         require_file(file, "configuration file");
         try {
