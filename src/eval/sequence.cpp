@@ -9,12 +9,14 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <limits>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "icgp/base/camera_names.h"
+#include "icgp/io/file_extension.h"
 #include "icgp/io/yaml_reader.h"
 
 namespace icgp {
@@ -131,27 +133,26 @@ void check_size(const cv::Mat& image, const Intrinsics& expected, const fs::path
 /// libjpeg decodes a JPEG cut short with only a warning on stderr, filling the missing rows
 /// with grey, which tracks wrong. A complete file ends with the EOI marker (FF D9); only
 /// padding may follow it.
-void check_jpeg_complete(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (extension != ".jpg" && extension != ".jpeg") return;
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  const std::streamoff size = in.tellg();
-  if (size < 0) fail(path, "cannot be read");
-  const std::streamoff tail_size = std::min<std::streamoff>(size, 1024);
-  std::string tail(static_cast<std::size_t>(tail_size), '\0');
-  in.seekg(size - tail_size);
-  in.read(tail.data(), tail_size);
-  std::size_t end = tail.find_last_not_of(std::string("\0 \r\n", 5));
-  if (!in || end == std::string::npos || end < 1 || static_cast<unsigned char>(tail[end - 1]) != 0xFF ||
-      static_cast<unsigned char>(tail[end]) != 0xD9)
-    fail(path, "the JPEG file is cut short (it does not end with the end-of-image marker FF D9); expected a complete image");
+bool jpeg_cut_short(const std::string& bytes) {
+  const std::size_t end = bytes.find_last_not_of(std::string("\0 \r\n", 5));
+  return end == std::string::npos || end < 1 || static_cast<unsigned char>(bytes[end - 1]) != 0xFF ||
+         static_cast<unsigned char>(bytes[end]) != 0xD9;
 }
 
+/// The file is read once: its bytes are checked, then decoded.
 cv::Mat read_color_image(const fs::path& path) {
   require_file(path, "colour image");
-  check_jpeg_complete(path);
-  cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+  std::error_code error;
+  if (fs::file_size(path, error) > std::uintmax_t(std::numeric_limits<int>::max()))
+    fail(path, "larger than 2 GiB (expected a colour image file)");
+  const std::string bytes = read_text_file(path);
+  const std::string extension = lower_extension(path.string());
+  if ((extension == ".jpg" || extension == ".jpeg") && jpeg_cut_short(bytes))
+    fail(path, "the JPEG file is cut short (it does not end with the end-of-image marker FF D9); expected a complete image");
+  cv::Mat image;
+  if (!bytes.empty())
+    image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
+                         cv::IMREAD_COLOR);
   if (image.empty()) fail(path, "cannot decode colour image");
   return image;
 }
