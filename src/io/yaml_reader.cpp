@@ -164,4 +164,11 @@ Value load_file(const std::string& path, const Wording& wording) {
   }
 }
 
+Pose pose(const Value& v) {
+  const Map s(v, {"t", "r_deg"});
+  const Eigen::Vector3d t = numbers<3>(s.required("t"), kPoseCoordinate);
+  const Eigen::Vector3d r = numbers<3>(s.required("r_deg"), kAngleDeg) * (kPi / 180.0);
+  return Pose::from_rotation_vector(r, t);
+}
+
 }  // namespace icgp::yaml

@@ -26,6 +26,8 @@ using yaml::Interval;
 using yaml::kBool;
 using yaml::kNonEmptyString;
 using yaml::kString;
+using yaml::numbers;
+using yaml::pose;
 using yaml::Map;
 using yaml::Rule;
 using yaml::Value;
@@ -34,8 +36,8 @@ using yaml::Value;
 // real setup: their job is to refuse values that would exhaust memory or time (a camera of
 // 10^5 px a side, a rate of 10^9 Hz), overflow the arithmetic of a run, or make the
 // simulation meaningless (a velocity of 10^300 m/s), naming the field, before anything runs.
-constexpr Interval kCoordinate{-100.0, 100.0};          ///< m: pose translations, occluder placement
-constexpr Interval kAngleDeg{-360.0, 360.0};            ///< deg: θu components, joint angles
+constexpr Interval kCoordinate = yaml::kPoseCoordinate;  ///< m: pose translations, occluder placement
+using yaml::kAngleDeg;                                  ///< deg: θu components, joint angles
 constexpr Interval kObjectVelocity{-10.0, 10.0};        ///< m/s, per axis
 constexpr Interval kOccluderVelocity{-100.0, 100.0};    ///< m/s, per axis
 constexpr Interval kOccluderSize{0.0, 100.0};           ///< m, per edge
@@ -58,28 +60,6 @@ constexpr Interval kLinearVelocity{0.0, 10.0, true};    ///< m/s
 constexpr Interval kAngularVelocityDeg{0.0, 3600.0, true};  ///< deg/s
 constexpr Interval kThresholdMm{0.0, 1000.0};           ///< convergence thresholds and trial offsets
 constexpr Interval kThresholdDeg{0.0, 180.0};
-
-/// A list of exactly N numbers, each within `range` ("a list of 3 numbers in [-100, 100]").
-template <int N>
-Eigen::Matrix<double, N, 1> numbers(const Value& v, const Interval& range) {
-  const std::string what = "a list of " + std::to_string(N) + " numbers in " + range.text();
-  if (!v.node.IsSequence() || v.node.size() != static_cast<std::size_t>(N)) v.expected(what);
-  Eigen::Matrix<double, N, 1> x;
-  for (int i = 0; i < N; ++i) {
-    const std::optional<double> element = yaml::convert<double>(v.node[i]);
-    if (!element || !range.contains(*element)) v.expected(what);
-    x[i] = *element;
-  }
-  return x;
-}
-
-/// {t: [x, y, z] metres, r_deg: [ux, uy, uz] θu degrees}.
-Pose pose(const Value& v) {
-  const Map s(v, {"t", "r_deg"});
-  const Eigen::Vector3d t = numbers<3>(s.required("t"), kCoordinate);
-  const Eigen::Vector3d r = numbers<3>(s.required("r_deg"), kAngleDeg) * kDegree;
-  return Pose::from_rotation_vector(r, t);
-}
 
 /// A camera-object pose: the object must be in front of the camera.
 Pose object_pose(const Value& v) {

@@ -6,6 +6,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Core>
+
 #include <array>
 #include <cstddef>
 #include <functional>
@@ -15,6 +17,8 @@
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "icgp/base/pose.h"
 
 namespace icgp::yaml {
 
@@ -180,6 +184,29 @@ class Map {
   Location at_;
   std::vector<std::pair<std::string, Value>> entries_;
 };
+
+/// A list of exactly N numbers, each within `range`; "expected a list of N numbers in
+/// <range>, got …" otherwise.
+template <int N>
+Eigen::Matrix<double, N, 1> numbers(const Value& v, const Interval& range) {
+  const std::string what = "a list of " + std::to_string(N) + " numbers in " + range.text();
+  if (!v.node.IsSequence() || v.node.size() != static_cast<std::size_t>(N)) v.expected(what);
+  Eigen::Matrix<double, N, 1> x;
+  for (int i = 0; i < N; ++i) {
+    const std::optional<double> element = convert<double>(v.node[i]);
+    if (!element || !range.contains(*element)) v.expected(what);
+    x[i] = *element;
+  }
+  return x;
+}
+
+/// Translations of poses in files, metres per axis.
+inline constexpr Interval kPoseCoordinate{-100.0, 100.0};
+/// θu components of poses in files, and angles in degrees.
+inline constexpr Interval kAngleDeg{-360.0, 360.0};
+
+/// A pose {t: [x, y, z] metres, r_deg: [ux, uy, uz] θu degrees}, a_T_b.
+Pose pose(const Value& v);
 
 /// The document of the YAML file `path`. Throws Error "<path>: no such <file>",
 /// "<path>: cannot read the <file>" or "<path>: line L, column C: YAML syntax error: …",

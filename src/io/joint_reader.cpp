@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/io/joint_reader.h"
+
+namespace icgp {
+namespace {
+
+using yaml::Interval;
+using yaml::Map;
+using yaml::Value;
+
+constexpr Interval kLimitDeg{-36000.0, 36000.0};  ///< a joint may turn a hundred times
+constexpr Interval kLimitM{-100.0, 100.0};
+constexpr Interval kStiffness{0.0, 1e12};
+
+enum class JointType { kRevolute, kPrismatic, kFixed, kDirections };
+
+/// [min, max] within `range`, min <= max; converted by `scale`.
+void read_limits(const Value& v, const Interval& range, double scale, JointDirection& d) {
+  const Eigen::Vector2d limits = yaml::numbers<2>(v, range);
+  if (limits[0] > limits[1]) v.expected("min <= max");
+  d.min = limits[0] * scale;
+  d.max = limits[1] * scale;
+}
+
+Eigen::Vector3d read_axis(const Value& v) {
+  const Eigen::Vector3d axis = yaml::numbers<3>(v, {-1000.0, 1000.0});
+  if (axis.norm() < 1e-9) v.expected("a non-zero vector");
+  return axis.normalized();
+}
+
+/// {rotation: axis | translation: axis, limits_deg | limits, stiffness}.
+JointDirection read_direction(const Value& v) {
+  const Map m(v, {"rotation", "translation", "limits_deg", "limits", "stiffness"});
+  const std::optional<Value> rotation = m.get("rotation");
+  const std::optional<Value> translation = m.get("translation");
+  if (rotation.has_value() == translation.has_value()) v.expected("a map with either rotation or translation");
+  JointDirection d;
+  d.kind = rotation ? JointDirection::Kind::kRotation : JointDirection::Kind::kTranslation;
+  d.axis = read_axis(rotation ? *rotation : *translation);
+  if (rotation) {
+    if (auto x = m.get("limits")) x->at.fail("a rotation's limits are limits_deg");
+    if (auto x = m.get("limits_deg")) read_limits(*x, kLimitDeg, kPi / 180.0, d);
+  } else {
+    if (auto x = m.get("limits_deg")) x->at.fail("a translation's limits are limits (metres)");
+    if (auto x = m.get("limits")) read_limits(*x, kLimitM, 1.0, d);
+  }
+  if (auto x = m.get("stiffness")) d.stiffness = x->number_in(kStiffness);
+  return d;
+}
+
+}  // namespace
+
+const std::vector<std::string>& joint_keys() {
+  static const std::vector<std::string> keys = {"parent",     "joint",  "axis",      "origin",    "link_origin",
+                                                "limits_deg", "limits", "stiffness", "directions"};
+  return keys;
+}
+
+std::optional<Joint> read_joint(const Map& body) {
+  const std::optional<Value> parent = body.get("parent");
+  if (!parent) {
+    for (const std::string& key : joint_keys())
+      if (auto x = body.get(key)) x->at.fail("only a body with a parent has a joint");
+    return std::nullopt;
+  }
+  Joint joint;
+  joint.parent = parent->as(yaml::kNonEmptyString);
+  if (auto x = body.get("origin")) joint.parent_T_joint = yaml::pose(*x);
+  if (auto x = body.get("link_origin")) joint.joint_T_link = yaml::pose(*x);
+
+  const JointType type = body.required("joint").choice<JointType>({{"revolute", JointType::kRevolute},
+                                                                    {"prismatic", JointType::kPrismatic},
+                                                                    {"fixed", JointType::kFixed},
+                                                                    {"directions", JointType::kDirections}});
+  auto refuse = [&](const std::string& key, const std::string& why) {
+    if (auto x = body.get(key)) x->at.fail(why);
+  };
+  if (type == JointType::kDirections) {
+    for (const std::string key : {"axis", "limits_deg", "limits", "stiffness"})
+      refuse(key, "a joint of directions gives it for each direction");
+    for (const Value& d : body.required("directions").elements("a list of directions"))
+      joint.directions.push_back(read_direction(d));
+    return joint;
+  }
+  refuse("directions", "only a joint of type directions lists directions");
+  if (type == JointType::kFixed) {
+    for (const std::string key : {"axis", "limits_deg", "limits", "stiffness"}) refuse(key, "a fixed joint has none");
+    return joint;
+  }
+  JointDirection d;
+  d.kind = type == JointType::kRevolute ? JointDirection::Kind::kRotation : JointDirection::Kind::kTranslation;
+  if (auto x = body.get("axis")) d.axis = read_axis(*x);
+  if (type == JointType::kRevolute) {
+    refuse("limits", "a revolute joint's limits are limits_deg");
+    if (auto x = body.get("limits_deg")) read_limits(*x, kLimitDeg, kPi / 180.0, d);
+  } else {
+    refuse("limits_deg", "a prismatic joint's limits are limits (metres)");
+    if (auto x = body.get("limits")) read_limits(*x, kLimitM, 1.0, d);
+  }
+  if (auto x = body.get("stiffness")) d.stiffness = x->number_in(kStiffness);
+  joint.directions.push_back(d);
+  return joint;
+}
+
+}  // namespace icgp
