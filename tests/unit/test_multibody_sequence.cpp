@@ -36,7 +36,7 @@ SequenceWriterOptions tiny_options(int frames) {
 double pose_difference(const Pose& a, const Pose& b) { return (a.matrix() - b.matrix()).norm(); }
 
 /// A base box moving and spinning, an arm on a revolute joint, a slider on the arm with
-/// two directions: a chain of three bodies.
+/// two directions and a cap fixed to the slider: a chain of four bodies.
 struct Chain {
   Pose world_T_base = Pose::from_rotation_vector(Eigen::Vector3d(0.1, -0.2, 0.05), Eigen::Vector3d(0.01, 0.0, -0.02));
   Eigen::Vector3d velocity{0.05, -0.02, 0.01};
@@ -44,6 +44,7 @@ struct Chain {
   Joint hinge = Joint::revolute("base", Pose::from_rotation_vector(Eigen::Vector3d(0.0, 0.0, 0.3), Eigen::Vector3d(0.0, 0.04, 0.0)),
                                 Eigen::Vector3d(1.0, 0.0, 0.0), 0.0, 2.0);
   Joint slider;
+  Joint cap;
   std::vector<JointTrajectory> hinge_trajectory{{0.1, 1.5, 0.4}};
   std::vector<JointTrajectory> slider_trajectory{{-0.01, 0.02, 0.3}, {0.0, -0.5, 0.5}};
 
@@ -53,6 +54,8 @@ struct Chain {
     slider.parent_T_joint = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.0, 0.03));
     slider.directions.push_back({JointDirection::Kind::kTranslation, Eigen::Vector3d(0.0, 0.0, 1.0), -0.02, 0.03, 5.0});
     slider.directions.push_back({JointDirection::Kind::kRotation, Eigen::Vector3d(0.0, 1.0, 0.0), -1.0, 1.0, 0.0});
+    cap.parent = "slider";
+    cap.parent_T_joint = Pose::from_rotation_vector(Eigen::Vector3d(0.2, 0.0, 0.0), Eigen::Vector3d(0.0, 0.01, 0.0));
   }
 
   SequenceWriter writer(int frames) const {
@@ -60,6 +63,7 @@ struct Chain {
     writer.add_object("base", test::make_box(0.06f, 0.06f, 0.06f), world_T_base, "", spin, velocity);
     writer.add_link("arm", test::make_box(0.02f, 0.02f, 0.06f), hinge, hinge_trajectory);
     writer.add_link("slider", test::make_box(0.01f, 0.01f, 0.01f), slider, slider_trajectory);
+    writer.add_link("cap", test::make_box(0.01f, 0.002f, 0.01f), cap, {});
     return writer;
   }
 };
@@ -105,9 +109,10 @@ TEST_CASE("sequence writer: a link's ground truth is its parent's times parent_T
   writer.write(dir.path().string());
   CHECK(fs::is_regular_file(dir.path() / "joints" / "arm.txt"));
   CHECK(!fs::exists(dir.path() / "joints" / "base.txt"));
+  CHECK(!fs::exists(dir.path() / "joints" / "cap.txt"));  // a fixed joint has no values
 
   const Sequence sequence = Sequence::open(dir.path().string());
-  REQUIRE(sequence.objects().size() == 3);
+  REQUIRE(sequence.objects().size() == 4);
   CHECK(!sequence.objects()[0].joint);
   for (int i = 0; i < sequence.size(); ++i) {
     const Frame frame = sequence.load(i);
@@ -123,11 +128,13 @@ TEST_CASE("sequence writer: a link's ground truth is its parent's times parent_T
     for (int k = 0; k < 2; ++k)
       CHECK((*slider)[k] == Approx(trajectory_value(chain.slider_trajectory[k], t)).margin(1e-14));
     CHECK(frame.joint_truth("base") == nullptr);
+    CHECK(frame.joint_truth("cap") == nullptr);
     // Each link's pose is its parent's composed with the joint at the joint truth.
     const Pose camera_T_arm = *frame.truth("base") * chain.hinge.parent_T_link(*hinge);
     const Pose camera_T_slider = camera_T_arm * chain.slider.parent_T_link(*slider);
     CHECK(pose_difference(*frame.truth("arm"), camera_T_arm) < 1e-12);
     CHECK(pose_difference(*frame.truth("slider"), camera_T_slider) < 1e-12);
+    CHECK(pose_difference(*frame.truth("cap"), camera_T_slider * chain.cap.parent_T_link({})) < 1e-12);
   }
 }
 
@@ -162,6 +169,8 @@ TEST_CASE("sequence reader: joints round-trip through sequence.yaml") {
   REQUIRE(sequence.objects()[2].joint);
   check_same_joint(*sequence.objects()[1].joint, chain.hinge);
   check_same_joint(*sequence.objects()[2].joint, chain.slider);
+  REQUIRE(sequence.objects()[3].joint);
+  check_same_joint(*sequence.objects()[3].joint, chain.cap);
 }
 
 TEST_CASE("sequence reader: a link's parent must be listed before it, its joint file must hold every frame") {
