@@ -17,7 +17,7 @@
 
 #include "icgp/base/camera_names.h"
 #include "icgp/io/file_extension.h"
-#include "icgp/io/joint_reader.h"
+#include "icgp/io/joint_yaml.h"
 #include "icgp/io/yaml_reader.h"
 
 namespace icgp {

@@ -7,7 +7,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "icgp/io/joint_reader.h"
+#include "icgp/io/joint_yaml.h"
 #include "icgp/io/mesh_loader.h"
 #include "icgp/io/model_reference.h"
 
@@ -41,7 +41,7 @@ JointTrajectory read_trajectory(const Value& v, const JointDirection& d) {
   const std::string from_key = rotation ? "from_deg" : "from", to_key = rotation ? "to_deg" : "to";
   const Map m(v, {from_key, to_key, "period"});
   const Interval& range = rotation ? kTrajectoryDeg : kTrajectoryM;
-  const double unit = rotation ? kPi / 180.0 : 1.0;  // as joint_reader converts limits_deg
+  const double unit = rotation ? kPi / 180.0 : 1.0;  // as read_joint converts limits_deg
   JointTrajectory trajectory;
   trajectory.from = m.required(from_key).number_in(range) * unit;
   trajectory.to = m.required(to_key).number_in(range) * unit;

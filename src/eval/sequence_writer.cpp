@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <Eigen/Geometry>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -18,6 +18,7 @@
 #include "icgp/render/renderer.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/base/splitmix64.h"
+#include "icgp/io/joint_yaml.h"
 
 namespace icgp {
 
@@ -191,35 +192,16 @@ std::string row_major(const Pose& pose, const std::string& separator) {
   return line;
 }
 
-/// {t: [x, y, z], r_deg: [θu in degrees]}, as yaml::pose reads it.
-std::string yaml_pose(const Pose& pose) {
-  const Eigen::AngleAxisd rotation(pose.rotation());
-  const Eigen::Vector3d r_deg = rotation.angle() * (180.0 / kPi) * rotation.axis();
-  const Eigen::Vector3d& t = pose.translation();
-  return "{t: [" + exact(t.x()) + ", " + exact(t.y()) + ", " + exact(t.z()) + "], r_deg: [" + exact(r_deg.x()) + ", " +
-         exact(r_deg.y()) + ", " + exact(r_deg.z()) + "]}";
-}
-
-/// A joint's keys of a `bodies:` entry (io/joint_reader.h), always as a list of directions
-/// so that every joint is written one way; limits only when finite.
+/// A link's joint as the keys of its `objects:` entry (io/joint_yaml.h), each line indented
+/// by `indent` to sit under the entry's name.
 std::string yaml_joint(const Joint& joint, const std::string& indent) {
-  std::string text = indent + "parent: " + joint.parent + "\n" + indent + "joint: directions\n" + indent +
-                     "origin: " + yaml_pose(joint.parent_T_joint) + "\n" + indent +
-                     "link_origin: " + yaml_pose(joint.joint_T_link) + "\n" + indent + "directions:" +
-                     (joint.directions.empty() ? " []" : "") + "\n";
-  for (const JointDirection& d : joint.directions) {
-    const bool rotation = d.kind == JointDirection::Kind::kRotation;
-    const Eigen::Vector3d& a = d.axis;
-    text += indent + "  - {" + (rotation ? "rotation" : "translation") + ": [" + exact(a.x()) + ", " + exact(a.y()) +
-            ", " + exact(a.z()) + "]";
-    if (std::isfinite(d.min) && std::isfinite(d.max)) {
-      const double unit = rotation ? 180.0 / kPi : 1.0;
-      text += std::string(", ") + (rotation ? "limits_deg" : "limits") + ": [" + exact(d.min * unit) + ", " +
-              exact(d.max * unit) + "]";
-    }
-    if (d.stiffness != 0.0) text += ", stiffness: " + exact(d.stiffness);
-    text += "}\n";
-  }
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  write_joint(out, joint);
+  out << YAML::EndMap;
+  std::istringstream lines(out.c_str());
+  std::string text, line;
+  while (std::getline(lines, line)) text += indent + line + "\n";
   return text;
 }
 

@@ -55,7 +55,7 @@ struct SequenceObject {
 ///  * "icgp" — `sequence.yaml` (see SequenceWriter): color/%06d.png, depth/%06d.png
 ///    (uint16, Z = value * depth_scale), ground truth poses/<object>.txt; when the YAML has
 ///    stereo_camera and stereo_T_color, a second colour camera's color2/%06d.png; links
-///    (objects with a parent and a joint, io/joint_reader.h) whose joint has free
+///    (objects with a parent and a joint, io/joint_yaml.h) whose joint has free
 ///    directions have their joint values in joints/<object>.txt (Frame::joint_truth).
 ///  * "visp-blender" — images/%04d.jpg from 0001, depth/Image%04d.exr (channel 0 = Z),
 ///    ground truth camera_poses/Camera_%03d.txt (cMo, 4x4) named after the single

@@ -11,7 +11,7 @@
 //       spin: [0, 0, 0]                 # rad/s, a rotation vector in the body's frame
 //     - name: lid
 //       mesh: hinged_box/lid.obj
-//       parent: box                     # a link: the joint keys of io/joint_reader.h
+//       parent: box                     # a link: the joint keys of io/joint_yaml.h
 //       joint: revolute
 //       axis: [1, 0, 0]
 //       origin: {t: [0, 0.05, -0.03], r_deg: [0, 0, 0]}

@@ -133,7 +133,7 @@ struct SequenceWriterOptions {
 ///   joints/<link>.txt   for each link whose joint has free directions: one line per
 ///                       frame, the joint's values (radians / metres) in the same form;
 ///                       sequence.yaml records each link's parent and joint in the
-///                       `bodies:` format of io/joint_reader.h
+///                       `bodies:` format of io/joint_yaml.h
 ///
 /// The colour camera follows OrbitTrajectory(motion, seed); depth is rendered with the
 /// depth intrinsics at depth_T_color * color_T_world, the stereo camera's colour at
