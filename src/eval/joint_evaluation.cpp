@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/eval/joint_evaluation.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,6 +10,18 @@
 #include <stdexcept>
 
 namespace icgp {
+
+std::optional<double> one_direction_joint_value(const Joint& joint, const Pose& parent_T_link) {
+  if (joint.size() != 1) return std::nullopt;
+  const JointDirection& d = joint.directions.front();
+  // parent_T_link = parent_T_joint · exp(q ξ) · joint_T_link.
+  const Pose motion = joint.parent_T_joint.inverse() * parent_T_link * joint.joint_T_link.inverse();
+  const Eigen::Vector3d axis = d.axis.normalized();
+  if (d.kind == JointDirection::Kind::kTranslation) return axis.dot(motion.translation());
+  const Eigen::Quaterniond rotation(motion.rotation());
+  const double twist = 2.0 * std::atan2(axis.dot(rotation.vec()), rotation.w());
+  return std::remainder(twist, 2.0 * kPi);  // in [-π, π]
+}
 
 JointEvaluation::JointEvaluation(const Joint& joint) {
   for (const JointDirection& d : joint.directions)

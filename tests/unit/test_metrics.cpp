@@ -235,6 +235,19 @@ TEST_CASE("joint evaluation: errors per direction in degrees and millimetres, fr
   CHECK(std::isnan(none.summary()[0].mean_error));
 }
 
+TEST_CASE("one-direction joint values from the link's pose: the twist about the axis, the slide along it") {
+  Joint hinge = Joint::revolute("base", Pose::from_rotation_vector(Eigen::Vector3d(0.1, 0.2, 0.0), Eigen::Vector3d(0.0, 0.03, -0.04)),
+                                Eigen::Vector3d(-1.0, 0.0, 0.0), 0.0, 2.0);
+  hinge.joint_T_link = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.0, 0.01));
+  for (const double q : {0.0, 0.3, 1.5, -2.5})
+    CHECK(*one_direction_joint_value(hinge, hinge.parent_T_link({q})) == Approx(q).margin(1e-12));
+  const Joint slider = Joint::prismatic("base", Pose(), Eigen::Vector3d(0.0, 2.0, 0.0), -1.0, 1.0);
+  CHECK(*one_direction_joint_value(slider, Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.01, 0.25, 0.0))) == Approx(0.25));
+  Joint fixed;
+  fixed.parent = "base";
+  CHECK(!one_direction_joint_value(fixed, Pose()));
+}
+
 TEST_CASE("a run without ground truth has null errors in its summary") {
   TrackingEvaluation evaluation(test::make_box(0.1f, 0.1f, 0.1f));
   evaluation.add(0, kTruth, std::nullopt, true, 1.5);

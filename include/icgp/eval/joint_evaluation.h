@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,12 @@
 #include "icgp/geometry/joint.h"
 
 namespace icgp {
+
+/// The value of a one-direction joint (revolute or prismatic) that best places a link at
+/// `parent_T_link`: the twist of the joint motion about the axis (swing-twist decomposition)
+/// or its translation along the axis. It measures links tracked as free bodies against
+/// their joint's truth. nullopt for a joint of another number of directions.
+std::optional<double> one_direction_joint_value(const Joint& joint, const Pose& parent_T_link);
 
 /// The errors of a link's joint values over a tracking run, per free direction of its
 /// joint: |estimate − truth| in degrees for a rotation, millimetres for a translation.
