@@ -222,6 +222,12 @@ void prepare_folder(const fs::path& dir, bool stereo, bool joints) {
   if (joints) fs::create_directories(dir / "joints");
 }
 
+/// The mesh file sequence.yaml names: `mesh_path`, else the mesh's source when it is a file.
+std::string recorded_mesh_path(const Mesh& mesh, const std::string& mesh_path) {
+  if (mesh_path.empty() && fs::is_regular_file(mesh.source)) return fs::absolute(mesh.source).string();
+  return mesh_path;
+}
+
 bool is_file_name_safe(const std::string& name) {
   return !name.empty() && name[0] != '.' && std::all_of(name.begin(), name.end(), [](unsigned char c) {
     return std::isalnum(c) || c == '_' || c == '-' || c == '.';
@@ -342,13 +348,6 @@ void SequenceWriter::check_new_name(const std::string& name, const Mesh& mesh) c
   require(!mesh.empty(), "mesh of object '" + name + "' has no triangles");
   require(objects_.size() < 254, "at most 254 objects");
 }
-
-namespace {
-std::string recorded_mesh_path(const Mesh& mesh, const std::string& mesh_path) {
-  if (mesh_path.empty() && fs::is_regular_file(mesh.source)) return fs::absolute(mesh.source).string();
-  return mesh_path;
-}
-}  // namespace
 
 void SequenceWriter::add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object,
                                 const std::string& mesh_path, const Eigen::Vector3d& spin,
