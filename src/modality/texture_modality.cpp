@@ -247,6 +247,13 @@ bool TextureModality::keyframe_due(const Pose& camera_T_body, int age) const {
 }
 
 std::vector<RenderRequest> TextureModality::render_requests(const Frame& frame, Stage stage) const {
+  if (stage.kind == Stage::kCorrespondences && stage.corr_iter == 0 && stage.other_bodies && params_.occlusion.model) {
+    const ColorImage& color = color_image(frame);
+    if (auto request = focused_render_request(params_.color_camera, color.intrinsics, color.camera_T_reference,
+                                              body().reference_T_body, sphere_, params_.occlusion.render_size))
+      return {*request};
+    return {};
+  }
   const bool keyframe = stage.kind == Stage::kStart ||
                         (stage.kind == Stage::kFinish &&
                          keyframe_due(color_image(frame).camera_T_reference * body().reference_T_body, keyframe_.age + 1));
@@ -306,11 +313,14 @@ void TextureModality::match() {
   }
 }
 
-void TextureModality::correspondences(const Frame& frame, const Renders&, int corr_iter) {
+void TextureModality::correspondences(const Frame& frame, const Renders& renders, int corr_iter) {
   // Keypoints and matches do not depend on the pose: once per frame is enough.
   if (corr_iter == 0) {
     detect(frame);
     match();
+    scene_ = {};
+    for (const RenderRequest& request : render_requests(frame, {Stage::kCorrespondences, 0, true}))
+      if (const FocusedRender* render = renders.find(request)) scene_ = {*render, renders.id(body().name)};
   }
   update_weights();
   estimate_noise();
@@ -414,7 +424,12 @@ void TextureModality::update_quality() {
   // Fewer inliers than a pose needs to be determined (4, as for PnP) confirm nothing:
   // that many agree by chance on a frame without the object.
   if (n_inliers < 4) n_inliers = 0;
-  const int n_points = static_cast<int>(keyframe_.body_points.size());
+  // Keyframe points another body now hides cannot match: they are not expected to.
+  int n_hidden = 0;
+  if (!scene_.empty())
+    for (const Eigen::Vector3f& p : keyframe_.body_points)
+      if (scene_.hidden(T * p, 0.f, params_.occlusion.modeled_radius, params_.occlusion.modeled_threshold)) ++n_hidden;
+  const int n_points = static_cast<int>(keyframe_.body_points.size()) - n_hidden;
   quality_.n_valid = static_cast<int>(matches_.size());
   quality_.valid_fraction = n_points > 0 ? std::min(1.0, static_cast<double>(matches_.size()) / n_points) : 0.0;
   quality_.score = n_points > 0 ? std::min(1.0, static_cast<double>(n_inliers) / n_points) : 0.0;

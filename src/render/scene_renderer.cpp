@@ -9,7 +9,7 @@ namespace icgp {
 bool RenderRequest::operator==(const RenderRequest& other) const {
   const Intrinsics& k = intrinsics;
   const Intrinsics& o = other.intrinsics;
-  return camera == other.camera && k.fu == o.fu && k.fv == o.fv && k.pu == o.pu && k.pv == o.pv &&
+  return k.fu == o.fu && k.fv == o.fv && k.pu == o.pu && k.pv == o.pv &&
          k.width == o.width && k.height == o.height &&
          camera_T_reference.matrix() == other.camera_T_reference.matrix() && square.u_min == other.square.u_min &&
          square.v_min == other.square.v_min && square.size == other.square.size && size == other.size &&

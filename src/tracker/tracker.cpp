@@ -152,7 +152,9 @@ void Tracker::render(const Frame& frame, Stage stage) {
   std::vector<RenderRequest> requests;
   for (auto& s : states_)
     for (const Modality* m : s->cues)
-      for (RenderRequest& r : m->render_requests(frame, stage)) requests.push_back(std::move(r));
+      for (RenderRequest& r : m->render_requests(frame, stage))
+        // Cues of one body in one camera ask for the same crop: render it once.
+        if (std::find(requests.begin(), requests.end(), r) == requests.end()) requests.push_back(std::move(r));
   if (requests.empty()) {
     renders_.clear();
     return;

@@ -240,6 +240,10 @@ const Fields<TextureParams> kTextureFields = {
     section("noise", &TextureParams::noise, kNoiseFields),
     field("occlusion_radius", &TextureParams::occlusion, &OcclusionParams::radius, kNonNegative),
     field("occlusion_threshold", &TextureParams::occlusion, &OcclusionParams::threshold, kNonNegative),
+    field("model_occlusions", &TextureParams::occlusion, &OcclusionParams::model, kBool),
+    field("modeled_occlusion_radius", &TextureParams::occlusion, &OcclusionParams::modeled_radius, kNonNegative),
+    field("modeled_occlusion_threshold", &TextureParams::occlusion, &OcclusionParams::modeled_threshold, kNonNegative),
+    field("occlusion_render_size", &TextureParams::occlusion, &OcclusionParams::render_size, int_range<16, 2048>()),
 };
 
 bool known_preset(const std::string& name) {

@@ -157,6 +157,10 @@ texture:
     tukey_constant: 2.0
   occlusion_radius: 0.02
   occlusion_threshold: 0.05
+  model_occlusions: false
+  modeled_occlusion_radius: 0.03
+  modeled_occlusion_threshold: 0.04
+  occlusion_render_size: 64
 regions: [/models/a/body.obj, /models/a/lid.obj]
 bodies:
   - name: lid

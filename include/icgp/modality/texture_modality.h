@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "icgp/modality/measured_occlusion.h"
+#include "icgp/modality/rendered_scene.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
 #include "icgp/modality/residual_noise.h"
@@ -110,7 +111,9 @@ class TextureModality : public Modality {
 
   std::string name() const override { return "texture"; }
   const std::string& camera() const override { return params_.color_camera; }
-  /// A focused render of the scene when a keyframe is due: at the start, and at a finish
+  /// With other bodies, a focused render of the scene at the first correspondence
+  /// iteration: keyframe points other bodies hide are not expected to match. A focused
+  /// render of the scene when a keyframe is due: at the start, and at a finish
   /// after the keyframe_orientation_threshold_deg rotation or keyframe_max_age frames.
   std::vector<RenderRequest> render_requests(const Frame& frame, Stage stage) const override;
   void start(const Frame& frame, const Renders& renders) override;
@@ -149,6 +152,7 @@ class TextureModality : public Modality {
   KeyframeLifter lifter_;
   cv::BFMatcher matcher_;
   Sphere sphere_;  ///< bounding_sphere of the body's mesh
+  RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)
   Intrinsics intrinsics_;
   Pose camera_T_reference_;
   std::vector<cv::Point2f> points_;  ///< current frame's keypoints, full image

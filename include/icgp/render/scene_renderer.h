@@ -27,6 +27,8 @@ struct RenderRequest {
   int size = 0;
   unsigned targets = kRenderDepth | kRenderIds;
 
+  /// The same view, whatever the camera is called: cameras of one geometry (a depth camera
+  /// registered to the colour camera) share one render.
   bool operator==(const RenderRequest& other) const;
 };
 
