@@ -51,20 +51,13 @@ void DepthModality::start(const Frame&, const Renders&) {
   scene_ = {};
 }
 
-std::optional<RenderRequest> DepthModality::scene_request(const Frame& frame, Stage stage) const {
-  // Once per frame, as the measured occlusions: the pose moves by far less than the
-  // occlusion radius between correspondence iterations.
-  if (stage.kind != Stage::kCorrespondences || stage.corr_iter != 0 || !stage.other_bodies ||
-      !params_.occlusion.model)
-    return std::nullopt;
-  const DepthImage* depth = frame.find_depth(params_.depth_camera);
-  if (!depth) return std::nullopt;
-  return focused_render_request(params_.depth_camera, depth->intrinsics, depth->camera_T_reference,
-                                body().reference_T_body, sphere_, params_.occlusion.render_size);
-}
-
 std::vector<RenderRequest> DepthModality::render_requests(const Frame& frame, Stage stage) const {
-  if (std::optional<RenderRequest> request = scene_request(frame, stage)) return {*request};
+  const DepthImage* depth = frame.find_depth(params_.depth_camera);
+  if (!params_.occlusion.model || !depth) return {};
+  if (std::optional<RenderRequest> request =
+          scene_render_request(stage, params_.depth_camera, depth->intrinsics, depth->camera_T_reference, body(),
+                               sphere_, params_.occlusion.render_size))
+    return {*request};
   return {};
 }
 
@@ -179,11 +172,9 @@ void DepthModality::correspondences(const Frame& frame, const Renders& renders, 
 
   n_considered_ = std::min(model_->view_point_count(view), params_.n_points_max);
   const ModelPoint* points = model_->points(view);
-  if (corr_iter == 0) {
-    scene_ = {};
-    if (std::optional<RenderRequest> request = scene_request(frame, {Stage::kCorrespondences, 0, true}))
-      if (const FocusedRender* render = renders.find(*request)) scene_ = {*render, renders.id(body().name)};
-  }
+  if (corr_iter == 0)
+    scene_ = RenderedScene::find(renders, params_.depth_camera, depth.intrinsics, depth.camera_T_reference, body(),
+                                 sphere_, params_.occlusion.render_size);
   const OcclusionParams& o = params_.occlusion;
   hidden_by_bodies_.update(corr_iter, view, n_considered_, [&](int p) {
     return scene_.hidden(depth_T_body_now * points[p].position, model_->depth_offsets(view, p)[modeled_offset_index_],

@@ -92,18 +92,13 @@ bool RegionModality::hidden(const Frame& frame, const Eigen::Vector3f& body_poin
   return occlusion_.occluded(*depth, X, depth_offsets[occlusion_offset_index_]);
 }
 
-std::optional<RenderRequest> RegionModality::scene_request(const Frame& frame, Stage stage) const {
-  // Once per frame: the pose moves by far less than the occlusion radius, or a line's
-  // length, between correspondence iterations (as for the measured occlusions).
-  if (stage.kind != Stage::kCorrespondences || stage.corr_iter != 0 || !stage.other_bodies) return std::nullopt;
-  if (!params_.occlusion.model && !params_.region_checking) return std::nullopt;
-  const ColorImage& image = color_image(frame);
-  return focused_render_request(params_.color_camera, image.intrinsics, image.camera_T_reference,
-                                body().reference_T_body, sphere_, params_.occlusion.render_size);
-}
-
 std::vector<RenderRequest> RegionModality::render_requests(const Frame& frame, Stage stage) const {
-  if (std::optional<RenderRequest> request = scene_request(frame, stage)) return {*request};
+  if (!params_.occlusion.model && !params_.region_checking) return {};
+  const ColorImage& image = color_image(frame);
+  if (std::optional<RenderRequest> request =
+          scene_render_request(stage, params_.color_camera, image.intrinsics, image.camera_T_reference, body(),
+                               sphere_, params_.occlusion.render_size))
+    return {*request};
   return {};
 }
 
@@ -268,11 +263,9 @@ void RegionModality::correspondences(const Frame& frame, const Renders& renders,
   n_considered_ = std::min(model_->view_point_count(view), params_.n_lines_max);
   const ModelPoint* points = model_->points(view);
 
-  if (corr_iter == 0) {
-    scene_ = {};
-    if (std::optional<RenderRequest> request = scene_request(frame, {Stage::kCorrespondences, 0, true}))
-      if (const FocusedRender* render = renders.find(*request)) scene_ = {*render, renders.id(body().name)};
-  }
+  if (corr_iter == 0)
+    scene_ = RenderedScene::find(renders, params_.color_camera, image.intrinsics, image.camera_T_reference, body(),
+                                 sphere_, params_.occlusion.render_size);
   occlusions_.update(corr_iter, view, n_considered_,
                      [&](int i) { return hidden(frame, points[i].position, model_->depth_offsets(view, i)); });
   ruled_out_.update(corr_iter, view, n_considered_,

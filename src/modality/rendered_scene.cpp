@@ -8,6 +8,42 @@
 
 namespace icgp {
 
+namespace {
+
+bool overlap(const ImageSquare& a, const ImageSquare& b) {
+  return a.u_min < b.u_min + b.size && b.u_min < a.u_min + a.size && a.v_min < b.v_min + b.size &&
+         b.v_min < a.v_min + a.size;
+}
+
+}  // namespace
+
+std::optional<RenderRequest> scene_render_request(const Stage& stage, const std::string& camera,
+                                                  const Intrinsics& intrinsics, const Pose& camera_T_reference,
+                                                  const Body& body, const Sphere& sphere, int size) {
+  if (stage.kind != Stage::kCorrespondences || stage.corr_iter != 0 || !stage.scene) return std::nullopt;
+  std::optional<RenderRequest> request =
+      focused_render_request(camera, intrinsics, camera_T_reference, body.reference_T_body, sphere, size);
+  if (!request) return std::nullopt;
+  for (const BodyExtent& other : *stage.scene) {
+    if (other.name == body.name) continue;
+    const Eigen::Vector3d centre = camera_T_reference * other.centre;
+    // A sphere that reaches the camera's plane may cover any part of the image.
+    if (!(centre.z() > other.radius) ||
+        overlap(request->square, square_around_sphere(intrinsics, centre, other.radius)))
+      return request;
+  }
+  return std::nullopt;
+}
+
+RenderedScene RenderedScene::find(const Renders& renders, const std::string& camera, const Intrinsics& intrinsics,
+                                  const Pose& camera_T_reference, const Body& body, const Sphere& sphere, int size) {
+  const std::optional<RenderRequest> request =
+      focused_render_request(camera, intrinsics, camera_T_reference, body.reference_T_body, sphere, size);
+  if (!request) return {};
+  const FocusedRender* render = renders.find(*request);
+  return render ? RenderedScene(*render, renders.id(body.name)) : RenderedScene();
+}
+
 bool RenderedScene::hidden(const Eigen::Vector3f& point, float depth_offset, double radius, double threshold) const {
   if (empty()) return false;
   const cv::Mat& depth = render_.depth;

@@ -247,12 +247,13 @@ bool TextureModality::keyframe_due(const Pose& camera_T_body, int age) const {
 }
 
 std::vector<RenderRequest> TextureModality::render_requests(const Frame& frame, Stage stage) const {
-  if (stage.kind == Stage::kCorrespondences && stage.corr_iter == 0 && stage.other_bodies && params_.occlusion.model) {
+  if (stage.kind == Stage::kCorrespondences) {
     const ColorImage& color = color_image(frame);
-    if (auto request = focused_render_request(params_.color_camera, color.intrinsics, color.camera_T_reference,
-                                              body().reference_T_body, sphere_, params_.occlusion.render_size))
-      return {*request};
-    return {};
+    std::optional<RenderRequest> request;
+    if (params_.occlusion.model)
+      request = scene_render_request(stage, params_.color_camera, color.intrinsics, color.camera_T_reference, body(),
+                                     sphere_, params_.occlusion.render_size);
+    return request ? std::vector<RenderRequest>{*request} : std::vector<RenderRequest>{};
   }
   const bool keyframe = stage.kind == Stage::kStart ||
                         (stage.kind == Stage::kFinish &&
@@ -318,9 +319,9 @@ void TextureModality::correspondences(const Frame& frame, const Renders& renders
   if (corr_iter == 0) {
     detect(frame);
     match();
-    scene_ = {};
-    for (const RenderRequest& request : render_requests(frame, {Stage::kCorrespondences, 0, true}))
-      if (const FocusedRender* render = renders.find(request)) scene_ = {*render, renders.id(body().name)};
+    const ColorImage& color = color_image(frame);
+    scene_ = RenderedScene::find(renders, params_.color_camera, color.intrinsics, color.camera_T_reference, body(),
+                                 sphere_, params_.occlusion.render_size);
   }
   update_weights();
   estimate_noise();

@@ -10,9 +10,11 @@ namespace icgp {
 struct Tracker::BodyState {
   BodyState(Body body, const TrackerParams& params)
       : body(std::make_unique<Body>(std::move(body))),
+        sphere(bounding_sphere(this->body->mesh)),
         optimizer(OptimizerParams{params.tikhonov_rotation, params.tikhonov_translation}) {}
 
   std::unique_ptr<Body> body;
+  Sphere sphere;  ///< bounding_sphere of the body's mesh
   bool occluder = false;
   std::optional<Joint> joint;  ///< to the parent; none for a free body and an occluder
   std::vector<double> joint_values;
@@ -148,7 +150,10 @@ std::vector<const Modality*> Tracker::modalities(const std::string& name) const 
 }
 
 void Tracker::render(const Frame& frame, Stage stage) {
-  stage.other_bodies = states_.size() > 1;
+  scene_.clear();
+  for (const auto& s : states_)
+    scene_.push_back({s->body->name, s->body->reference_T_body * s->sphere.centre, s->sphere.radius});
+  stage.scene = &scene_;
   std::vector<RenderRequest> requests;
   for (auto& s : states_)
     for (const Modality* m : s->cues)

@@ -61,8 +61,7 @@ class DepthModality : public Modality {
   bool find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point, const Search& search,
                                 Eigen::Vector3f& closest, bool& saw_depth) const;
   Posef depth_T_body() const;
-  /// The render of the scene this cue asks for in `stage`, if any.
-  std::optional<RenderRequest> scene_request(const Frame& frame, Stage stage) const;
+
   /// The standard deviation at 1 m for correspondence iteration `corr_iter`.
   double sigma(int corr_iter) const;
   void estimate_noise();

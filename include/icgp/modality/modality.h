@@ -47,15 +47,24 @@ struct CueTerms {
   int n_correspondences = 0;
 };
 
+/// Where a body of a tracker's scene is: its bounding sphere (bounding_sphere of its mesh)
+/// in the reference camera's frame.
+struct BodyExtent {
+  std::string name;
+  Eigen::Vector3d centre;
+  double radius = 0.0;
+};
+
 /// Where in a frame a cue may read renders (Modality::render_requests): when it starts,
 /// in correspondence iteration `corr_iter`, or when it finishes the frame.
 struct Stage {
   enum Kind { kStart, kCorrespondences, kFinish };
   Kind kind = kStart;
   int corr_iter = 0;
-  /// The renders show bodies besides the cue's own (other tracked bodies, links, occluders):
-  /// only then can a render reveal modeled occlusions.
-  bool other_bodies = false;
+  /// Every body the renders show (tracked bodies, links, occluders) at its current pose:
+  /// whether another body may cover the cue's decides whether a render can reveal modeled
+  /// occlusions. Null: the cue's body alone.
+  const std::vector<BodyExtent>* scene = nullptr;
 };
 
 /// One cue about one body's pose (ALGORITHMS.md §2): it supplies the gradient and Hessian of

@@ -78,8 +78,6 @@ class RegionModality : public Modality {
   bool project(const ModelPoint& point, const Posef& camera_T_body, const Intrinsics& k, ProjectedPoint& out) const;
   /// True when a measured depth hides the point (only when occlusion tests are active).
   bool hidden(const Frame& frame, const Eigen::Vector3f& body_point, const float* depth_offsets) const;
-  /// The render of the scene this cue asks for in `stage`, if any.
-  std::optional<RenderRequest> scene_request(const Frame& frame, Stage stage) const;
   /// True when the frame's render of the scene shows the point hidden by another body, or
   /// (region checking) its contour off the body's silhouette.
   bool ruled_out_by_scene(const ModelPoint& point, const Posef& camera_T_body, const float* depth_offsets) const;

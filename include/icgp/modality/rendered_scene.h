@@ -11,6 +11,15 @@
 
 namespace icgp {
 
+/// The request of a cue of `body` (bounding sphere `sphere`) in camera `camera` for the
+/// focused render of modeled occlusions and region checking, `size` pixels: at the first
+/// correspondence iteration of a frame (the pose then moves by far less than an occlusion
+/// radius or a line's length), and only when another body of stage.scene may cover the
+/// body there: its sphere's square overlaps the body's in this camera.
+std::optional<RenderRequest> scene_render_request(const Stage& stage, const std::string& camera,
+                                                  const Intrinsics& intrinsics, const Pose& camera_T_reference,
+                                                  const Body& body, const Sphere& sphere, int size);
+
 /// The focused render of every body that a cue reads about its own body in one frame:
 /// modeled occlusions (ALGORITHMS.md §7) and region checking (§6). Empty (no render: the
 /// tracker has no other body, or the cue asked for none): nothing is hidden and every
@@ -20,6 +29,10 @@ class RenderedScene {
   RenderedScene() = default;
   /// `render` shows the cue's body with id `body_id`.
   RenderedScene(const FocusedRender& render, std::uint8_t body_id) : render_(render), body_id_(body_id) {}
+  /// The render of this frame's `renders` that scene_render_request asked for with these
+  /// arguments, or none when it asked for none.
+  static RenderedScene find(const Renders& renders, const std::string& camera, const Intrinsics& intrinsics,
+                            const Pose& camera_T_reference, const Body& body, const Sphere& sphere, int size);
 
   bool empty() const { return render_.depth.empty(); }
   /// Modeled occlusion: a surface of another body within `radius` (metres) of the

@@ -115,6 +115,7 @@ class Tracker {
   std::vector<std::unique_ptr<BodyState>> states_;
   std::shared_ptr<SceneRenderer> renderer_;
   Renders renders_;
+  std::vector<BodyExtent> scene_;  ///< where every body is, for the render step's Stage
   std::vector<std::vector<TreeLink>> trees_;
   TreeOptimizer tree_optimizer_;
 };
