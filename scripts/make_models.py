@@ -562,9 +562,47 @@ def two_region(folder):
     return union
 
 
+# ---------------------------------------------------------------------------------------
+# A two-finger parallel gripper for the grasp scenario (scenarios/grasp_approach.yaml). Its
+# frame is the tool's, not the bounding box centre: the origin is the centre of the mount's
+# face on the arm's flange, z the approach direction (from the flange towards the
+# fingertips), the fingers open along +-y. Four separate closed boxes, one plain colour that
+# neither the box's label palette nor the background clutter has (lime green).
+
+GRIPPER_COLOUR = (0.55, 0.85, 0.10)
+GRIPPER_BOXES = [  # (name, lower corner, upper corner), metres
+    ("mount", (-0.02, -0.02, 0.0), (0.02, 0.02, 0.02)),
+    ("palm", (-0.025, -0.07, 0.02), (0.025, 0.07, 0.05)),
+    ("finger +y", (-0.012, 0.05, 0.05), (0.012, 0.064, 0.13)),
+    ("finger -y", (-0.012, -0.064, 0.05), (0.012, -0.05, 0.13)),
+]
+
+
+def add_box(mesh, triangles, lower, upper):
+    """A closed box between two corners."""
+    size = tuple(u - l for l, u in zip(lower, upper))
+    centre = tuple(0.5 * (l + u) for l, u in zip(lower, upper))
+    for _, normal, right, up, width, height in box_faces(size):
+        corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+        add_quad(triangles, *[mesh.corner(tuple(c + p for c, p in zip(
+            centre, face_point(size, normal, right, up, a, b, width, height)))) for a, b in corners])
+
+
+def gripper(folder):
+    mesh = ObjMesh()
+    triangles = mesh.group("gripper")
+    for _, lower, upper in GRIPPER_BOXES:
+        add_box(mesh, triangles, lower, upper)
+    write_mtl(os.path.join(folder, "gripper.mtl"), [("gripper", GRIPPER_COLOUR, None)])
+    write_obj(os.path.join(folder, "gripper.obj"), mesh, "gripper.mtl",
+              "two-finger parallel gripper: mount, palm 0.05 x 0.14 x 0.03 m, fingers 0.08 m long "
+              "0.10 m apart; origin on the flange, z the approach direction, fingers open along y")
+    return mesh
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "models")
-    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can):
+    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can, gripper):
         folder = os.path.join(root, make.__name__)
         os.makedirs(folder, exist_ok=True)
         mesh = make(folder)
