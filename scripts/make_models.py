@@ -567,9 +567,9 @@ def two_region(folder):
 # frame is the tool's, not the bounding box centre: the origin is the centre of the mount's
 # face on the arm's flange, z the approach direction (from the flange towards the
 # fingertips), the fingers open along +-y. Four separate closed boxes, one plain colour that
-# neither the box's label palette nor the background clutter has (lime green).
+# the box's label palette does not have (signal orange).
 
-GRIPPER_COLOUR = (0.55, 0.85, 0.10)
+GRIPPER_COLOUR = (0.95, 0.35, 0.05)
 GRIPPER_BOXES = [  # (name, lower corner, upper corner), metres
     ("mount", (-0.02, -0.02, 0.0), (0.02, 0.02, 0.02)),
     ("palm", (-0.025, -0.07, 0.02), (0.025, 0.07, 0.05)),
