@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/base/mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -85,6 +86,16 @@ void check_mesh(const Mesh& mesh) {
   Eigen::Vector3f lo, hi;
   mesh.bounds(lo, hi);
   if (!((hi - lo).maxCoeff() > 0.f)) refuse("has all its vertices at one point (expected a surface with an extent)");
+}
+
+Sphere bounding_sphere(const Mesh& mesh) {
+  Eigen::Vector3f lo, hi;
+  mesh.bounds(lo, hi);
+  const Eigen::Vector3f centre = 0.5f * (lo + hi);
+  float radius = 0.f;
+  for (const MeshPart& part : mesh.parts)
+    for (const Eigen::Vector3f& v : part.vertices) radius = std::max(radius, (v - centre).norm());
+  return {centre.cast<double>(), radius};
 }
 
 }  // namespace icgp

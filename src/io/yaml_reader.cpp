@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/io/yaml_reader.h"
 
+#include <charconv>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -43,6 +45,11 @@ std::string plain_number(double value) {
   else
     std::snprintf(text, sizeof text, "%.15g", value);
   return text;
+}
+
+std::string exact_number(double value) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof(text), value).ptr);
 }
 
 std::string describe(const YAML::Node& node) {

@@ -12,11 +12,16 @@
 namespace icgp {
 
 DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params)
-    : Modality(body), model_(std::move(model)), params_(std::move(params)), noise_(params_.noise) {
+    : Modality(body),
+      model_(std::move(model)),
+      params_(std::move(params)),
+      sphere_(bounding_sphere(body.mesh)),
+      noise_(params_.noise) {
   if (!model_ || model_->kind() != ViewpointModel::Kind::kDepth)
     throw std::invalid_argument("depth modality of '" + body.name + "' needs a depth viewpoint model");
   occlusion_ = {params_.occlusion.radius, params_.occlusion.threshold};
   occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion.radius);
+  modeled_offset_index_ = depth_offset_index(*model_, params_.occlusion.modeled_radius);
   correspondences_.reserve(params_.n_points_max);
 }
 
@@ -42,6 +47,25 @@ void DepthModality::start(const Frame&, const Renders&) {
   frames_since_start_ = 0;
   noise_.reset();
   occlusions_.reset();
+  hidden_by_bodies_.reset();
+  scene_ = {};
+}
+
+std::optional<RenderRequest> DepthModality::scene_request(const Frame& frame, Stage stage) const {
+  // Once per frame, as the measured occlusions: the pose moves by far less than the
+  // occlusion radius between correspondence iterations.
+  if (stage.kind != Stage::kCorrespondences || stage.corr_iter != 0 || !stage.other_bodies ||
+      !params_.occlusion.model)
+    return std::nullopt;
+  const DepthImage* depth = frame.find_depth(params_.depth_camera);
+  if (!depth) return std::nullopt;
+  return focused_render_request(params_.depth_camera, depth->intrinsics, depth->camera_T_reference,
+                                body().reference_T_body, sphere_, params_.occlusion.render_size);
+}
+
+std::vector<RenderRequest> DepthModality::render_requests(const Frame& frame, Stage stage) const {
+  if (std::optional<RenderRequest> request = scene_request(frame, stage)) return {*request};
+  return {};
 }
 
 DepthModality::Search DepthModality::search_of_pass(const DepthImage& depth, const Posef& depth_T_body,
@@ -136,11 +160,12 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
   return found;
 }
 
-void DepthModality::correspondences(const Frame& frame, const Renders&, int corr_iter) {
+void DepthModality::correspondences(const Frame& frame, const Renders& renders, int corr_iter) {
   const DepthImage* delivered = depth_image(frame);
   last_corr_iter_ = corr_iter;
   if (!delivered) {  // no depth this frame: no data, and the cue abstains
     correspondences_.clear();
+    n_hidden_by_bodies_ = 0;
     saw_depth_ = false;
     return;
   }
@@ -154,6 +179,16 @@ void DepthModality::correspondences(const Frame& frame, const Renders&, int corr
 
   n_considered_ = std::min(model_->view_point_count(view), params_.n_points_max);
   const ModelPoint* points = model_->points(view);
+  if (corr_iter == 0) {
+    scene_ = {};
+    if (std::optional<RenderRequest> request = scene_request(frame, {Stage::kCorrespondences, 0, true}))
+      if (const FocusedRender* render = renders.find(*request)) scene_ = {*render, renders.id(body().name)};
+  }
+  const OcclusionParams& o = params_.occlusion;
+  hidden_by_bodies_.update(corr_iter, view, n_considered_, [&](int p) {
+    return scene_.hidden(depth_T_body_now * points[p].position, model_->depth_offsets(view, p)[modeled_offset_index_],
+                         o.modeled_radius, o.modeled_threshold);
+  });
   if (test_occlusions)
     occlusions_.update(corr_iter, view, n_considered_, [&](int p) {
       return occlusion_.occluded(depth, depth_T_body_now * points[p].position,
@@ -162,9 +197,14 @@ void DepthModality::correspondences(const Frame& frame, const Renders&, int corr
   auto collect = [&](bool with_occlusion_test) {
     correspondences_.clear();
     saw_depth_ = false;
+    n_hidden_by_bodies_ = 0;
     for (int p = 0; p < n_considered_; ++p) {
       const Eigen::Vector3f X = depth_T_body_now * points[p].position;
       if (X.z() <= 0.f) continue;
+      if (hidden_by_bodies_.occluded(p)) {
+        ++n_hidden_by_bodies_;
+        continue;
+      }
       if (with_occlusion_test && occlusions_.occluded(p)) continue;
       if (!depth.mask.all_pixels() && !depth.mask.usable(depth.intrinsics.project<float>(X))) continue;
       Eigen::Vector3f measured;
@@ -241,9 +281,12 @@ void DepthModality::update_quality() {
   int n_inliers = 0;
   for (const Correspondence& c : correspondences_)
     if (std::abs(c.body_normal.dot(c.body_point - body_T_depth * c.measured)) < inlier) ++n_inliers;
+  // Points another body hides are not expected to find data, unlike those an unknown
+  // occluder hides: they do not count against the score.
+  const int n_expected = n_considered_ - n_hidden_by_bodies_;
   quality_.n_valid = static_cast<int>(correspondences_.size());
-  quality_.valid_fraction = n_considered_ > 0 ? static_cast<double>(correspondences_.size()) / n_considered_ : 0.0;
-  quality_.score = n_considered_ > 0 ? static_cast<double>(n_inliers) / n_considered_ : 0.0;
+  quality_.valid_fraction = n_expected > 0 ? static_cast<double>(correspondences_.size()) / n_expected : 0.0;
+  quality_.score = n_expected > 0 ? static_cast<double>(n_inliers) / n_expected : 0.0;
   quality_.abstained = !saw_depth_;
   quality_.sigma = sigma(last_corr_iter_);
 }

@@ -11,12 +11,19 @@
 
 namespace icgp {
 
-RegionModality::RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params)
-    : Modality(body), model_(std::move(model)), params_(std::move(params)), noise_(params_.noise) {
+RegionModality::RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params,
+                               Extent extent)
+    : Modality(body),
+      model_(std::move(model)),
+      params_(std::move(params)),
+      extent_(extent),
+      sphere_(bounding_sphere(body.mesh)),
+      noise_(params_.noise) {
   if (!model_ || model_->kind() != ViewpointModel::Kind::kRegion)
     throw std::invalid_argument("region modality of '" + body.name + "' needs a region viewpoint model");
   occlusion_ = {params_.occlusion.radius, params_.occlusion.threshold};
   occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion.radius);
+  modeled_offset_index_ = depth_offset_index(*model_, params_.occlusion.modeled_radius);
   n_segments_ = params_.function_length + params_.distribution_length - 1;
 
   // Smoothed step at the segment centres x_i = i − (function_length − 1)/2 (§4).
@@ -85,6 +92,33 @@ bool RegionModality::hidden(const Frame& frame, const Eigen::Vector3f& body_poin
   return occlusion_.occluded(*depth, X, depth_offsets[occlusion_offset_index_]);
 }
 
+std::optional<RenderRequest> RegionModality::scene_request(const Frame& frame, Stage stage) const {
+  // Once per frame: the pose moves by far less than the occlusion radius, or a line's
+  // length, between correspondence iterations (as for the measured occlusions).
+  if (stage.kind != Stage::kCorrespondences || stage.corr_iter != 0 || !stage.other_bodies) return std::nullopt;
+  if (!params_.occlusion.model && !params_.region_checking) return std::nullopt;
+  const ColorImage& image = color_image(frame);
+  return focused_render_request(params_.color_camera, image.intrinsics, image.camera_T_reference,
+                                body().reference_T_body, sphere_, params_.occlusion.render_size);
+}
+
+std::vector<RenderRequest> RegionModality::render_requests(const Frame& frame, Stage stage) const {
+  if (std::optional<RenderRequest> request = scene_request(frame, stage)) return {*request};
+  return {};
+}
+
+bool RegionModality::ruled_out_by_scene(const ModelPoint& point, const Posef& camera_T_body,
+                                        const float* depth_offsets) const {
+  if (scene_.empty()) return false;
+  const Eigen::Vector3f X = camera_T_body * point.position;
+  const OcclusionParams& o = params_.occlusion;
+  if (o.model && scene_.hidden(X, depth_offsets[modeled_offset_index_], o.modeled_radius, o.modeled_threshold))
+    return true;
+  ProjectedPoint p;
+  return params_.region_checking && project(point, camera_T_body, intrinsics_, p) &&
+         !scene_.on_silhouette(X, p.normal, extent_ == Extent::kWholeBody);
+}
+
 void RegionModality::count_line_pixels(const Frame& frame) {
   const ColorImage& image = color_image(frame);
   const Intrinsics& k = image.intrinsics;
@@ -102,6 +136,7 @@ void RegionModality::count_line_pixels(const Frame& frame) {
     const bool occluded = occlusions_.measured(view, i)
                               ? occlusions_.occluded(i)
                               : hidden(frame, points[i].position, model_->depth_offsets(view, i));
+    if (ruled_out_.measured(view, i) && ruled_out_.occluded(i)) continue;
     if (occluded || !project(points[i], pose, k, p)) continue;
     auto walk = [&](float length, float sign, bool foreground) {
       for (float t = start; t <= length; t += 1.f) {
@@ -123,6 +158,8 @@ void RegionModality::start(const Frame& frame, const Renders&) {
   frames_since_start_ = 0;
   noise_.reset();
   occlusions_.reset();
+  ruled_out_.reset();
+  scene_ = {};
   histograms_.emplace(params_.n_histogram_bins, color_image(frame).image.channels());
   count_line_pixels(frame);
   if (!histograms_->set_from_counts())
@@ -218,7 +255,7 @@ void RegionModality::compute_distribution(Line& line, float* distribution, float
     for (int d = 0; d < n_dist; ++d) log_distribution[d] = std::log(distribution[d]);
 }
 
-void RegionModality::correspondences(const Frame& frame, const Renders&, int corr_iter) {
+void RegionModality::correspondences(const Frame& frame, const Renders& renders, int corr_iter) {
   const ColorImage& image = color_image(frame);
   if (image.image.channels() != histograms_->channels())
     throw std::invalid_argument("region modality of '" + body().name + "': camera '" + params_.color_camera +
@@ -231,14 +268,23 @@ void RegionModality::correspondences(const Frame& frame, const Renders&, int cor
   n_considered_ = std::min(model_->view_point_count(view), params_.n_lines_max);
   const ModelPoint* points = model_->points(view);
 
+  if (corr_iter == 0) {
+    scene_ = {};
+    if (std::optional<RenderRequest> request = scene_request(frame, {Stage::kCorrespondences, 0, true}))
+      if (const FocusedRender* render = renders.find(*request)) scene_ = {*render, renders.id(body().name)};
+  }
   occlusions_.update(corr_iter, view, n_considered_,
                      [&](int i) { return hidden(frame, points[i].position, model_->depth_offsets(view, i)); });
+  ruled_out_.update(corr_iter, view, n_considered_,
+                    [&](int i) { return ruled_out_by_scene(points[i], pose, model_->depth_offsets(view, i)); });
   auto collect = [&](bool test_occlusions) {
     lines_.clear();
     n_measurable_ = 0;
     ProjectedPoint p;
     for (int i = 0; i < n_considered_; ++i) {
-      if (!project(points[i], pose, intrinsics_, p)) continue;
+      // What the scene's render rules out is known to be unmeasurable, unlike what an
+      // unknown occluder hides: it does not count against the cue's quality.
+      if (ruled_out_.occluded(i) || !project(points[i], pose, intrinsics_, p)) continue;
       if (std::min(p.foreground_px, p.background_px) / scale < params_.min_continuous_distance) continue;
       if (!image.mask.usable(p.centre)) continue;
       ++n_measurable_;

@@ -193,14 +193,7 @@ TextureModality::TextureModality(Body& body, TextureParams params)
       lifter_(MeasuredOcclusion{params_.occlusion.radius, params_.occlusion.threshold}),
       matcher_(extractor_.norm()),
       noise_(params_.noise) {
-  Eigen::Vector3f lo, hi;
-  body.mesh.bounds(lo, hi);
-  const Eigen::Vector3f centre = 0.5f * (lo + hi);
-  float radius = 0.f;
-  for (const MeshPart& part : body.mesh.parts)
-    for (const Eigen::Vector3f& v : part.vertices) radius = std::max(radius, (v - centre).norm());
-  sphere_centre_ = centre.cast<double>();
-  sphere_radius_ = radius;
+  sphere_ = bounding_sphere(body.mesh);
 }
 
 const ColorImage& TextureModality::color_image(const Frame& frame) const {
@@ -220,13 +213,13 @@ void TextureModality::detect(const Frame& frame) {
   const ColorImage& color = color_image(frame);
   intrinsics_ = color.intrinsics;
   camera_T_reference_ = color.camera_T_reference;
-  const Eigen::Vector3d centre = camera_T_body() * sphere_centre_;
-  if (!(centre.z() > sphere_radius_)) {
+  const Eigen::Vector3d centre = camera_T_body() * sphere_.centre;
+  if (!(centre.z() > sphere_.radius)) {
     points_.clear();
     descriptors_.release();
     return;
   }
-  extractor_.extract(color.image, square_around_sphere(intrinsics_, centre, sphere_radius_), points_, descriptors_);
+  extractor_.extract(color.image, square_around_sphere(intrinsics_, centre, sphere_.radius), points_, descriptors_);
   if (!color.mask.all_pixels()) drop_masked_points(color.mask);
 }
 
@@ -243,10 +236,8 @@ void TextureModality::drop_masked_points(const PixelMask& mask) {
 
 std::optional<RenderRequest> TextureModality::keyframe_render(const Frame& frame) const {
   const ColorImage& color = color_image(frame);
-  const Eigen::Vector3d centre = color.camera_T_reference * body().reference_T_body * sphere_centre_;
-  if (!(centre.z() > sphere_radius_)) return std::nullopt;
-  return RenderRequest{params_.color_camera, color.intrinsics, color.camera_T_reference,
-                       square_around_sphere(color.intrinsics, centre, sphere_radius_), params_.focused_image_size};
+  return focused_render_request(params_.color_camera, color.intrinsics, color.camera_T_reference,
+                                body().reference_T_body, sphere_, params_.focused_image_size);
 }
 
 bool TextureModality::keyframe_due(const Pose& camera_T_body, int age) const {

@@ -18,6 +18,15 @@ Optimizer::Optimizer(const OptimizerParams& params) {
 }
 
 void Optimizer::step(Body& body, const std::vector<Modality*>& cues, int corr_iter, int update_iter) {
+  collect(cues, corr_iter, update_iter);
+  Mat66 A = -total_.hessian;
+  A.diagonal() += regularisation_;
+  const Vec6 theta = A.ldlt().solve(total_.gradient);
+  // A singular system (no data and no regularisation) must not corrupt the pose.
+  if (theta.allFinite()) body.reference_T_body = body.reference_T_body.updated_in_body_frame(theta);
+}
+
+void Optimizer::collect(const std::vector<Modality*>& cues, int corr_iter, int update_iter) {
   cue_terms_.clear();
   total_ = CueTerms{};
   for (Modality* cue : cues) {
@@ -26,11 +35,6 @@ void Optimizer::step(Body& body, const std::vector<Modality*>& cues, int corr_it
     total_.hessian += cue_terms_.back().hessian;
     total_.n_correspondences += cue_terms_.back().n_correspondences;
   }
-  Mat66 A = -total_.hessian;
-  A.diagonal() += regularisation_;
-  const Vec6 theta = A.ldlt().solve(total_.gradient);
-  // A singular system (no data and no regularisation) must not corrupt the pose.
-  if (theta.allFinite()) body.reference_T_body = body.reference_T_body.updated_in_body_frame(theta);
 }
 
 }  // namespace icgp

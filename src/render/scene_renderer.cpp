@@ -16,6 +16,15 @@ bool RenderRequest::operator==(const RenderRequest& other) const {
          targets == other.targets;
 }
 
+std::optional<RenderRequest> focused_render_request(const std::string& camera, const Intrinsics& intrinsics,
+                                                    const Pose& camera_T_reference, const Pose& reference_T_body,
+                                                    const Sphere& sphere, int size) {
+  const Eigen::Vector3d centre = camera_T_reference * reference_T_body * sphere.centre;
+  if (!(centre.z() > sphere.radius)) return std::nullopt;
+  return RenderRequest{camera, intrinsics, camera_T_reference, square_around_sphere(intrinsics, centre, sphere.radius),
+                       size};
+}
+
 void Renders::clear() {
   renders_.clear();
   ids_.clear();
@@ -33,9 +42,14 @@ std::uint8_t Renders::id(const std::string& body) const {
   throw std::logic_error("body '" + body + "' was not rendered in this stage");
 }
 
-const FocusedRender& Renders::at(const RenderRequest& request) const {
+const FocusedRender* Renders::find(const RenderRequest& request) const {
   for (const auto& [asked, render] : renders_)
-    if (asked == request) return render;
+    if (asked == request) return &render;
+  return nullptr;
+}
+
+const FocusedRender& Renders::at(const RenderRequest& request) const {
+  if (const FocusedRender* render = find(request)) return *render;
   throw std::logic_error("no render of camera '" + request.camera + "' was requested for this stage");
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/tracker/tracker.h"
 
+#include <algorithm>
+#include <optional>
 #include <stdexcept>
 
 namespace icgp {
@@ -11,6 +13,9 @@ struct Tracker::BodyState {
         optimizer(OptimizerParams{params.tikhonov_rotation, params.tikhonov_translation}) {}
 
   std::unique_ptr<Body> body;
+  bool occluder = false;
+  std::optional<Joint> joint;  ///< to the parent; none for a free body and an occluder
+  std::vector<double> joint_values;
   std::vector<std::unique_ptr<Modality>> modalities;
   std::vector<Modality*> cues;  ///< the same modalities, as the optimizer takes them
   Optimizer optimizer;
@@ -27,16 +32,43 @@ Tracker::~Tracker() = default;
 Tracker::Tracker(Tracker&&) noexcept = default;
 Tracker& Tracker::operator=(Tracker&&) noexcept = default;
 
-Body& Tracker::add_body(Body body) {
+Tracker::BodyState& Tracker::add_state(Body body) {
   for (const auto& s : states_)
     if (s->body->name == body.name) throw std::invalid_argument("tracker already has a body named '" + body.name + "'");
   states_.push_back(std::make_unique<BodyState>(std::move(body), params_));
-  return *states_.back()->body;
+  trees_.clear();
+  return *states_.back();
+}
+
+Body& Tracker::add_body(Body body) { return *add_state(std::move(body)).body; }
+
+Body& Tracker::add_link(Body body, Joint joint) {
+  validate(joint, body.name);
+  const auto parent = std::find_if(states_.begin(), states_.end(),
+                                   [&](const auto& s) { return s->body->name == joint.parent && !s->occluder; });
+  if (parent == states_.end())
+    throw std::invalid_argument("body '" + body.name + "': joint: parent: no tracked body is named '" + joint.parent +
+                                "' (a parent is added before its links)");
+  const Pose parent_pose = (*parent)->body->reference_T_body;
+  BodyState& link = add_state(std::move(body));
+  link.joint_values = joint.clamped(std::vector<double>(joint.size(), 0.0));
+  link.body->reference_T_body = parent_pose * joint.parent_T_link(link.joint_values);
+  link.joint = std::move(joint);
+  return *link.body;
+}
+
+Body& Tracker::add_occluder(Body body) {
+  BodyState& occluder = add_state(std::move(body));
+  occluder.occluder = true;
+  return *occluder.body;
 }
 
 void Tracker::add_modality(std::unique_ptr<Modality> modality) {
   for (auto& s : states_)
     if (s->body.get() == &modality->body()) {
+      if (s->occluder)
+        throw std::invalid_argument("modality '" + modality->name() + "' belongs to occluder '" + s->body->name +
+                                    "', which is not tracked");
       s->cues.push_back(modality.get());
       s->modalities.push_back(std::move(modality));
       return;
@@ -46,8 +78,46 @@ void Tracker::add_modality(std::unique_ptr<Modality> modality) {
 
 std::vector<Body*> Tracker::bodies() {
   std::vector<Body*> out;
-  for (auto& s : states_) out.push_back(s->body.get());
+  for (auto& s : states_)
+    if (!s->occluder) out.push_back(s->body.get());
   return out;
+}
+
+const std::vector<double>& Tracker::joint_values(const std::string& name) const { return state(name).joint_values; }
+
+void Tracker::set_joint_values(const std::string& name, std::vector<double> values) {
+  BodyState& link = const_cast<BodyState&>(state(name));
+  if (!link.joint) throw std::invalid_argument("body '" + name + "' has no joint");
+  if (static_cast<int>(values.size()) != link.joint->size())
+    throw std::invalid_argument("body '" + name + "': its joint has " + std::to_string(link.joint->size()) +
+                                " values, got " + std::to_string(values.size()));
+  link.joint_values = link.joint->clamped(std::move(values));
+  for (const std::vector<TreeLink>& tree : trees()) place_links(tree);
+}
+
+const std::vector<std::vector<TreeLink>>& Tracker::trees() {
+  if (!trees_.empty()) return trees_;
+  // Parents are added before their links, so one pass in the order of adding puts every
+  // link after its parent.
+  for (auto& s : states_) {
+    if (s->occluder) continue;
+    TreeLink link{s->body.get(), &s->cues, &s->optimizer};
+    if (!s->joint) {
+      trees_.push_back({link});
+      continue;
+    }
+    for (std::vector<TreeLink>& tree : trees_)
+      for (std::size_t i = 0; i < tree.size(); ++i)
+        if (tree[i].body->name == s->joint->parent) {
+          link.parent = static_cast<int>(i);
+          link.joint = &*s->joint;
+          link.joint_values = &s->joint_values;
+          tree.push_back(link);
+          goto placed;
+        }
+  placed:;
+  }
+  return trees_;
 }
 
 Body& Tracker::body(const std::string& name) {
@@ -78,6 +148,7 @@ std::vector<const Modality*> Tracker::modalities(const std::string& name) const 
 }
 
 void Tracker::render(const Frame& frame, Stage stage) {
+  stage.other_bodies = states_.size() > 1;
   std::vector<RenderRequest> requests;
   for (auto& s : states_)
     for (const Modality* m : s->cues)
@@ -92,6 +163,7 @@ void Tracker::render(const Frame& frame, Stage stage) {
 }
 
 void Tracker::start(const Frame& frame) {
+  for (const std::vector<TreeLink>& tree : trees()) place_links(tree);
   render(frame, {Stage::kStart});
   for (auto& s : states_)
     for (Modality* m : s->cues) m->start(frame, renders_);
@@ -103,14 +175,21 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
     for (auto& s : states_)
       for (Modality* m : s->cues) m->correspondences(frame, renders_, c);
     for (int u = 0; u < params_.n_update_iterations; ++u)
-      for (auto& s : states_) s->optimizer.step(*s->body, s->cues, c, u);
+      for (const std::vector<TreeLink>& tree : trees()) {
+        if (tree.size() == 1)
+          tree.front().terms->step(*tree.front().body, *tree.front().cues, c, u);
+        else
+          tree_optimizer_.step(tree, c, u);
+      }
   }
 
   render(frame, {Stage::kFinish});
   std::vector<BodyResult> results;
   for (auto& s : states_) {
+    if (s->occluder) continue;
     BodyResult r;
     r.body = s->body->name;
+    r.joint_values = s->joint_values;
     double score_sum = 0.0;
     int n_scored = 0;
     for (Modality* m : s->cues) {

@@ -32,6 +32,63 @@ std::vector<ViewpointModel> multi_region_models(const TrackerConfig& config, con
   return models;
 }
 
+/// Which cues the configuration and the rig ask for.
+struct CueSelection {
+  bool region, depth, texture;
+};
+
+/// Adds the cues of one tracked body: its region model(s) and depth model from the cache
+/// (`region_models` given: a multi-region body's), then its texture cue per camera.
+void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const std::vector<CameraCues>& cameras,
+              const CueSelection& cues, std::vector<ViewpointModel> region_models) {
+  std::vector<ModelRequest> requests;
+  const bool multi_region = !region_models.empty();
+  if (cues.region && !multi_region) requests.push_back({ViewpointModel::Kind::kRegion, config.region_model});
+  if (cues.depth) requests.push_back({ViewpointModel::Kind::kDepth, config.depth_model});
+  ModelGenerationOptions options;
+  options.name = body.name;
+  std::vector<ViewpointModel> models = load_or_generate(body.mesh, requests, config.cache_dir, options);
+  for (ViewpointModel& model : region_models) models.push_back(std::move(model));
+
+  std::vector<std::shared_ptr<const ViewpointModel>> shared;
+  for (ViewpointModel& model : models) shared.push_back(std::make_shared<const ViewpointModel>(std::move(model)));
+  const RegionModality::Extent extent =
+      multi_region ? RegionModality::Extent::kRegionOfBody : RegionModality::Extent::kWholeBody;
+  // Model by model, then camera by camera: one camera per cue gives the modality order of
+  // a single-camera tracker.
+  for (const auto& model : shared) {
+    for (const CameraCues& camera : cameras) {
+      if (model->kind() == ViewpointModel::Kind::kRegion && cues.region && camera.region) {
+        RegionParams params = config.region;
+        params.color_camera = camera.camera;
+        params.depth_camera = camera.occlusion_depth_camera;
+        tracker.add_modality(std::make_unique<RegionModality>(body, model, params, extent));
+      } else if (model->kind() == ViewpointModel::Kind::kDepth && cues.depth && camera.depth) {
+        DepthParams params = config.depth;
+        params.depth_camera = camera.camera;
+        tracker.add_modality(std::make_unique<DepthModality>(body, model, params));
+      }
+    }
+  }
+  if (cues.texture)
+    for (const CameraCues& camera : cameras) {
+      if (!camera.texture) continue;
+      TextureParams params = config.texture;
+      params.color_camera = camera.camera;
+      params.depth_camera = camera.occlusion_depth_camera;
+      tracker.add_modality(std::make_unique<TextureModality>(body, params));
+    }
+}
+
+/// The mesh of a configured body, with the body named in any error.
+Mesh read_body_mesh(const BodyConfig& body, const MeshReader& read_mesh) {
+  try {
+    return read_mesh(body.mesh, body.scale);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("body '" + body.name + "': mesh: " + e.what());
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name) {
@@ -54,55 +111,37 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   return build_tracker(config, mesh, body_name, cameras);
 }
 
+Mesh read_mesh_file(const std::string& path, double scale) {
+  MeshLoadOptions options;
+  options.scale = scale;
+  return load_mesh(path, options);
+}
+
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
                                        const std::vector<CameraCues>& cameras,
-                                       std::shared_ptr<SceneRenderer> renderer) {
+                                       std::shared_ptr<SceneRenderer> renderer, const MeshReader& read_mesh) {
   validate(config, "tracker configuration");
+  const std::vector<const BodyConfig*> others = in_tree_order(config.bodies, body_name);
   auto any_camera = [&](bool CameraCues::*cue) {
     return std::any_of(cameras.begin(), cameras.end(), [cue](const CameraCues& c) { return c.*cue; });
   };
-  const bool region = has_cue(config.modalities, CueKind::kRegion) && any_camera(&CameraCues::region);
-  const bool depth = has_cue(config.modalities, CueKind::kDepth) && any_camera(&CameraCues::depth);
-  const bool texture = has_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture);
-
-  const bool multi_region = region && !config.regions.empty();
-  std::vector<ModelRequest> requests;
-  if (region && !multi_region) requests.push_back({ViewpointModel::Kind::kRegion, config.region_model});
-  if (depth) requests.push_back({ViewpointModel::Kind::kDepth, config.depth_model});
-  ModelGenerationOptions options;
-  options.name = body_name;
-  std::vector<ViewpointModel> models = load_or_generate(mesh, requests, config.cache_dir, options);
-  if (multi_region)
-    for (ViewpointModel& model : multi_region_models(config, body_name)) models.push_back(std::move(model));
+  const CueSelection cues{has_cue(config.modalities, CueKind::kRegion) && any_camera(&CameraCues::region),
+                          has_cue(config.modalities, CueKind::kDepth) && any_camera(&CameraCues::depth),
+                          has_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture)};
 
   auto tracker = std::make_unique<Tracker>(config.tracker, std::move(renderer));
   Body& body = tracker->add_body({body_name, mesh, Pose()});
-  std::vector<std::shared_ptr<const ViewpointModel>> shared;
-  for (ViewpointModel& model : models) shared.push_back(std::make_shared<const ViewpointModel>(std::move(model)));
-  // Model by model, then camera by camera: one camera per cue gives the modality order of
-  // a single-camera tracker.
-  for (const auto& model : shared) {
-    for (const CameraCues& camera : cameras) {
-      if (model->kind() == ViewpointModel::Kind::kRegion && region && camera.region) {
-        RegionParams params = config.region;
-        params.color_camera = camera.camera;
-        params.depth_camera = camera.occlusion_depth_camera;
-        tracker->add_modality(std::make_unique<RegionModality>(body, model, params));
-      } else if (model->kind() == ViewpointModel::Kind::kDepth && depth && camera.depth) {
-        DepthParams params = config.depth;
-        params.depth_camera = camera.camera;
-        tracker->add_modality(std::make_unique<DepthModality>(body, model, params));
-      }
+  add_cues(*tracker, body, config, cameras, cues,
+           cues.region && !config.regions.empty() ? multi_region_models(config, body_name) : std::vector<ViewpointModel>{});
+  for (const BodyConfig* other : others) {
+    Body added{other->name, read_body_mesh(*other, read_mesh), Pose()};
+    if (other->occluder) {
+      tracker->add_occluder(std::move(added));
+      continue;
     }
+    Body& tracked = other->joint ? tracker->add_link(std::move(added), *other->joint) : tracker->add_body(std::move(added));
+    add_cues(*tracker, tracked, config, cameras, cues, {});
   }
-  if (texture)
-    for (const CameraCues& camera : cameras) {
-      if (!camera.texture) continue;
-      TextureParams params = config.texture;
-      params.color_camera = camera.camera;
-      params.depth_camera = camera.occlusion_depth_camera;
-      tracker->add_modality(std::make_unique<TextureModality>(body, params));
-    }
   return tracker;
 }
 

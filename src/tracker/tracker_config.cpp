@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -59,8 +58,7 @@ const Rule<double> kSphereRadius{"a positive number of at most 100 (metres)",
 
 /// Shortest text that reads back as the same double, with a ".0" on whole numbers.
 void emit(YAML::Emitter& out, double v) {
-  char text[32];
-  std::string s(text, std::to_chars(text, text + sizeof(text), v).ptr);
+  std::string s = yaml::exact_number(v);
   if (s.find_first_not_of("-0123456789") == std::string::npos) s += ".0";
   out << s;
 }
@@ -192,6 +190,11 @@ const Fields<RegionParams> kRegionFields = {
     field("measure_occlusions", &RegionParams::occlusion, &OcclusionParams::measure, kBool),
     field("occlusion_radius", &RegionParams::occlusion, &OcclusionParams::radius, kNonNegative),
     field("occlusion_threshold", &RegionParams::occlusion, &OcclusionParams::threshold, kNonNegative),
+    field("model_occlusions", &RegionParams::occlusion, &OcclusionParams::model, kBool),
+    field("modeled_occlusion_radius", &RegionParams::occlusion, &OcclusionParams::modeled_radius, kNonNegative),
+    field("modeled_occlusion_threshold", &RegionParams::occlusion, &OcclusionParams::modeled_threshold, kNonNegative),
+    field("occlusion_render_size", &RegionParams::occlusion, &OcclusionParams::render_size, int_range<16, 2048>()),
+    field("region_checking", &RegionParams::region_checking, kBool),
     field("n_unoccluded_iterations", &RegionParams::n_unoccluded_iterations, int_range<0, 1000>()),
     field("min_n_unoccluded_lines", &RegionParams::min_n_unoccluded_lines, int_range<0, 5000>()),
 };
@@ -206,6 +209,10 @@ const Fields<DepthParams> kDepthFields = {
     field("measure_occlusions", &DepthParams::occlusion, &OcclusionParams::measure, kBool),
     field("occlusion_radius", &DepthParams::occlusion, &OcclusionParams::radius, kNonNegative),
     field("occlusion_threshold", &DepthParams::occlusion, &OcclusionParams::threshold, kNonNegative),
+    field("model_occlusions", &DepthParams::occlusion, &OcclusionParams::model, kBool),
+    field("modeled_occlusion_radius", &DepthParams::occlusion, &OcclusionParams::modeled_radius, kNonNegative),
+    field("modeled_occlusion_threshold", &DepthParams::occlusion, &OcclusionParams::modeled_threshold, kNonNegative),
+    field("occlusion_render_size", &DepthParams::occlusion, &OcclusionParams::render_size, int_range<16, 2048>()),
     field("n_unoccluded_iterations", &DepthParams::n_unoccluded_iterations, int_range<0, 1000>()),
     field("min_n_unoccluded_points", &DepthParams::min_n_unoccluded_points, int_range<0, 5000>()),
 };
@@ -268,6 +275,8 @@ const Fields<TrackerConfig> kConfigFields = {
                                            return std::none_of(files.begin(), files.end(),
                                                                [](const std::string& f) { return f.empty(); });
                                          }}),
+    {"bodies", [](const yaml::Value& v, TrackerConfig& c) { c.bodies = read_body_configs(v); },
+     [](YAML::Emitter& out, const TrackerConfig& c) { write_body_configs(out, c.bodies); }},
     field("cache_dir", &TrackerConfig::cache_dir, yaml::kString),
 };
 
@@ -303,8 +312,11 @@ TrackerConfig load_tracker_config(const std::string& path) {
   }
   read_map(root, kConfigFields, config);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  for (std::string& region : config.regions)
-    if (std::filesystem::path(region).is_relative()) region = (folder / region).lexically_normal().string();
+  auto resolve = [&](std::string& file) {
+    if (std::filesystem::path(file).is_relative()) file = (folder / file).lexically_normal().string();
+  };
+  for (std::string& region : config.regions) resolve(region);
+  for (BodyConfig& body : config.bodies) resolve(body.mesh);
   return config;
 }
 

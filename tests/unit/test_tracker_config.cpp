@@ -34,7 +34,7 @@ std::map<std::string, std::string> flatten(const YAML::Node& node, const std::st
     std::string text = node.Scalar();
     if (node.IsSequence()) {
       text = "[";
-      for (const auto& item : node) text += (text.size() > 1 ? ", " : "") + item.Scalar();
+      for (const auto& item : node) text += (text.size() > 1 ? ", " : "") + (item.IsScalar() ? item.Scalar() : YAML::Dump(item));
       text += "]";
     }
     values[prefix.substr(0, prefix.size() - 1)] = text;
@@ -103,6 +103,11 @@ region:
   measure_occlusions: false
   occlusion_radius: 0.02
   occlusion_threshold: 0.05
+  model_occlusions: false
+  modeled_occlusion_radius: 0.02
+  modeled_occlusion_threshold: 0.01
+  occlusion_render_size: 128
+  region_checking: false
   n_unoccluded_iterations: 0
   min_n_unoccluded_lines: 5
 depth:
@@ -120,6 +125,10 @@ depth:
   measure_occlusions: false
   occlusion_radius: 0.005
   occlusion_threshold: 0.04
+  model_occlusions: false
+  modeled_occlusion_radius: 0.005
+  modeled_occlusion_threshold: 0.02
+  occlusion_render_size: 100
   n_unoccluded_iterations: 3
   min_n_unoccluded_points: 7
 texture:
@@ -149,6 +158,20 @@ texture:
   occlusion_radius: 0.02
   occlusion_threshold: 0.05
 regions: [/models/a/body.obj, /models/a/lid.obj]
+bodies:
+  - name: lid
+    mesh: /models/a/lid.obj
+    scale: 0.001
+    role: tracked
+    parent: main
+    origin: {t: [0, 0.05, 0.04], r_deg: [0, 0, 0]}
+    joint: revolute
+    axis: [1, 0, 0]
+    limits_deg: [0, 110]
+  - name: hand
+    mesh: /models/hand.obj
+    scale: 1
+    role: occluder
 cache_dir: /tmp/icgp cache
 )";
 
@@ -350,7 +373,7 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
   };
   const Case cases[] = {
       {"regoin: {}", "regoin: unknown key (valid keys: preset, tracker, modalities, region_model, depth_model, region, depth, "
-                     "texture, regions, cache_dir)"},
+                     "texture, regions, bodies, cache_dir)"},
       {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
       {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
       {"- tracker\n- region\n", "expected a map with the keys preset, tracker, modalities,"},

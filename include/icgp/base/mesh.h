@@ -54,6 +54,16 @@ struct Mesh {
   void append(const Mesh& other);
 };
 
+/// A sphere around a mesh, in the mesh's frame.
+struct Sphere {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
+/// The sphere about the centre of the mesh's bounds through its farthest vertex: what a
+/// focused render or keypoint crop must enclose. Throws std::runtime_error for an empty mesh.
+Sphere bounding_sphere(const Mesh& mesh);
+
 /// Throws std::invalid_argument naming `mesh.source` when the mesh is not one icgp can
 /// track: no triangle, more than MeshLimits::kMaxTriangles, a vertex that is not finite or
 /// beyond MeshLimits::kMaxCoordinate, a triangle index outside its part's vertices, texture

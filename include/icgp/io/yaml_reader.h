@@ -94,6 +94,9 @@ struct Interval {
 
 /// A number as a person writes it: 1000000 rather than 1e+06, 0.5, -360.
 std::string plain_number(double value);
+/// The shortest text that reads back as the same double (0.05, not 0.050000000000000003):
+/// what files icgp writes hold, so that reading them gives every bit back.
+std::string exact_number(double value);
 
 /// A value as the file wrote it, for messages: numbers as they are, other text quoted
 /// ('fast'), lists in brackets, "a map", "nothing" for `key:` alone.

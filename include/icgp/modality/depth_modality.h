@@ -2,9 +2,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "icgp/modality/measured_occlusion.h"
+#include "icgp/modality/rendered_scene.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
 #include "icgp/modality/residual_noise.h"
@@ -25,6 +27,9 @@ class DepthModality : public Modality {
 
   std::string name() const override { return "depth"; }
   const std::string& camera() const override { return params_.depth_camera; }
+  /// With other bodies and model_occlusions: a focused render of the scene in the depth
+  /// camera at the first correspondence iteration.
+  std::vector<RenderRequest> render_requests(const Frame& frame, Stage stage) const override;
   void start(const Frame& frame, const Renders& renders) override;
   void correspondences(const Frame& frame, const Renders& renders, int corr_iter) override;
   CueTerms gradient_hessian(int corr_iter, int update_iter) override;
@@ -56,6 +61,8 @@ class DepthModality : public Modality {
   bool find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point, const Search& search,
                                 Eigen::Vector3f& closest, bool& saw_depth) const;
   Posef depth_T_body() const;
+  /// The render of the scene this cue asks for in `stage`, if any.
+  std::optional<RenderRequest> scene_request(const Frame& frame, Stage stage) const;
   /// The standard deviation at 1 m for correspondence iteration `corr_iter`.
   double sigma(int corr_iter) const;
   void estimate_noise();
@@ -65,12 +72,17 @@ class DepthModality : public Modality {
   DepthParams params_;
   MeasuredOcclusion occlusion_;
   int occlusion_offset_index_;
+  int modeled_offset_index_;  ///< depth offsets for the modeled-occlusion radius
+  Sphere sphere_;             ///< bounding_sphere of the body's mesh: the focused render's crop
+  RenderedScene scene_;       ///< this frame's render of the scene (empty without other bodies)
   Posef depth_T_reference_;
   ViewSelector view_selector_;
   std::vector<Correspondence> correspondences_;
   ResidualNoise noise_;
-  ViewOcclusions occlusions_;
+  ViewOcclusions occlusions_;  ///< measured
+  ViewOcclusions hidden_by_bodies_;  ///< modeled, in scene_
   int n_considered_ = 0;
+  int n_hidden_by_bodies_ = 0;  ///< of those, hidden by other bodies: not expected to find data
   int last_corr_iter_ = 0;
   bool saw_depth_ = false;  ///< any valid depth where the last correspondences searched
   int frames_since_start_ = 0;

@@ -2,11 +2,43 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "icgp/base/frame.h"
+#include "icgp/geometry/rounding.h"
 
 namespace icgp {
+
+/// The occlusion test of ALGORITHMS.md §7 on any depth image: `point` (camera frame) is
+/// hidden when a depth within `radius` (metres) of its projection is closer than
+/// Z − depth_offset − threshold. `depth_at(row, col)` is the depth of a pixel of the
+/// rows × cols image of intrinsics `k` (0: none). Measured occlusions read a depth camera,
+/// modeled ones a render of the other bodies.
+template <typename DepthAt>
+bool closer_depth_nearby(const Intrinsics& k, int rows, int cols, DepthAt&& depth_at, const Eigen::Vector3f& point,
+                         float depth_offset, double radius, double threshold) {
+  if (point.z() <= 0.f) return false;
+  const Eigen::Vector2f centre = k.project<float>(point);
+  const float radius_px = static_cast<float>(radius * k.fu) / point.z();
+  // Samples one radius apart: an occluder wider than the radius that reaches into the
+  // square covers one of them, and the test runs for every line and point of a frame. They
+  // lie on the image lattice of multiples of `step`, so that the tests of neighbouring
+  // points read the same pixels (few distinct pixels per frame, see DepthImage::source).
+  const int step = std::max(1, static_cast<int>(std::ceil(radius_px)));
+  const int row_min = std::max(0, lattice_ceil(centre.y() - radius_px, step));
+  const int row_max = std::min(rows - 1, static_cast<int>(std::floor(centre.y() + radius_px)));
+  const int col_min = std::max(0, lattice_ceil(centre.x() - radius_px, step));
+  const int col_max = std::min(cols - 1, static_cast<int>(std::floor(centre.x() + radius_px)));
+  const float limit = point.z() - depth_offset - static_cast<float>(threshold);
+  for (int row = row_min; row <= row_max; row += step)
+    for (int col = col_min; col <= col_max; col += step) {
+      const float z = depth_at(row, col);
+      if (z > 0.f && z < limit) return true;
+    }
+  return false;
+}
 
 /// The measured-occlusion test of ALGORITHMS.md §7: a model point is hidden when a depth
 /// measurement within `radius` of its projection is closer than
@@ -17,7 +49,11 @@ struct MeasuredOcclusion {
   double threshold = 0.03;  ///< metres
 
   /// `point` is in the depth camera frame; `depth_offset` is the model's offset for `radius`.
-  bool occluded(const DepthImage& depth, const Eigen::Vector3f& point, float depth_offset) const;
+  bool occluded(const DepthImage& depth, const Eigen::Vector3f& point, float depth_offset) const {
+    return closer_depth_nearby(
+        depth.intrinsics, depth.depth.rows, depth.depth.cols, [&](int row, int col) { return depth.at(row, col); },
+        point, depth_offset, radius, threshold);
+  }
 };
 
 /// Which points of one model view are occluded, measured once per frame: the pose moves by

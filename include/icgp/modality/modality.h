@@ -53,6 +53,9 @@ struct Stage {
   enum Kind { kStart, kCorrespondences, kFinish };
   Kind kind = kStart;
   int corr_iter = 0;
+  /// The renders show bodies besides the cue's own (other tracked bodies, links, occluders):
+  /// only then can a render reveal modeled occlusions.
+  bool other_bodies = false;
 };
 
 /// One cue about one body's pose (ALGORITHMS.md §2): it supplies the gradient and Hessian of

@@ -39,6 +39,16 @@ struct OcclusionParams {
   bool measure = true;
   double radius = 0.01;     ///< metres
   double threshold = 0.03;  ///< metres
+  /// Modeled occlusions (ALGORITHMS.md §7): when the tracker has other bodies (tracked,
+  /// links or occluders), the cue also rejects points that a focused depth render of all
+  /// bodies shows hidden by another body, with its own radius and threshold. (The texture
+  /// cue keeps keyframe points only where the render shows its own body.)
+  bool model = true;
+  double modeled_radius = 0.01;     ///< metres
+  double modeled_threshold = 0.03;  ///< metres
+  /// Side of the focused render (pixels) of the crop around the body: once per frame, at
+  /// the first correspondence iteration, and only with other bodies.
+  int render_size = 200;
 };
 
 /// Parameters of the region modality (ALGORITHMS.md §4, §7) with the reference defaults.
@@ -68,7 +78,13 @@ struct RegionParams {
   double unconsidered_line_length = 0.5;  ///< pixels
   double max_considered_line_length = 20.0;  ///< pixels
   OcclusionParams occlusion;
-  int n_unoccluded_iterations = 10;  ///< frames after a (re)start without occlusion tests
+  /// Region checking (ALGORITHMS.md §6): with the focused render of modeled occlusions, a
+  /// line is kept only when the render shows the cue's body just inside its contour point
+  /// and something else just outside, so that contours another body covers, or that are no
+  /// longer on the silhouette at the current pose, measure nothing. A cue on one region of
+  /// a multi-region object checks only the inside (its outside is often its own object).
+  bool region_checking = true;
+  int n_unoccluded_iterations = 10;  ///< frames after a (re)start without measured occlusion tests
   int min_n_unoccluded_lines = 0;
 };
 

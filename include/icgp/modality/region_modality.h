@@ -9,6 +9,7 @@
 #include "icgp/modality/measured_occlusion.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
+#include "icgp/modality/rendered_scene.h"
 #include "icgp/modality/residual_noise.h"
 #include "icgp/modality/view_selector.h"
 #include "icgp/model/viewpoint_model.h"
@@ -30,10 +31,18 @@ namespace icgp {
 /// `standard_deviations` entry (ResidualNoise).
 class RegionModality : public Modality {
  public:
-  RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params);
+  /// What the region model covers: the whole body, or one colour region of a multi-region
+  /// body (paper §III-D), whose contour may border the body's other regions.
+  enum class Extent { kWholeBody, kRegionOfBody };
+
+  RegionModality(Body& body, std::shared_ptr<const ViewpointModel> model, RegionParams params,
+                 Extent extent = Extent::kWholeBody);
 
   std::string name() const override { return "region"; }
   const std::string& camera() const override { return params_.color_camera; }
+  /// With other bodies: a focused render of the scene at the first correspondence iteration
+  /// (modeled occlusions, region checking).
+  std::vector<RenderRequest> render_requests(const Frame& frame, Stage stage) const override;
   void start(const Frame& frame, const Renders& renders) override;
   void correspondences(const Frame& frame, const Renders& renders, int corr_iter) override;
   CueTerms gradient_hessian(int corr_iter, int update_iter) override;
@@ -69,6 +78,11 @@ class RegionModality : public Modality {
   bool project(const ModelPoint& point, const Posef& camera_T_body, const Intrinsics& k, ProjectedPoint& out) const;
   /// True when a measured depth hides the point (only when occlusion tests are active).
   bool hidden(const Frame& frame, const Eigen::Vector3f& body_point, const float* depth_offsets) const;
+  /// The render of the scene this cue asks for in `stage`, if any.
+  std::optional<RenderRequest> scene_request(const Frame& frame, Stage stage) const;
+  /// True when the frame's render of the scene shows the point hidden by another body, or
+  /// (region checking) its contour off the body's silhouette.
+  bool ruled_out_by_scene(const ModelPoint& point, const Posef& camera_T_body, const float* depth_offsets) const;
   /// Counts foreground/background pixels along every visible line at the current pose.
   void count_line_pixels(const Frame& frame);
   /// Samples the line in scale space and fills its segment posteriors; false if it leaves the image.
@@ -105,6 +119,10 @@ class RegionModality : public Modality {
   RegionParams params_;
   MeasuredOcclusion occlusion_;
   int occlusion_offset_index_;
+  int modeled_offset_index_;  ///< depth offsets for the modeled-occlusion radius
+  Extent extent_;
+  Sphere sphere_;  ///< bounding_sphere of the body's mesh: the focused render's crop
+  RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)
   std::optional<ColorHistograms> histograms_;
   /// Smoothed step at the segment centres as h_b and h_f − h_b, so that a segment's term
   /// h_f P_f + h_b (1 − P_f) is one multiply-add.
@@ -117,7 +135,8 @@ class RegionModality : public Modality {
   ViewSelector view_selector_;
   std::vector<Line> lines_;
   ResidualNoise noise_;
-  ViewOcclusions occlusions_;
+  ViewOcclusions occlusions_;  ///< measured
+  ViewOcclusions ruled_out_;   ///< by the scene's render (ruled_out_by_scene)
   std::vector<float> distributions_;      ///< distribution_length per line
   std::vector<float> log_distributions_;  ///< their logs, after the global iterations
   std::vector<float> segment_f_;          ///< scratch: segment foreground posteriors

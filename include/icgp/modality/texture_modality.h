@@ -148,8 +148,7 @@ class TextureModality : public Modality {
   FeatureExtractor extractor_;
   KeyframeLifter lifter_;
   cv::BFMatcher matcher_;
-  Eigen::Vector3d sphere_centre_;  ///< body frame
-  double sphere_radius_;
+  Sphere sphere_;  ///< bounding_sphere of the body's mesh
   Intrinsics intrinsics_;
   Pose camera_T_reference_;
   std::vector<cv::Point2f> points_;  ///< current frame's keypoints, full image

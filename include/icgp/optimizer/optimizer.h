@@ -29,12 +29,18 @@ class Optimizer {
   /// One update of update iteration `update_iter` within correspondence iteration
   /// `corr_iter`. A singular system (no data and no regularisation) leaves the pose as it is.
   void step(Body& body, const std::vector<Modality*>& cues, int corr_iter, int update_iter);
+  /// Asks each cue for its terms at the current pose and keeps them (cue_terms(), total())
+  /// without moving the body: a link of a kinematic tree, which TreeOptimizer moves.
+  void collect(const std::vector<Modality*>& cues, int corr_iter, int update_iter);
 
   /// Each cue's part of the last step, in the order of the cues given to step().
   const std::vector<CueTerms>& cue_terms() const { return cue_terms_; }
   /// The sum of the last step's cue terms (without the regularisation): −H⁻¹ of its Hessian
   /// is the pose covariance in θ = [θ_r; θ_t].
   const CueTerms& total() const { return total_; }
+
+  /// λ_r and λ_t on the diagonal, in the order of θ.
+  const Vec6& regularisation() const { return regularisation_; }
 
  private:
   Vec6 regularisation_;

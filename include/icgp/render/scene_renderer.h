@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <opencv2/core/mat.hpp>
 #include <string>
 #include <utility>
@@ -29,6 +30,14 @@ struct RenderRequest {
   bool operator==(const RenderRequest& other) const;
 };
 
+/// The request for a focused render in camera `camera` (its image's intrinsics and
+/// camera_T_reference) of a body at reference_T_body whose bounding sphere is `sphere`: the
+/// square around the sphere's projection resampled to size x size pixels, with depth and
+/// ids. None when the sphere is not wholly in front of the camera.
+std::optional<RenderRequest> focused_render_request(const std::string& camera, const Intrinsics& intrinsics,
+                                                    const Pose& camera_T_reference, const Pose& reference_T_body,
+                                                    const Sphere& sphere, int size);
+
 /// What a RenderRequest produced.
 struct FocusedRender {
   Intrinsics intrinsics;  ///< of the crop: maps its pixels back into the camera's image
@@ -45,6 +54,8 @@ class Renders {
   void set_id(const std::string& body, std::uint8_t id);
   /// Throws std::logic_error when nothing asked for `request` in this stage.
   const FocusedRender& at(const RenderRequest& request) const;
+  /// The render of `request`, null when nothing asked for it in this stage.
+  const FocusedRender* find(const RenderRequest& request) const;
   /// The id of `body` in the id images; throws std::logic_error for a body not rendered.
   std::uint8_t id(const std::string& body) const;
 

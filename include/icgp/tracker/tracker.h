@@ -5,8 +5,10 @@
 #include <vector>
 
 #include "icgp/base/body.h"
+#include "icgp/geometry/joint.h"
 #include "icgp/modality/modality.h"
 #include "icgp/optimizer/optimizer.h"
+#include "icgp/optimizer/tree_optimizer.h"
 #include "icgp/render/scene_renderer.h"
 
 namespace icgp {
@@ -29,13 +31,20 @@ struct BodyResult {
   double quality = 0.0;
   bool tracked = false;
   std::vector<ModalityQuality> modalities;  ///< in the order they were added
+  /// A link's joint values (radians, metres) in the order of its joint's directions;
+  /// empty for a free body.
+  std::vector<double> joint_values;
 };
 
 /// Tracks any number of bodies with any number of modalities on frames from any number of
-/// cameras. Each body's modalities are fused into one 6-DoF Newton step per update (its
-/// Optimizer). Before each stage of a frame (start, every correspondence iteration,
-/// finish) the tracker renders what the modalities ask for, once, with one SceneRenderer
-/// that shows all of its bodies.
+/// cameras. Bodies are free (6 DoF) or links of kinematic trees: a link hangs from its
+/// parent by a Joint, and a tree's pose and joint values are solved in one Newton step per
+/// update (TreeOptimizer), every link's cues contributing; a free body alone is one 6-DoF
+/// step of its own modalities (Optimizer). Occluders are bodies the tracker renders but
+/// does not track: the caller sets their poses. Before each stage of a frame (start, every
+/// correspondence iteration, finish) the tracker renders what the modalities ask for, once,
+/// with one SceneRenderer that shows every body and occluder (modeled occlusions, region
+/// checking, keyframes).
 class Tracker {
  public:
   /// `renderer`: shared with whoever else draws these bodies (vpMbIcgTracker's display);
@@ -45,19 +54,38 @@ class Tracker {
   Tracker(Tracker&&) noexcept;
   Tracker& operator=(Tracker&&) noexcept;
 
-  /// Adds a body; the returned reference stays valid for the tracker's lifetime.
+  /// Adds a free body; the returned reference stays valid for the tracker's lifetime.
+  /// Names are unique among bodies, links and occluders.
   Body& add_body(Body body);
+  /// Adds a link of a kinematic tree, hanging from `joint.parent` (a body or link added
+  /// before, not an occluder) with joint values 0 clamped into the joint's limits. Its pose
+  /// follows from its parent's and its joint values: set the root's pose and the joint values
+  /// (set_joint_values), not the link's pose. Throws std::invalid_argument naming the body
+  /// for an unknown parent or an invalid joint (validate(Joint&, name)).
+  Body& add_link(Body body, Joint joint);
+  /// Adds a body that is rendered (it hides the tracked bodies behind it) but not tracked:
+  /// the caller sets its reference_T_body before each frame. It takes no modality.
+  Body& add_occluder(Body body);
   /// Adds a modality bound to one of this tracker's bodies.
   void add_modality(std::unique_ptr<Modality> modality);
 
   const TrackerParams& params() const { return params_; }
+  /// The tracked bodies and links, in the order they were added (occluders are not).
   std::vector<Body*> bodies();
   Body& body(const std::string& name);
+
+  /// The joint values of link `body` (empty for a free body).
+  const std::vector<double>& joint_values(const std::string& body) const;
+  /// Sets the joint values of link `body` (clamped into its limits) and places it and the
+  /// links below it. Throws std::invalid_argument for a body that is not a link or a wrong
+  /// number of values.
+  void set_joint_values(const std::string& body, std::vector<double> values);
 
   /// Initialises every modality at its body's current pose (call after setting the
   /// initial poses, and again to restart after a loss).
   void start(const Frame& frame);
-  /// Refines every body's pose on this frame and reports each body's quality.
+  /// Refines every tree's pose and joint values on this frame and reports each tracked
+  /// body's quality, in the order the bodies were added.
   std::vector<BodyResult> track(const Frame& frame);
 
   /// H of the last update's data terms (without the Tikhonov regularisation), per body:
@@ -77,6 +105,9 @@ class Tracker {
  private:
   struct BodyState;
   const BodyState& state(const std::string& body) const;
+  BodyState& add_state(Body body);
+  /// The kinematic trees of the tracked bodies, each in tree order (rebuilt after adds).
+  const std::vector<std::vector<TreeLink>>& trees();
   /// Renders what the modalities ask for in `stage` into renders_.
   void render(const Frame& frame, Stage stage);
 
@@ -84,6 +115,8 @@ class Tracker {
   std::vector<std::unique_ptr<BodyState>> states_;
   std::shared_ptr<SceneRenderer> renderer_;
   Renders renders_;
+  std::vector<std::vector<TreeLink>> trees_;
+  TreeOptimizer tree_optimizer_;
 };
 
 }  // namespace icgp

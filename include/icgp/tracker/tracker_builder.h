@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,9 +24,17 @@ struct CameraCues {
   std::string occlusion_depth_camera;
 };
 
-/// A tracker for one body with the configured modalities. Viewpoint models come from the
-/// cache (config.cache_dir), generated with progress output on first use. The body starts
-/// at the identity pose: set tracker.body(body_name).reference_T_body, then start().
+/// Reads the mesh of a configured body (BodyConfig): file and metres per unit.
+using MeshReader = std::function<Mesh(const std::string& path, double scale)>;
+/// The core's MeshReader: load_mesh (the formats assimp reads).
+Mesh read_mesh_file(const std::string& path, double scale);
+
+/// A tracker for the main body `body_name` and the configuration's other bodies
+/// (config.bodies, meshes read by `read_mesh`), each tracked one with the configured
+/// modalities. Viewpoint models come from the cache (config.cache_dir), generated with
+/// progress output on first use. Bodies start at the identity pose and links at joint
+/// values 0: set the free bodies' reference_T_body and the joint values, then start().
+/// Errors name the body and the field (in_tree_order, validate(Joint&)).
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name);
 /// The same for a rig of cameras: each camera gets the cues it names (those of
 /// config.modalities only), all fused in one Newton step per update. The viewpoint models
@@ -33,6 +42,7 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
 /// (null: its own).
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
                                        const std::vector<CameraCues>& cameras,
-                                       std::shared_ptr<SceneRenderer> renderer = nullptr);
+                                       std::shared_ptr<SceneRenderer> renderer = nullptr,
+                                       const MeshReader& read_mesh = read_mesh_file);
 
 }  // namespace icgp

@@ -9,6 +9,7 @@
 #include "icgp/modality/cue_kind.h"
 #include "icgp/modality/modality_params.h"
 #include "icgp/model/viewpoint_model.h"
+#include "icgp/tracker/body_config.h"
 #include "icgp/tracker/tracker.h"
 
 namespace icgp {
@@ -31,6 +32,10 @@ struct TrackerConfig {
   /// colour statistics. Empty: one region modality on the whole object. Relative paths in a
   /// file are relative to that file's folder.
   std::vector<std::string> regions;
+  /// Further bodies beside the main one: free bodies, links of kinematic trees (with the
+  /// main body or another as the root) and occluders. Each tracked one gets the cues of
+  /// `modalities` with these parameters. Relative mesh paths in a file are relative to its folder.
+  std::vector<BodyConfig> bodies;
   std::string cache_dir;  ///< empty: $ICGP_CACHE_DIR, else $XDG_CACHE_HOME/icgp, else ~/.cache/icgp
 };
 

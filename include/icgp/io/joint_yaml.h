@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// The joint of an entry of a `bodies:` list, as tracker configurations and make-sequence
-// scenes write it:
+// The joint of an entry of a `bodies:` list, as tracker configurations, make-sequence
+// scenes and sequence.yaml files write it:
 //
 //   - name: lid
 //     parent: box                    # the body it hangs from; no parent: a free body
@@ -31,5 +31,11 @@ const std::vector<std::string>& joint_keys();
 /// has no `parent`. Errors name the file and the key, e.g.
 /// "scene.yaml: bodies.lid.limits_deg: expected min <= max, got [90, 0]".
 std::optional<Joint> read_joint(const yaml::Map& body);
+
+/// Writes `joint` as the keys read_joint reads, into the map `out` is writing.
+void write_joint(YAML::Emitter& out, const Joint& joint);
+
+/// Writes a pose as {t: [x, y, z], r_deg: [ux, uy, uz]}, the form yaml::pose reads.
+void write_pose(YAML::Emitter& out, const Pose& pose);
 
 }  // namespace icgp

@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "icgp/io/joint_reader.h"
+#include "icgp/io/joint_yaml.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
 
 namespace icgp {
 namespace {
@@ -100,6 +103,72 @@ std::optional<Joint> read_joint(const Map& body) {
   if (auto x = body.get("stiffness")) d.stiffness = x->number_in(kStiffness);
   joint.directions.push_back(d);
   return joint;
+}
+
+namespace {
+
+void write_vector(YAML::Emitter& out, const Eigen::Vector3d& v) {
+  out << YAML::Flow << YAML::BeginSeq << yaml::exact_number(v.x()) << yaml::exact_number(v.y())
+      << yaml::exact_number(v.z()) << YAML::EndSeq;
+}
+
+bool is_identity(const Pose& pose) { return pose.matrix().isIdentity(0.0); }
+
+
+
+/// limits_deg / limits and stiffness of one direction, as far as they are set.
+void write_direction_settings(YAML::Emitter& out, const JointDirection& d) {
+  const bool rotation = d.kind == JointDirection::Kind::kRotation;
+  const double scale = rotation ? 180.0 / kPi : 1.0;
+  if (std::isfinite(d.min) || std::isfinite(d.max))
+    out << YAML::Key << (rotation ? "limits_deg" : "limits") << YAML::Value << YAML::Flow << YAML::BeginSeq
+        << yaml::exact_number(d.min * scale) << yaml::exact_number(d.max * scale) << YAML::EndSeq;
+  if (d.stiffness != 0.0) out << YAML::Key << "stiffness" << YAML::Value << yaml::exact_number(d.stiffness);
+}
+
+}  // namespace
+
+void write_pose(YAML::Emitter& out, const Pose& pose) {
+  const Eigen::AngleAxisd rotation(pose.rotation());
+  const Eigen::Vector3d r_deg = rotation.axis() * rotation.angle() * (180.0 / kPi);
+  const Eigen::Vector3d& t = pose.translation();
+  out << YAML::Flow << YAML::BeginMap << YAML::Key << "t" << YAML::Value;
+  write_vector(out, t);
+  out << YAML::Key << "r_deg" << YAML::Value;
+  write_vector(out, r_deg);
+  out << YAML::EndMap;
+}
+
+void write_joint(YAML::Emitter& out, const Joint& joint) {
+  out << YAML::Key << "parent" << YAML::Value << joint.parent;
+  if (!is_identity(joint.parent_T_joint)) {
+    out << YAML::Key << "origin" << YAML::Value;
+    write_pose(out, joint.parent_T_joint);
+  }
+  if (!is_identity(joint.joint_T_link)) {
+    out << YAML::Key << "link_origin" << YAML::Value;
+    write_pose(out, joint.joint_T_link);
+  }
+  out << YAML::Key << "joint" << YAML::Value;
+  if (joint.directions.empty()) {
+    out << "fixed";
+  } else if (joint.directions.size() == 1) {
+    const JointDirection& d = joint.directions.front();
+    out << (d.kind == JointDirection::Kind::kRotation ? "revolute" : "prismatic");
+    out << YAML::Key << "axis" << YAML::Value;
+    write_vector(out, d.axis);
+    write_direction_settings(out, d);
+  } else {
+    out << "directions" << YAML::Key << "directions" << YAML::Value << YAML::BeginSeq;
+    for (const JointDirection& d : joint.directions) {
+      out << YAML::Flow << YAML::BeginMap << YAML::Key
+          << (d.kind == JointDirection::Kind::kRotation ? "rotation" : "translation") << YAML::Value;
+      write_vector(out, d.axis);
+      write_direction_settings(out, d);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
 }
 
 }  // namespace icgp
