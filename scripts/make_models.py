@@ -562,6 +562,43 @@ def two_region(folder):
     return union
 
 
+HINGED_BOX_BASE = (0.12, 0.06, 0.08)
+HINGED_BOX_LID = (0.12, 0.01, 0.08)
+HINGED_BOX_MATERIALS = [("base", (0.10, 0.35, 0.80), None), ("inside", (0.92, 0.88, 0.75), None),
+                        ("lid", (0.95, 0.55, 0.10), None)]
+
+
+def add_box(mesh, size, centre, material_of):
+    """A closed box of `size` centred on `centre`, each face in the group material_of(face name)."""
+    groups = {}
+    for face in box_faces(size):
+        material = material_of(face[0])
+        if material not in groups:
+            groups[material] = mesh.group(material)
+        _, normal, right, up, width, height = face
+        corners = [face_point(size, normal, right, up, a, b, width, height)
+                   for a, b in ((0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0))]
+        add_quad(groups[material], *[mesh.corner(tuple(p + c for p, c in zip(point, centre))) for point in corners])
+
+
+def hinged_box(folder):
+    """A box base and its lid, two meshes for an articulated object: the lid hangs from the
+    base's top back edge (y = +0.03, z = -0.04) by a hinge about x."""
+    write_mtl(os.path.join(folder, "hinged_box.mtl"), HINGED_BOX_MATERIALS)
+    base = ObjMesh()
+    add_box(base, HINGED_BOX_BASE, (0.0, 0.0, 0.0), lambda face: "inside" if face == "top" else "base")
+    write_obj(os.path.join(folder, "base.obj"), base, "hinged_box.mtl",
+              "hinged box base 0.12 x 0.06 x 0.08 m (x, y, z), blue with a cream top")
+    lid = ObjMesh()
+    sx, sy, sz = HINGED_BOX_LID
+    add_box(lid, HINGED_BOX_LID, (0.0, sy / 2, sz / 2), lambda face: "lid")
+    write_obj(os.path.join(folder, "lid.obj"), lid, "hinged_box.mtl",
+              "hinged box lid 0.12 x 0.01 x 0.08 m, orange; origin on its hinge edge, the lid along +z")
+    both = ObjMesh()  # only for the triangle count main() prints
+    both.groups = base.groups + lid.groups
+    return both
+
+
 # ---------------------------------------------------------------------------------------
 # A two-finger parallel gripper for the grasp scenario (scenarios/grasp_approach.yaml). Its
 # frame is the tool's, not the bounding box centre: the origin is the centre of the mount's
@@ -578,21 +615,12 @@ GRIPPER_BOXES = [  # (name, lower corner, upper corner), metres
 ]
 
 
-def add_box(mesh, triangles, lower, upper):
-    """A closed box between two corners."""
-    size = tuple(u - l for l, u in zip(lower, upper))
-    centre = tuple(0.5 * (l + u) for l, u in zip(lower, upper))
-    for _, normal, right, up, width, height in box_faces(size):
-        corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
-        add_quad(triangles, *[mesh.corner(tuple(c + p for c, p in zip(
-            centre, face_point(size, normal, right, up, a, b, width, height)))) for a, b in corners])
-
-
 def gripper(folder):
     mesh = ObjMesh()
-    triangles = mesh.group("gripper")
     for _, lower, upper in GRIPPER_BOXES:
-        add_box(mesh, triangles, lower, upper)
+        size = tuple(u - l for l, u in zip(lower, upper))
+        centre = tuple(0.5 * (l + u) for l, u in zip(lower, upper))
+        add_box(mesh, size, centre, lambda face: "gripper")
     write_mtl(os.path.join(folder, "gripper.mtl"), [("gripper", GRIPPER_COLOUR, None)])
     write_obj(os.path.join(folder, "gripper.obj"), mesh, "gripper.mtl",
               "two-finger parallel gripper: mount, palm 0.05 x 0.14 x 0.03 m, fingers 0.08 m long "
@@ -602,7 +630,7 @@ def gripper(folder):
 
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "models")
-    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can, gripper):
+    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can, hinged_box, gripper):
         folder = os.path.join(root, make.__name__)
         os.makedirs(folder, exist_ok=True)
         mesh = make(folder)

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// `icgp make-sequence`: renders an RGB-D sequence of a model with exact ground truth, in
-// the layout `icgp track` and the tests read.
+// `icgp make-sequence`: renders an RGB-D sequence of a model, or of the bodies of a scene
+// file (eval/sequence_scene.h), with exact ground truth, in the layout `icgp track` and the
+// tests read.
 #include <filesystem>
 #include <iostream>
 #include <limits>
 
 #include "commands.h"
 #include "option_ranges.h"
+#include "icgp/eval/sequence_scene.h"
 #include "icgp/eval/sequence_writer.h"
 #include "icgp/visp/cao_mesh_loader.h"
 
@@ -15,6 +17,7 @@ namespace {
 
 struct MakeSequenceOptions {
   std::string model;
+  std::string scene;
   std::string out;
   double scale = 1.0;
   int width = 640, height = 480;
@@ -36,6 +39,15 @@ void run_make_sequence(MakeSequenceOptions o) {
     o.writer.stereo_T_color = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0 - o.stereo_baseline, 0.0, 0.0));
   }
 
+  if (!o.scene.empty()) {
+    const std::vector<SceneBody> bodies = read_sequence_scene(o.scene, models_dir());
+    SequenceWriter writer(o.writer);
+    add_scene_bodies(writer, bodies);
+    writer.write(o.out);
+    std::cout << "wrote " << o.writer.frame_count << " frames of " << bodies.size() << " bodies of " << o.scene
+              << (o.writer.stereo ? " (stereo)" : "") << " to " << o.out << "\n";
+    return;
+  }
   const Mesh mesh = load_any_mesh(o.model, o.scale);
   SequenceWriter writer(o.writer);
   const std::string stem = std::filesystem::path(o.model).stem().string();
@@ -51,10 +63,15 @@ void register_make_sequence_command(CLI::App& app) {
   auto o = std::make_shared<MakeSequenceOptions>();
   o->model = default_model_path();
   CLI::App* cmd = app.add_subcommand("make-sequence", "Render an RGB-D sequence of a model with exact ground truth");
-  cmd->add_option("model", o->model, "Mesh or ViSP .cao")->check(CLI::ExistingFile)->capture_default_str();
+  CLI::Option* model = cmd->add_option("model", o->model, "Mesh or ViSP .cao")->check(CLI::ExistingFile)->capture_default_str();
+  CLI::Option* scene =
+      cmd->add_option("--scene", o->scene,
+                      "Scene file: several bodies with their own motions and joints (scenes/*.yaml) instead of a model")
+          ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "Output folder (created; an earlier sequence there is replaced)")->required();
   const yaml::Interval baseline_m{-10.0, 10.0};
-  cmd->add_option("--scale", o->scale, "Metres per mesh unit")->check(number_in(kMeshScale))->capture_default_str();
+  CLI::Option* scale =
+      cmd->add_option("--scale", o->scale, "Metres per mesh unit")->check(number_in(kMeshScale))->capture_default_str();
   cmd->add_option("--frames", o->writer.frame_count, "Number of frames")
       ->check(integer_in(1, kMaxFramesWritten))
       ->capture_default_str();
@@ -83,9 +100,11 @@ void register_make_sequence_command(CLI::App& app) {
                   "metres (0: none)")
       ->check(number_in(baseline_m))
       ->capture_default_str();
-  cmd->add_option("--spin", o->spin, "Object rotation about its y axis (the models' up axis), rad/s")
-      ->check(number_in({-100.0, 100.0}))
-      ->capture_default_str();
+  CLI::Option* spin = cmd->add_option("--spin", o->spin, "Object rotation about its y axis (the models' up axis), rad/s")
+                          ->check(number_in({-100.0, 100.0}))
+                          ->capture_default_str();
+  // A scene gives each body its mesh, scale and motion.
+  scene->excludes(model)->excludes(scale)->excludes(spin);
   cmd->add_option("--color-noise", o->writer.noise.color_sigma, "Gaussian colour noise, 8-bit levels")
       ->check(number_in({0.0, 255.0}))
       ->capture_default_str();

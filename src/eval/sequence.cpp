@@ -17,6 +17,7 @@
 
 #include "icgp/base/camera_names.h"
 #include "icgp/io/file_extension.h"
+#include "icgp/io/joint_yaml.h"
 #include "icgp/io/yaml_reader.h"
 
 namespace icgp {
@@ -262,6 +263,8 @@ class Sequence::Layout {
   /// Metres as stored, invalid values not yet cleared; CV_32FC1.
   virtual cv::Mat read_depth(int index) const = 0;
   virtual std::map<std::string, Pose> read_ground_truth(int index) const = 0;
+  /// The joint values of each link (layouts that have links).
+  virtual std::map<std::string, std::vector<double>> read_joint_truth(int) const { return {}; }
   /// Where the expected image sizes came from, for messages.
   virtual std::string size_origin() const = 0;
 };
@@ -481,6 +484,39 @@ std::vector<Pose> read_pose_lines(const fs::path& file, int frame_count) {
   return poses;
 }
 
+/// One line per frame of the joint's `size` values.
+std::vector<std::vector<double>> read_joint_lines(const fs::path& file, int frame_count, std::size_t size) {
+  require_file(file, "ground-truth joint values");
+  std::ifstream in(file);
+  std::vector<std::vector<double>> values;
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    if (is_blank(line)) continue;
+    values.push_back(parse_numbers(line, size, file, line_no));
+  }
+  if (static_cast<int>(values.size()) != frame_count)
+    fail(file, "has " + std::to_string(values.size()) + " lines of joint values, expected one per frame (" +
+                   std::to_string(frame_count) + ")");
+  return values;
+}
+
+/// The joint of an object entry, checked against the objects listed before it: a link's
+/// parent comes first, so the objects form trees (no cycle can be written).
+std::optional<Joint> read_object_joint(const yaml::Map& fields, const yaml::Value& entry, const std::string& name,
+                                       const std::vector<SequenceObject>& earlier) {
+  std::optional<Joint> joint = read_joint(fields);
+  if (!joint) return joint;
+  const yaml::Location parent = entry.at.child("parent");
+  if (std::none_of(earlier.begin(), earlier.end(), [&](const SequenceObject& o) { return o.name == joint->parent; }))
+    parent.fail("'" + joint->parent + "' is not an object listed before '" + name + "'");
+  try {
+    validate(*joint, name);
+  } catch (const std::invalid_argument& e) {
+    entry.at.fail(e.what());
+  }
+  return joint;
+}
+
 class IcgpLayout : public Sequence::Layout {
  public:
   fs::path color_file(int i) const override { return dir_ / "color" / numbered("", i, 6, ".png"); }
@@ -490,6 +526,11 @@ class IcgpLayout : public Sequence::Layout {
   std::map<std::string, Pose> read_ground_truth(int i) const override {
     std::map<std::string, Pose> truth;
     for (const auto& [object, poses] : poses_) truth.emplace(object, poses[i]);
+    return truth;
+  }
+  std::map<std::string, std::vector<double>> read_joint_truth(int i) const override {
+    std::map<std::string, std::vector<double>> truth;
+    for (const auto& [object, values] : joint_values_) truth.emplace(object, values[i]);
     return truth;
   }
   std::string size_origin() const override { return "size in sequence.yaml"; }
@@ -529,7 +570,11 @@ class IcgpLayout : public Sequence::Layout {
           const fs::path mesh_path = mesh->as(yaml::kNonEmptyString);
           object.mesh_path = (mesh_path.is_absolute() ? mesh_path : dir / mesh_path).string();
         }
+        object.joint = read_object_joint(fields, entry, object.name, d.objects);
         layout->poses_[object.name] = read_pose_lines(dir / "poses" / (object.name + ".txt"), d.frame_count);
+        if (object.joint && object.joint->size() > 0)
+          layout->joint_values_[object.name] = read_joint_lines(dir / "joints" / (object.name + ".txt"), d.frame_count,
+                                                                object.joint->directions.size());
         d.objects.push_back(object);
       }
     d.has_ground_truth = !d.objects.empty();
@@ -545,6 +590,7 @@ class IcgpLayout : public Sequence::Layout {
   fs::path dir_;
   double depth_scale_ = 0.0;
   std::map<std::string, std::vector<Pose>> poses_;
+  std::map<std::string, std::vector<std::vector<double>>> joint_values_;
 };
 
 }  // namespace
@@ -630,6 +676,7 @@ Frame Sequence::load(int index) const {
   if (has_stereo_)
     add_color(kStereoCamera, stereo_intrinsics_, stereo_T_color_, files_->stereo_color_file(index), "stereo colour image");
   frame.ground_truth = files_->read_ground_truth(index);
+  frame.joint_ground_truth = files_->read_joint_truth(index);
   if (grey_without_depth_) return frame;
 
   DepthImage depth;

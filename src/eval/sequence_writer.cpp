@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -17,6 +18,7 @@
 #include "icgp/render/renderer.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/base/splitmix64.h"
+#include "icgp/io/joint_yaml.h"
 
 namespace icgp {
 
@@ -190,20 +192,34 @@ std::string row_major(const Pose& pose, const std::string& separator) {
   return line;
 }
 
+/// A link's joint as the keys of its `objects:` entry (io/joint_yaml.h), each line indented
+/// by `indent` to sit under the entry's name.
+std::string yaml_joint(const Joint& joint, const std::string& indent) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  write_joint(out, joint);
+  out << YAML::EndMap;
+  std::istringstream lines(out.c_str());
+  std::string text, line;
+  while (std::getline(lines, line)) text += indent + line + "\n";
+  return text;
+}
+
 /// Creates `dir`, or empties it when it holds an earlier icgp sequence; anything else is
 /// refused so a mistyped path cannot delete unrelated files.
-void prepare_folder(const fs::path& dir, bool stereo) {
+void prepare_folder(const fs::path& dir, bool stereo, bool joints) {
   if (fs::exists(dir)) {
     if (!fs::is_directory(dir)) throw std::runtime_error(dir.string() + ": exists and is not a folder");
     if (!fs::is_empty(dir)) {
       if (!fs::is_regular_file(dir / "sequence.yaml"))
         throw std::runtime_error(dir.string() + ": refusing to write into a non-empty folder that does not hold an "
                                                "icgp sequence (no sequence.yaml)");
-      for (const char* name : {"sequence.yaml", "color", "color2", "depth", "poses"}) fs::remove_all(dir / name);
+      for (const char* name : {"sequence.yaml", "color", "color2", "depth", "poses", "joints"}) fs::remove_all(dir / name);
     }
   }
   for (const char* name : {"color", "depth", "poses"}) fs::create_directories(dir / name);
   if (stereo) fs::create_directories(dir / "color2");
+  if (joints) fs::create_directories(dir / "joints");
 }
 
 bool is_file_name_safe(const std::string& name) {
@@ -293,21 +309,94 @@ SequenceWriter::SequenceWriter(SequenceWriterOptions options)
           "background texture must be CV_8UC3");
 }
 
-Pose SequenceWriter::Object::world_T_object_at(double seconds) const {
-  return world_T_object * Pose::from_rotation_vector(seconds * spin, Eigen::Vector3d::Zero());
+double JointTrajectory::at(double seconds) const {
+  return from + (to - from) * (1.0 - std::cos(2.0 * kPi * seconds / period)) / 2.0;
 }
 
-void SequenceWriter::add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object,
-                                const std::string& mesh_path, const Eigen::Vector3d& spin) {
+std::vector<double> SequenceWriter::Object::joint_values_at(double seconds) const {
+  std::vector<double> q;
+  for (const JointTrajectory& value : trajectory) q.push_back(value.at(seconds));
+  return q;
+}
+
+std::vector<Pose> SequenceWriter::world_T_objects_at(double seconds) const {
+  std::vector<Pose> poses;
+  for (const Object& object : objects_) {
+    if (object.joint) {
+      poses.push_back(poses[object.parent] * object.joint->parent_T_link(object.joint_values_at(seconds)));
+    } else {
+      const Pose spun = object.world_T_object * Pose::from_rotation_vector(seconds * object.spin, Eigen::Vector3d::Zero());
+      // Only a moving object is translated: adding a zero would turn a -0 into 0 and change
+      // the files of sequences written before objects could move.
+      poses.push_back(object.velocity.isZero() ? spun
+                                               : Pose(spun.rotation(), spun.translation() + seconds * object.velocity));
+    }
+  }
+  return poses;
+}
+
+void SequenceWriter::check_new_name(const std::string& name, const Mesh& mesh) const {
   require(is_file_name_safe(name), "object name '" + name + "' must be non-empty [A-Za-z0-9_.-] (it names a file)");
   require(std::none_of(objects_.begin(), objects_.end(), [&](const Object& o) { return o.name == name; }),
           "object name '" + name + "' is used twice");
   require(!mesh.empty(), "mesh of object '" + name + "' has no triangles");
   require(objects_.size() < 254, "at most 254 objects");
-  std::string path = mesh_path;
-  if (path.empty() && fs::is_regular_file(mesh.source)) path = fs::absolute(mesh.source).string();
+}
+
+namespace {
+std::string recorded_mesh_path(const Mesh& mesh, const std::string& mesh_path) {
+  if (mesh_path.empty() && fs::is_regular_file(mesh.source)) return fs::absolute(mesh.source).string();
+  return mesh_path;
+}
+}  // namespace
+
+void SequenceWriter::add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object,
+                                const std::string& mesh_path, const Eigen::Vector3d& spin,
+                                const Eigen::Vector3d& velocity) {
+  check_new_name(name, mesh);
   require(spin.allFinite(), "spin of object '" + name + "' must be finite");
-  objects_.push_back({name, mesh, world_T_object, path, spin});
+  require(velocity.allFinite(), "velocity of object '" + name + "' must be finite");
+  Object object;
+  object.name = name;
+  object.mesh = mesh;
+  object.world_T_object = world_T_object;
+  object.mesh_path = recorded_mesh_path(mesh, mesh_path);
+  object.spin = spin;
+  object.velocity = velocity;
+  objects_.push_back(std::move(object));
+}
+
+void SequenceWriter::add_link(const std::string& name, const Mesh& mesh, Joint joint,
+                              std::vector<JointTrajectory> trajectory, const std::string& mesh_path) {
+  check_new_name(name, mesh);
+  try {
+    validate(joint, name);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("SequenceWriter: ") + e.what());
+  }
+  const auto parent = std::find_if(objects_.begin(), objects_.end(), [&](const Object& o) { return o.name == joint.parent; });
+  require(parent != objects_.end(), "link '" + name + "': parent '" + joint.parent + "' is not an object added before it");
+  require(static_cast<int>(trajectory.size()) == joint.size(),
+          "link '" + name + "': " + std::to_string(trajectory.size()) + " trajectories for a joint of " +
+              std::to_string(joint.size()) + " directions");
+  for (int k = 0; k < joint.size(); ++k) {
+    const JointTrajectory& value = trajectory[k];
+    const JointDirection& direction = joint.directions[k];
+    const std::string at = "link '" + name + "': trajectory of direction " + std::to_string(k);
+    require(std::isfinite(value.from) && std::isfinite(value.to), at + " must be finite");
+    require(value.period > 0.0 && std::isfinite(value.period), at + ": period must be positive");
+    // q(t) sweeps [min(from, to), max(from, to)].
+    require(std::min(value.from, value.to) >= direction.min && std::max(value.from, value.to) <= direction.max,
+            at + " leaves the joint's limits");
+  }
+  Object object;
+  object.name = name;
+  object.mesh = mesh;
+  object.mesh_path = recorded_mesh_path(mesh, mesh_path);
+  object.parent = static_cast<std::size_t>(parent - objects_.begin());
+  object.joint = std::move(joint);
+  object.trajectory = std::move(trajectory);
+  objects_.push_back(std::move(object));
 }
 
 Pose SequenceWriter::color_T_world(int index) const { return trajectory_.camera_T_world(index / options_.frame_rate); }
@@ -324,7 +413,8 @@ void SequenceWriter::write(const std::string& dir_name) const {
   const SequenceWriterOptions& o = options_;
   require(!objects_.empty(), "add at least one object before writing");
   const fs::path dir(dir_name);
-  prepare_folder(dir, o.stereo);
+  const auto moves = [](const Object& object) { return object.joint && object.joint->size() > 0; };
+  prepare_folder(dir, o.stereo, std::any_of(objects_.begin(), objects_.end(), moves));
 
   Renderer renderer;
   std::vector<Renderer::BodyHandle> bodies;
@@ -356,16 +446,21 @@ void SequenceWriter::write(const std::string& dir_name) const {
   for (const Object& object : objects_) {
     yaml << "  - name: " << object.name << "\n";
     if (!object.mesh_path.empty()) yaml << "    mesh: " << yaml_quoted(object.mesh_path) << "\n";
+    if (object.joint) yaml << yaml_joint(*object.joint, "    ");
   }
   yaml.close();
   if (!yaml) throw std::runtime_error((dir / "sequence.yaml").string() + ": cannot write");
 
   std::vector<std::ofstream> pose_files;
   for (const Object& object : objects_) pose_files.emplace_back(dir / "poses" / (object.name + ".txt"));
+  std::vector<std::ofstream> joint_files(objects_.size());
+  for (std::size_t k = 0; k < objects_.size(); ++k)
+    if (moves(objects_[k])) joint_files[k].open(dir / "joints" / (objects_[k].name + ".txt"));
 
   renderer.set_color_antialiasing(o.antialias_samples);
   const auto place_objects = [&](double seconds) {
-    for (std::size_t k = 0; k < objects_.size(); ++k) renderer.set_body_pose(bodies[k], objects_[k].world_T_object_at(seconds));
+    const std::vector<Pose> poses = world_T_objects_at(seconds);
+    for (std::size_t k = 0; k < objects_.size(); ++k) renderer.set_body_pose(bodies[k], poses[k]);
   };
   char name[32];
   for (int i = 0; i < o.frame_count; ++i) {
@@ -385,8 +480,7 @@ void SequenceWriter::write(const std::string& dir_name) const {
     // Depth and ground truth at the frame's time, the middle of the exposure.
     const Pose camera_T_world = color_T_world(i);
     place_objects(seconds);
-    std::vector<Pose> world_T_objects;
-    for (const Object& object : objects_) world_T_objects.push_back(object.world_T_object_at(seconds));
+    const std::vector<Pose> world_T_objects = world_T_objects_at(seconds);
     cv::Mat depth = render_sensor_depth(renderer, o.depth_intrinsics, o.depth_T_color * camera_T_world, o.noise);
     Random noise = stream(o.seed, kNoiseStream, std::uint64_t(i));
     if (o.noise.color_sigma > 0.0) add_color_noise(color, o.noise.color_sigma, noise);
@@ -400,15 +494,23 @@ void SequenceWriter::write(const std::string& dir_name) const {
     write_image(dir / "color" / name, color);
     if (o.stereo) write_image(dir / "color2" / name, stereo_color);
     write_image(dir / "depth" / name, quantise_depth(depth, o.depth_scale));
-    for (std::size_t k = 0; k < objects_.size(); ++k)
+    for (std::size_t k = 0; k < objects_.size(); ++k) {
       pose_files[k] << row_major(camera_T_world * world_T_objects[k], " ") << "\n";
+      if (!moves(objects_[k])) continue;
+      std::string values;
+      for (const double q : objects_[k].joint_values_at(seconds)) values += (values.empty() ? "" : " ") + exact(q);
+      joint_files[k] << values << "\n";
+    }
 
     if (o.progress && ((i + 1) * 10 / o.frame_count != i * 10 / o.frame_count || i + 1 == o.frame_count))
       std::cerr << "icgp sequence writer: " << dir.string() << ": frame " << i + 1 << "/" << o.frame_count << "\n";
   }
-  for (std::size_t k = 0; k < objects_.size(); ++k)
+  for (std::size_t k = 0; k < objects_.size(); ++k) {
     if (!pose_files[k].flush())
       throw std::runtime_error((dir / "poses" / (objects_[k].name + ".txt")).string() + ": cannot write");
+    if (moves(objects_[k]) && !joint_files[k].flush())
+      throw std::runtime_error((dir / "joints" / (objects_[k].name + ".txt")).string() + ": cannot write");
+  }
 }
 
 }  // namespace icgp

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "icgp/base/resource_limits.h"
+#include "icgp/io/model_reference.h"
 #include "icgp/io/yaml_reader.h"
 #include "icgp/modality/cue_kind.h"
 
@@ -106,39 +107,6 @@ std::string existing_file(const Value& v, const fs::path& scenario_dir) {
   return file.string();
 }
 
-/// The model candidates of resolve_model_path, in order; the first existing one wins.
-std::vector<fs::path> model_candidates(const std::string& reference, const std::string& scenario_dir,
-                                       const std::string& models_dir) {
-  std::vector<fs::path> candidates;
-  if (fs::path(reference).is_relative() && !models_dir.empty()) {
-    candidates.push_back(fs::path(models_dir) / reference / (reference + ".obj"));
-    candidates.push_back(fs::path(models_dir) / reference / "object.obj");
-  }
-  candidates.push_back(fs::path(scenario_dir) / reference);
-  for (fs::path& candidate : candidates) candidate = candidate.lexically_normal();
-  return candidates;
-}
-
-std::optional<std::string> find_model(const std::vector<fs::path>& candidates) {
-  std::error_code error;
-  for (const fs::path& candidate : candidates)
-    if (fs::is_regular_file(candidate, error)) return candidate.string();
-  return std::nullopt;
-}
-
-std::string tried(const std::vector<fs::path>& candidates) {
-  std::vector<std::string> names;
-  for (const fs::path& candidate : candidates) names.push_back(candidate.string());
-  return "tried " + yaml::join(names);
-}
-
-std::string model(const Value& v, const std::string& scenario_dir, const std::string& models_dir) {
-  const std::string reference = v.as(kNonEmptyString);
-  const std::vector<fs::path> candidates = model_candidates(reference, scenario_dir, models_dir);
-  if (std::optional<std::string> file = find_model(candidates)) return *file;
-  v.expected("a model folder of " + models_dir + " or an existing mesh file (" + tried(candidates) + ")");
-}
-
 // ---- Sections ---------------------------------------------------------------------------
 
 const std::vector<std::pair<std::string, RobotKind>>& robot_names() {
@@ -189,10 +157,10 @@ std::optional<GraspSpec> read_grasp(const Map& s, const Value& document, RobotKi
 
 void read_object(const Value& v, ObjectSpec& object, const std::string& scenario_dir, const std::string& models_dir) {
   const Map s(v, {"model", "regions", "motion"});
-  object.model = model(s.required("model"), scenario_dir, models_dir);
+  object.model = model_file(s.required("model"), scenario_dir, models_dir);
   if (auto x = s.get("regions"))
     for (const Value& region : x->elements("a list of region meshes"))
-      object.regions.push_back(model(region, scenario_dir, models_dir));
+      object.regions.push_back(model_file(region, scenario_dir, models_dir));
   if (auto x = s.get("motion")) {
     const Map motion(*x, {"velocity", "start", "duration"});
     if (auto y = motion.get("velocity")) object.linear_velocity = numbers<3>(*y, kObjectVelocity);
@@ -330,7 +298,7 @@ void check_run_length(const Scenario& scenario) {
 std::string resolve_model_path(const std::string& reference, const std::string& scenario_dir,
                                const std::string& models_dir) {
   if (reference.empty()) throw ScenarioError("empty model reference");
-  const std::vector<fs::path> candidates = model_candidates(reference, scenario_dir, models_dir);
+  const std::vector<std::string> candidates = model_candidates(reference, scenario_dir, models_dir);
   if (std::optional<std::string> file = find_model(candidates)) return *file;
   throw ScenarioError("'" + reference + "': no such model (" + tried(candidates) + ")");
 }

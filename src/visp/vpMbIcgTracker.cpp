@@ -562,9 +562,11 @@ void vpMbIcgTracker::init(const vpImage<unsigned char>&) {
                                   "vpMbIcgTracker::init: no model; call loadModel() before initialising");
     if (!d.tracker) {
       d.cues = d.rig.cues(d.config.modalities);
-      d.tracker = icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues, d.renderer);
+      d.tracker = icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues, d.renderer,
+                                      [](const std::string& file, double scale) { return icgp::load_any_mesh(file, scale); });
     }
     d.tracker->body(Impl::kBody).reference_T_body = icgp::to_pose(m_cMo);
+    d.apply_body_settings();
     d.start_pending = true;
     d.quality = 0.0;
     d.hessian.reset();

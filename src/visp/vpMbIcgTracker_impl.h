@@ -45,6 +45,11 @@ struct vpMbIcgTracker::Impl {
   std::map<std::string, int> image_channels;
   double quality = 0.0;
   std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
+  /// Further bodies (config.bodies): poses (cMb) and joint values set by the program, applied
+  /// when the tracker is (re)initialised, and each body's result on the last frame.
+  std::map<std::string, icgp::Pose> body_poses;
+  std::map<std::string, std::vector<double>> joint_values;
+  std::map<std::string, icgp::BodyResult> body_results;
 
   std::set<std::string> reported_without_effect;  ///< ViSP settings already reported once
   /// Cameras whose depth had no valid measurement on the last frames, already reported.
@@ -84,6 +89,12 @@ struct vpMbIcgTracker::Impl {
   void report_without_effect(const std::string& call, const std::string& why) {
     if (reported_without_effect.insert(call).second)
       std::cerr << "vpMbIcgTracker::" << call << ": no effect (" << why << ")\n";
+  }
+
+  /// Gives the tracker the poses and joint values the program set for its further bodies.
+  void apply_body_settings() {
+    for (const auto& [name, pose] : body_poses) tracker->body(name).reference_T_body = pose;
+    for (const auto& [name, values] : joint_values) tracker->set_joint_values(name, values);
   }
 
   /// The cues' tracker must be rebuilt (model, configuration or cameras' types changed).

@@ -145,7 +145,9 @@ void vpMbIcgTracker::track_step(const vpImage<unsigned char>* grey, const std::s
       d.tracker->start(frame);
       d.start_pending = false;
     }
-    const icgp::BodyResult result = d.tracker->track(frame).front();
+    const std::vector<icgp::BodyResult> results = d.tracker->track(frame);
+    for (const icgp::BodyResult& r : results) d.body_results[r.body] = r;
+    const icgp::BodyResult& result = results.front();  // the object, added first
     d.quality = result.quality;
     // On the frame the cues start on, a cue may have nothing to measure yet (texture alone
     // has only made its keyframe): that is no evidence against the pose the program gave,

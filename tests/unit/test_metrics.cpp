@@ -7,8 +7,10 @@
 #include <string>
 #include <unistd.h>
 
+#include "icgp/eval/joint_evaluation.h"
 #include "icgp/eval/metrics.h"
 #include "test_meshes.h"
+#include "test_temp_dir.h"
 
 using namespace icgp;
 using Catch::Matchers::Contains;
@@ -193,6 +195,44 @@ TEST_CASE("tracking evaluation sums up a run and writes its summary and CSV") {
   CHECK(lines == 4);
   CHECK_THAT(last, Catch::Matchers::StartsWith("3,1,,10,,,,,"));
   std::filesystem::remove(csv);
+}
+
+TEST_CASE("joint evaluation: errors per direction in degrees and millimetres, frames without truth left out") {
+  Joint joint = Joint::revolute("base", Pose(), Eigen::Vector3d::UnitX(), -3.0, 3.0);
+  joint.directions.push_back({JointDirection::Kind::kTranslation, Eigen::Vector3d::UnitZ(), -0.1, 0.1, 0.0});
+  JointEvaluation evaluation(joint);
+  const std::vector<double> truth{0.5, 0.01};
+  evaluation.add(0, {0.5 + M_PI / 180, 0.012}, &truth);  // 1 deg, 2 mm
+  evaluation.add(1, {0.5 - 3 * M_PI / 180, 0.01}, &truth);  // 3 deg, 0 mm
+  evaluation.add(2, {2.0, 0.05}, nullptr);
+  CHECK_THROWS_WITH(evaluation.add(3, {0.5}, &truth), "JointEvaluation: frame 3: expected 2 joint values");
+
+  const std::vector<JointEvaluation::DirectionSummary> s = evaluation.summary();
+  REQUIRE(s.size() == 2);
+  CHECK(s[0].unit == "deg");
+  CHECK(s[0].frames_with_truth == 2);
+  CHECK(s[0].mean_error == Approx(2.0));
+  CHECK(s[0].max_error == Approx(3.0));
+  CHECK(s[1].unit == "mm");
+  CHECK(s[1].mean_error == Approx(1.0));
+  CHECK(s[1].max_error == Approx(2.0));
+  CHECK_THAT(evaluation.to_json().dump(), Catch::Matchers::Contains("\"unit\": \"mm\""));
+
+  const test::TempDir dir("icgp_test_joint_evaluation");
+  const std::string csv = dir.file("joints.csv");
+  evaluation.write_csv(csv);
+  std::ifstream in(csv);
+  std::string header, line, last;
+  std::getline(in, header);
+  CHECK(header == "frame,q0,q0_truth,q0_error,q1,q1_truth,q1_error");
+  int lines = 0;
+  while (std::getline(in, line)) ++lines, last = line;
+  CHECK(lines == 3);
+  CHECK_THAT(last, Catch::Matchers::EndsWith(",50,,"));
+
+  JointEvaluation none(joint);
+  none.add(0, {0.0, 0.0}, nullptr);
+  CHECK(std::isnan(none.summary()[0].mean_error));
 }
 
 TEST_CASE("a run without ground truth has null errors in its summary") {

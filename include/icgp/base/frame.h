@@ -145,6 +145,8 @@ struct Frame {
   std::vector<DepthImage> depths;
   /// Ground-truth reference_T_object (ViSP cMo) per object name.
   std::map<std::string, Pose> ground_truth;
+  /// Ground-truth joint values (radians / metres, in the joint's order) per link name.
+  std::map<std::string, std::vector<double>> joint_ground_truth;
 
   /// The colour / depth image of the named camera; nullptr when the frame has none.
   const ColorImage* find_color(const std::string& camera) const {
@@ -164,6 +166,11 @@ struct Frame {
     if (object.empty()) return ground_truth.size() == 1 ? &ground_truth.begin()->second : nullptr;
     const auto it = ground_truth.find(object);
     return it == ground_truth.end() ? nullptr : &it->second;
+  }
+  /// The ground-truth joint values of link `object`; nullptr when there are none.
+  const std::vector<double>* joint_truth(const std::string& object) const {
+    const auto it = joint_ground_truth.find(object);
+    return it == joint_ground_truth.end() ? nullptr : &it->second;
   }
 };
 

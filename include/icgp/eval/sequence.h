@@ -3,12 +3,14 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "icgp/base/frame.h"
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
+#include "icgp/geometry/joint.h"
 
 namespace icgp {
 
@@ -39,10 +41,12 @@ struct SequenceOptions {
 };
 
 /// An object of a sequence: the name its ground truth is stored under and, when known,
-/// the mesh or ViSP model file describing it.
+/// the mesh or ViSP model file describing it; for a link of an articulated object, the
+/// joint it hangs from its parent (an object listed before it) by.
 struct SequenceObject {
   std::string name;
   std::string mesh_path;
+  std::optional<Joint> joint;
 };
 
 /// An RGB-D image sequence on disk, read frame by frame into icgp::Frame.
@@ -50,7 +54,9 @@ struct SequenceObject {
 /// Layouts, detected from the files in the folder (in this order):
 ///  * "icgp" — `sequence.yaml` (see SequenceWriter): color/%06d.png, depth/%06d.png
 ///    (uint16, Z = value * depth_scale), ground truth poses/<object>.txt; when the YAML has
-///    stereo_camera and stereo_T_color, a second colour camera's color2/%06d.png.
+///    stereo_camera and stereo_T_color, a second colour camera's color2/%06d.png; links
+///    (objects with a parent and a joint, io/joint_yaml.h) whose joint has free
+///    directions have their joint values in joints/<object>.txt (Frame::joint_truth).
 ///  * "visp-blender" — images/%04d.jpg from 0001, depth/Image%04d.exr (channel 0 = Z),
 ///    ground truth camera_poses/Camera_%03d.txt (cMo, 4x4) named after the single
 ///    top-level .cao file, depth_M_color.txt.

@@ -3,12 +3,14 @@
 
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
 #include "icgp/base/mesh.h"
+#include "icgp/geometry/joint.h"
 #include "icgp/render/sensor_effects.h"
 
 namespace icgp {
@@ -78,6 +80,17 @@ cv::Mat procedural_clutter_texture(std::uint64_t seed);
 /// tiles of `tile` metres that each map the whole texture.
 Mesh tiled_plane(const cv::Mat& texture, double half_extent, double tile);
 
+/// How one joint value moves over a sequence: from `from` to `to` and back, smoothly, once
+/// per `period` seconds: q(t) = from + (to − from)(1 − cos(2πt / period)) / 2. Radians for
+/// rotations, metres for translations.
+struct JointTrajectory {
+  double from = 0.0;
+  double to = 0.0;
+  double period = 1.0;  ///< seconds, positive
+
+  double at(double seconds) const;
+};
+
 struct SequenceWriterOptions {
   int frame_count = 100;
   double frame_rate = 30.0;
@@ -117,6 +130,10 @@ struct SequenceWriterOptions {
 ///   depth/%06d.png      16-bit, Z = value * depth_scale metres, 0 = no measurement
 ///   poses/<object>.txt  one line per frame: color_T_object (cMo), 16 numbers row-major,
 ///                       each in the shortest decimal form that reads back bit-exactly
+///   joints/<link>.txt   for each link whose joint has free directions: one line per
+///                       frame, the joint's values (radians / metres) in the same form;
+///                       sequence.yaml records each link's parent and joint in the
+///                       `bodies:` format of io/joint_yaml.h
 ///
 /// The colour camera follows OrbitTrajectory(motion, seed); depth is rendered with the
 /// depth intrinsics at depth_T_color * color_T_world, the stereo camera's colour at
@@ -133,8 +150,18 @@ class SequenceWriter {
   /// truth; `mesh_path` is recorded in sequence.yaml (empty: the mesh's source when it is
   /// a file). `spin` (rad/s, a rotation vector in the object's frame) turns the object about
   /// its origin at a constant rate: at time t its pose is world_T_object · exp(t · spin).
+  /// `velocity` (m/s, world frame) moves it as a whole: at time t its pose is
+  /// (t · velocity) ∘ world_T_object · exp(t · spin), the translation added in the world.
   void add_object(const std::string& name, const Mesh& mesh, const Pose& world_T_object = Pose(),
-                  const std::string& mesh_path = "", const Eigen::Vector3d& spin = Eigen::Vector3d::Zero());
+                  const std::string& mesh_path = "", const Eigen::Vector3d& spin = Eigen::Vector3d::Zero(),
+                  const Eigen::Vector3d& velocity = Eigen::Vector3d::Zero());
+  /// Adds a link: an object hanging from an object added before it (joint.parent) by
+  /// `joint`, whose values follow `trajectory` (one per free direction, each within its
+  /// direction's limits): at time t its pose is parent(t) · joint.parent_T_link(q(t)).
+  /// Throws std::invalid_argument naming the link for a missing parent, an invalid joint
+  /// or a trajectory that leaves the limits.
+  void add_link(const std::string& name, const Mesh& mesh, Joint joint, std::vector<JointTrajectory> trajectory,
+                const std::string& mesh_path = "");
 
   /// The colour camera pose of frame `index` (at its time, the middle of its exposure).
   Pose color_T_world(int index) const;
@@ -154,9 +181,18 @@ class SequenceWriter {
     Mesh mesh;
     Pose world_T_object;
     std::string mesh_path;
-    Eigen::Vector3d spin;
-    Pose world_T_object_at(double seconds) const;
+    Eigen::Vector3d spin = Eigen::Vector3d::Zero();
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+    /// A link: its joint, the index of its parent (an earlier object) and its trajectory.
+    std::optional<Joint> joint;
+    std::size_t parent = 0;
+    std::vector<JointTrajectory> trajectory;
+
+    std::vector<double> joint_values_at(double seconds) const;
   };
+  void check_new_name(const std::string& name, const Mesh& mesh) const;
+  /// Every object's world pose at `seconds`, parents before their links.
+  std::vector<Pose> world_T_objects_at(double seconds) const;
 
   SequenceWriterOptions options_;
   OrbitTrajectory trajectory_;

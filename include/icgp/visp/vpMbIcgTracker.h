@@ -319,6 +319,45 @@ class vpMbIcgTracker : public vpMbTracker {
   void setMask(const vpImage<bool>& mask) override;
   //@}
 
+  /** @name icgp's extension: several bodies */
+  //@{
+  /// The name of the object whose pose is cMo (getPose, initFromPose): "object". Bodies
+  /// added below may hang from it (Joint::parent).
+  static const std::string& getReferenceBodyName();
+  /// Tracks a further body (a mesh or .cao file, metres) with the same cues, in the same
+  /// frames, alongside the object: a free body with its own 6-DoF pose (set it with
+  /// setBodyPose before initFromPose), or, with a joint, a link of the kinematic tree of
+  /// joint.parent (the object or another body), whose pose and joint values are solved
+  /// together with its root's. Bodies of the YAML configuration's `bodies:` list are added
+  /// the same way. Each body hides what lies behind it from the others' cues (modeled
+  /// occlusions). Throws vpException::badValue naming the body and the field for a name
+  /// already taken, an unknown parent, or limits with min > max; a mesh that cannot be
+  /// read is reported by initFromPose(), naming the body.
+  void addBody(const std::string& name, const std::string& modelFile);
+  void addBody(const std::string& name, const std::string& modelFile, const icgp::Joint& joint);
+  /// A body that is rendered (it hides the tracked bodies behind it: a hand, a tool, the
+  /// robot's own links) but not tracked: set its pose with setBodyPose before each track().
+  void addOccluder(const std::string& name, const std::string& modelFile);
+  /// The names of the added bodies and occluders, in the order they were added.
+  std::vector<std::string> getBodyNames() const;
+  /// Sets body `name`'s pose in the reference camera (cMb): a free body's initial pose (as
+  /// initFromPose sets cMo; also applied by a later initFromPose), or an occluder's pose
+  /// for the next frames. The object's own name sets cMo. Links follow their joints.
+  void setBodyPose(const std::string& name, const vpHomogeneousMatrix& cMb);
+  /// Body `name`'s pose in the reference camera after the last frame (cMb): tracked, or as
+  /// set for occluders; the object's name gives cMo.
+  vpHomogeneousMatrix getBodyPose(const std::string& name) const;
+  /// Whether body `name`'s quality on the last frame reached the quality threshold (the
+  /// object's: testTracking()'s verdict), and that quality in [0, 1].
+  bool isBodyTracked(const std::string& name) const;
+  double getBodyTrackingQuality(const std::string& name) const;
+  /// A link's joint values (radians, metres) after the last frame, in the order of its
+  /// joint's directions; set them before initFromPose to start from them (clamped into the
+  /// joint's limits).
+  std::vector<double> getJointValues(const std::string& name) const;
+  void setJointValues(const std::string& name, const std::vector<double>& values);
+  //@}
+
   /** @name Results of the last optimisation */
   //@{
   using vpMbTracker::getPose;
@@ -500,6 +539,11 @@ class vpMbIcgTracker : public vpMbTracker {
   void initFaceFromLines(vpMbtPolygon& polygon) override;
 
  private:
+  /// addBody / addOccluder: the body appended to the configuration's list once its name,
+  /// parent and joint are checked.
+  void add_body_config(icgp::BodyConfig body);
+  /// The configured body `name`; vpException::badValue listing the bodies otherwise.
+  const icgp::BodyConfig& body_config(const std::string& name, const std::string& call) const;
   struct Impl;
   using DepthInput = icgp::visp_detail::DepthInput;
   /// One frame: the images go to their cameras, the depth inputs to theirs, every other
