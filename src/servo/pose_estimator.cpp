@@ -39,16 +39,13 @@ class GripperBody {
   static constexpr const char* kName = "gripper";
 
   GripperBody(vpMbIcgTracker& tracker, const std::string& model_file) : tracker_(tracker) {
-    (void)model_file;
-    throw std::runtime_error(
-        "icgp tracker: a grasp scenario tracks the gripper as a second body, which needs vpMbIcgTracker::addBody "
-        "(not in this build); run it with --tracker oracle or --tracker visp");
+    tracker_.addBody(kName, model_file);
   }
-  /// The gripper's pose for the next frame (a start or a restart).
-  void start(const vpHomogeneousMatrix& cMg) { (void)cMg; }
-  vpHomogeneousMatrix pose() const { return {}; }
+  /// The gripper's pose for the next initFromPose (a start or a restart).
+  void start(const vpHomogeneousMatrix& cMg) { tracker_.setBodyPose(kName, cMg); }
+  vpHomogeneousMatrix pose() const { return tracker_.getBodyPose(kName); }
   /// The tracker's verdict on the gripper alone (testTracking covers the reference object).
-  bool tracked() const { return false; }
+  bool tracked() const { return tracker_.isBodyTracked(kName); }
 
  private:
   vpMbIcgTracker& tracker_;

@@ -148,7 +148,7 @@ std::optional<GraspSpec> read_grasp(const Map& s, const Value& document, RobotKi
     if (!s.get(key)) document.at.child(key).fail("required when robot is viper850_grasp");
   GraspSpec grasp;
   const Map gripper(*s.get("gripper"), {"model", "eMg"});
-  grasp.gripper_model = model(gripper.required("model"), scenario_dir, models_dir);
+  grasp.gripper_model = model_file(gripper.required("model"), scenario_dir, models_dir);
   if (auto x = gripper.get("eMg")) grasp.eMg = pose(*x);
   grasp.start_gMo = pose(*s.get("start_gMo"));
   grasp.desired_gMo = pose(*s.get("desired_gMo"));
