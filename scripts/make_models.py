@@ -599,9 +599,38 @@ def hinged_box(folder):
     return both
 
 
+# ---------------------------------------------------------------------------------------
+# A two-finger parallel gripper for the grasp scenario (scenarios/grasp_approach.yaml). Its
+# frame is the tool's, not the bounding box centre: the origin is the centre of the mount's
+# face on the arm's flange, z the approach direction (from the flange towards the
+# fingertips), the fingers open along +-y. Four separate closed boxes, one plain colour that
+# the box's label palette does not have (signal orange).
+
+GRIPPER_COLOUR = (0.95, 0.35, 0.05)
+GRIPPER_BOXES = [  # (name, lower corner, upper corner), metres
+    ("mount", (-0.02, -0.02, 0.0), (0.02, 0.02, 0.02)),
+    ("palm", (-0.025, -0.07, 0.02), (0.025, 0.07, 0.05)),
+    ("finger +y", (-0.012, 0.05, 0.05), (0.012, 0.064, 0.13)),
+    ("finger -y", (-0.012, -0.064, 0.05), (0.012, -0.05, 0.13)),
+]
+
+
+def gripper(folder):
+    mesh = ObjMesh()
+    for _, lower, upper in GRIPPER_BOXES:
+        size = tuple(u - l for l, u in zip(lower, upper))
+        centre = tuple(0.5 * (l + u) for l, u in zip(lower, upper))
+        add_box(mesh, size, centre, lambda face: "gripper")
+    write_mtl(os.path.join(folder, "gripper.mtl"), [("gripper", GRIPPER_COLOUR, None)])
+    write_obj(os.path.join(folder, "gripper.obj"), mesh, "gripper.mtl",
+              "two-finger parallel gripper: mount, palm 0.05 x 0.14 x 0.03 m, fingers 0.08 m long "
+              "0.10 m apart; origin on the flange, z the approach direction, fingers open along y")
+    return mesh
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "models")
-    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can, hinged_box):
+    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can, hinged_box, gripper):
         folder = os.path.join(root, make.__name__)
         os.makedirs(folder, exist_ok=True)
         mesh = make(folder)

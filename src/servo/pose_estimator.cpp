@@ -4,6 +4,8 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <stdexcept>
 #include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
@@ -29,21 +31,50 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
-/// vpMbIcgTracker on the colour image and the raw depth image (no point cloud needed).
+/// The gripper of a grasp as a second body of vpMbIcgTracker, through the tracker's
+/// additional-bodies extension (addBody, setBodyPose, getBodyPose, isBodyTracked). The only
+/// place that touches that extension.
+class GripperBody {
+ public:
+  static constexpr const char* kName = "gripper";
+
+  GripperBody(vpMbIcgTracker& tracker, const std::string& model_file) : tracker_(tracker) {
+    tracker_.addBody(kName, model_file);
+  }
+  /// The gripper's pose for the next initFromPose (a start or a restart).
+  void start(const vpHomogeneousMatrix& cMg) { tracker_.setBodyPose(kName, cMg); }
+  vpHomogeneousMatrix pose() const { return tracker_.getBodyPose(kName); }
+  /// The tracker's verdict on the gripper alone (testTracking covers the reference object).
+  bool tracked() const { return tracker_.isBodyTracked(kName); }
+
+ private:
+  vpMbIcgTracker& tracker_;
+};
+
+/// vpMbIcgTracker on the colour image and the raw depth image (no point cloud needed). In a
+/// grasp it tracks the gripper too: the object stays ViSP's reference cMo, the gripper is
+/// an additional body.
 class IcgpEstimator : public PoseEstimator {
  public:
   IcgpEstimator(const TrackerSpec& spec, const Scenario& scenario, const RgbdSimulator& simulator) {
     TrackerConfig config = spec.config.empty() ? TrackerConfig() : load_tracker_config(spec.config);
     if (!spec.modalities.empty()) config.modalities = spec.modalities;
     if (!scenario.object.regions.empty()) config.regions = scenario.object.regions;
-    name_ = "icgp (" + joined(cue_names(config.modalities)) + (config.regions.empty() ? "" : ", multi-region") + ")";
+    name_ = "icgp (" + joined(cue_names(config.modalities)) + (config.regions.empty() ? "" : ", multi-region") +
+            (scenario.grasp ? ", + gripper" : "") + ")";
     tracker_.setTrackerConfig(config);
     tracker_.loadModel(scenario.object.model);
+    if (scenario.grasp) gripper_.emplace(tracker_, scenario.grasp->gripper_model);
     tracker_.setCameraParameters(simulator.color_camera(), simulator.depth_camera());
     tracker_.setCameraTransformationMatrix(kDepthCamera, simulator.depth_M_color());
   }
 
-  void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo) override {
+  void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo,
+             const std::optional<vpHomogeneousMatrix>& cMg) override {
+    if (gripper_) {
+      if (!cMg) throw std::logic_error("icgp tracker: a grasp starts with the gripper's pose");
+      gripper_->start(*cMg);
+    }
     tracker_.initFromPose(first.color, cMo);
   }
 
@@ -58,6 +89,10 @@ class IcgpEstimator : public PoseEstimator {
     } catch (const vpTrackingException&) {
       estimate.lost = true;
     }
+    if (gripper_) {
+      estimate.cMg = gripper_->pose();
+      estimate.lost = estimate.lost || !gripper_->tracked();
+    }
     return estimate;
   }
 
@@ -65,6 +100,7 @@ class IcgpEstimator : public PoseEstimator {
 
  private:
   vpMbIcgTracker tracker_{icgp::kRgbdTrackerTypes};
+  std::optional<GripperBody> gripper_;
   std::string name_;
 };
 
@@ -98,7 +134,8 @@ class VispEstimator : public PoseEstimator {
     }
   }
 
-  void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo) override {
+  // The object alone: in a grasp the loop takes the gripper from the arm's kinematics.
+  void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo, const std::optional<vpHomogeneousMatrix>&) override {
     tracker_->initFromPose(first.grey, cMo);
   }
 
@@ -155,8 +192,10 @@ class VispEstimator : public PoseEstimator {
 /// The ground truth: what a perfect tracker would say, the reference for the control law.
 class OracleEstimator : public PoseEstimator {
  public:
-  void start(const RgbdCapture&, const vpHomogeneousMatrix&) override {}
-  PoseEstimate track(const RgbdCapture& capture) override { return {capture.cMo_true, false, 0.0}; }
+  void start(const RgbdCapture&, const vpHomogeneousMatrix&, const std::optional<vpHomogeneousMatrix>&) override {}
+  PoseEstimate track(const RgbdCapture& capture) override {
+    return {capture.cMo_true, false, 0.0, capture.cMg_true};
+  }
   std::string name() const override { return "oracle (ground truth)"; }
 };
 

@@ -52,7 +52,7 @@ vpHomogeneousMatrix interpolate(const vpHomogeneousMatrix& from, const vpHomogen
 struct RgbdSimulator::Impl {
   Scenario scenario;
   Renderer renderer;
-  Renderer::BodyHandle object{}, occluder{};  ///< occluder: when the scenario has one
+  Renderer::BodyHandle object{}, occluder{}, gripper{};  ///< occluder, gripper: when the scenario has one
   vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
   cv::RNG rng;
   RgbdCapture capture;
@@ -161,6 +161,7 @@ RgbdSimulator::RgbdSimulator(const Scenario& scenario, const vpHomogeneousMatrix
   d.object = d.renderer.add_body(load_any_mesh(scenario.object.model), 1);
   d.add_background(seed);
   if (scenario.occluder) d.occluder = d.renderer.add_body(box_mesh(scenario.occluder->size), 3);
+  if (scenario.grasp) d.gripper = d.renderer.add_body(load_any_mesh(scenario.grasp->gripper_model), 4);
 }
 
 RgbdSimulator::~RgbdSimulator() = default;
@@ -173,16 +174,22 @@ vpHomogeneousMatrix RgbdSimulator::world_T_object(double time) const {
 }
 
 RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& previous_wMc,
-                                    const std::optional<vpHomogeneousMatrix>& held_object) {
+                                    const std::optional<vpHomogeneousMatrix>& held_object,
+                                    const std::optional<vpHomogeneousMatrix>& gripper) {
   Impl& d = *impl_;
   RgbdCapture& c = d.capture;
+  if (d.scenario.grasp.has_value() != gripper.has_value())
+    throw std::invalid_argument(d.scenario.grasp ? "RgbdSimulator::capture: a grasp scenario needs the gripper's pose"
+                                                 : "RgbdSimulator::capture: a gripper's pose, but the scenario has none");
   const vpHomogeneousMatrix wMo = held_object ? *held_object : world_T_object(time);
   c.time = time;
   c.cMo_true = wMc.inverse() * wMo;
+  c.cMg_true = gripper ? std::optional<vpHomogeneousMatrix>(wMc.inverse() * *gripper) : std::nullopt;
   c.dropped = d.has_capture && d.rng.uniform(0.0, 1.0) < d.scenario.camera.noise.frame_drop;
   if (c.dropped) return c;  // the tracker gets nothing new: the images stay the last ones
 
   d.renderer.set_body_pose(d.object, to_pose(wMo));
+  if (gripper) d.renderer.set_body_pose(d.gripper, to_pose(*gripper));
   d.place_occluder(time);
   cv::Mat color = d.render_color(wMc, previous_wMc);
   d.add_color_noise(color);

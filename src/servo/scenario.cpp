@@ -109,10 +109,50 @@ std::string existing_file(const Value& v, const fs::path& scenario_dir) {
 
 // ---- Sections ---------------------------------------------------------------------------
 
+const std::vector<std::pair<std::string, RobotKind>>& robot_names() {
+  static const std::vector<std::pair<std::string, RobotKind>> names = {
+      {"free_flying", RobotKind::kFreeFlyingCamera},
+      {"viper850_eye_in_hand", RobotKind::kViper850EyeInHand},
+      {"viper850_eye_to_hand", RobotKind::kViper850EyeToHand},
+      {"viper850_grasp", RobotKind::kViper850Grasp}};
+  return names;
+}
+
+std::string robot_name(RobotKind robot) {
+  for (const auto& [name, kind] : robot_names())
+    if (kind == robot) return name;
+  return "?";
+}
+
 void read_arm(const Value& v, ArmSpec& arm) {
   const Map s(v, {"initial_joints_deg", "eMo"});
   if (auto x = s.get("initial_joints_deg")) arm.initial_joints = numbers<6>(*x, kAngleDeg) * kDegree;
   if (auto x = s.get("eMo")) arm.eMo = pose(*x);
+}
+
+/// The grasp keys of a scenario: gripper {model, eMg}, start_gMo and desired_gMo, all
+/// required for a viper850_grasp robot and refused for the others (which would ignore them).
+/// `document` locates the keys the file leaves out.
+std::optional<GraspSpec> read_grasp(const Map& s, const Value& document, RobotKind robot, const std::string& scenario_dir,
+                                    const std::string& models_dir) {
+  const std::vector<std::string> keys = {"gripper", "start_gMo", "desired_gMo"};
+  if (robot != RobotKind::kViper850Grasp) {
+    for (const std::string& key : keys)
+      if (auto x = s.get(key))
+        x->at.fail("only a viper850_grasp scenario has a gripper (robot is " + robot_name(robot) + ")");
+    return std::nullopt;
+  }
+  if (auto x = s.get("desired"))
+    x->at.fail("a viper850_grasp scenario servoes the gripper to the object: give desired_gMo, not desired");
+  for (const std::string& key : keys)
+    if (!s.get(key)) document.at.child(key).fail("required when robot is viper850_grasp");
+  GraspSpec grasp;
+  const Map gripper(*s.get("gripper"), {"model", "eMg"});
+  grasp.gripper_model = model_file(gripper.required("model"), scenario_dir, models_dir);
+  if (auto x = gripper.get("eMg")) grasp.eMg = pose(*x);
+  grasp.start_gMo = pose(*s.get("start_gMo"));
+  grasp.desired_gMo = pose(*s.get("desired_gMo"));
+  return grasp;
 }
 
 void read_object(const Value& v, ObjectSpec& object, const std::string& scenario_dir, const std::string& models_dir) {
@@ -209,10 +249,14 @@ void read_gain(const Value& v, GainSpec& gain) {
   if (auto x = s.get("slope_at_zero")) gain.slope_at_zero = x->number_in(kGainSlope);
 }
 
-void read_control(const Value& v, ControlSpec& control) {
+void read_control(const Value& v, ControlSpec& control, RobotKind robot) {
   const Map s(v, {"law", "gain", "max_linear_velocity", "max_angular_velocity_deg", "max_joint_velocity_deg"});
-  if (auto x = s.get("law"))
+  if (auto x = s.get("law")) {
     control.law = x->choice<ControlLawKind>({{"pbvs", ControlLawKind::kPbvs}, {"ibvs", ControlLawKind::kIbvs}});
+    // IBVS features are image points of a camera that moves; a grasp's camera stands still.
+    if (robot == RobotKind::kViper850Grasp && control.law == ControlLawKind::kIbvs)
+      x->expected("pbvs (a viper850_grasp scenario servoes the gripper's pose gMo)");
+  }
   if (auto x = s.get("gain")) read_gain(*x, control.gain);
   if (auto x = s.get("max_linear_velocity")) control.max_linear_velocity = x->number_in(kLinearVelocity);
   if (auto x = s.get("max_angular_velocity_deg")) control.max_angular_velocity = x->number_in(kAngularVelocityDeg) * kDegree;
@@ -260,29 +304,28 @@ std::string resolve_model_path(const std::string& reference, const std::string& 
 }
 
 Scenario load_scenario(const std::string& path, const std::string& models_dir) try {
-  const Map s(yaml::load_file(path, {"scenario file"}),
-              {"name", "description", "robot", "arm", "object", "occluder", "background", "lighting", "camera", "start",
-               "desired", "tracker", "control", "stop", "trials", "seed"});
+  const Value document = yaml::load_file(path, {"scenario file"});
+  const Map s(document, {"name", "description", "robot", "arm", "gripper", "object", "occluder", "background", "lighting",
+                         "camera", "start", "desired", "start_gMo", "desired_gMo", "tracker", "control", "stop", "trials",
+                         "seed"});
   const fs::path folder = fs::path(path).parent_path();
   Scenario scenario;
   scenario.file = path;
   scenario.name = fs::path(path).stem().string();
   if (auto x = s.get("name")) scenario.name = x->as(kNonEmptyString);
   if (auto x = s.get("description")) scenario.description = x->as(kString);
-  if (auto x = s.get("robot"))
-    scenario.robot = x->choice<RobotKind>({{"free_flying", RobotKind::kFreeFlyingCamera},
-                                            {"viper850_eye_in_hand", RobotKind::kViper850EyeInHand},
-                                            {"viper850_eye_to_hand", RobotKind::kViper850EyeToHand}});
+  if (auto x = s.get("robot")) scenario.robot = x->choice<RobotKind>(robot_names());
   if (auto x = s.get("arm")) read_arm(*x, scenario.arm);
+  scenario.grasp = read_grasp(s, document, scenario.robot, folder.string(), models_dir);
   read_object(s.required("object"), scenario.object, folder.string(), models_dir);
   if (auto x = s.get("occluder")) scenario.occluder = read_occluder(*x);
   if (auto x = s.get("background")) read_background(*x, scenario.background, folder);
   if (auto x = s.get("lighting")) read_lighting(*x, scenario.lighting);
   if (auto x = s.get("camera")) read_camera(*x, scenario.camera);
   scenario.initial_cMo = object_pose(s.required("start"));
-  scenario.desired_cMo = object_pose(s.required("desired"));
+  if (!scenario.grasp) scenario.desired_cMo = object_pose(s.required("desired"));
   if (auto x = s.get("tracker")) read_tracker(*x, scenario.tracker, folder);
-  if (auto x = s.get("control")) read_control(*x, scenario.control);
+  if (auto x = s.get("control")) read_control(*x, scenario.control, scenario.robot);
   if (auto x = s.get("stop")) read_stop(*x, scenario.stop);
   if (auto x = s.get("trials")) read_trials(*x, scenario.trials);
   check_run_length(scenario);

@@ -67,6 +67,12 @@ class ProgressLine {
   Clock::time_point last_{};
 };
 
+/// The pose the control law drives: the camera's to the object (cMo), or in a grasp the
+/// gripper's to the object, gMo = cMg^-1 cMo.
+vpHomogeneousMatrix servoed_pose(const vpHomogeneousMatrix& cMo, const std::optional<vpHomogeneousMatrix>& cMg) {
+  return cMg ? cMg->inverse() * cMo : cMo;
+}
+
 void summarise_tracking(ServoResult& result) {
   std::vector<double> ms;
   double sum_t = 0.0, sum_r = 0.0;
@@ -88,14 +94,26 @@ void summarise_tracking(ServoResult& result) {
 ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) {
   check_run_length(original);
   Scenario scenario = original;
-  scenario.initial_cMo = options.start_offset * original.initial_cMo;
-  const vpHomogeneousMatrix desired_cMo = to_homogeneous_matrix(scenario.desired_cMo);
+  // A grasp's camera and object stand still: its trials start the gripper elsewhere.
+  if (scenario.grasp)
+    scenario.grasp->start_gMo = options.start_offset * original.grasp->start_gMo;
+  else
+    scenario.initial_cMo = options.start_offset * original.initial_cMo;
+  const vpHomogeneousMatrix desired =
+      to_homogeneous_matrix(scenario.grasp ? scenario.grasp->desired_gMo : scenario.desired_cMo);
 
   std::unique_ptr<SimulatedRobot> robot = make_robot(scenario);
   RgbdSimulator simulator(scenario, robot->world_T_camera(), initial_world_T_object(scenario, *robot), options.seed);
   std::unique_ptr<PoseEstimator> estimator =
       options.make_estimator ? options.make_estimator(simulator) : make_pose_estimator(scenario.tracker, scenario, simulator);
-  ServoController controller(scenario.control, desired_cMo, bounding_box_corners(scenario.object.model), *robot);
+  ServoController controller(scenario.control, desired, bounding_box_corners(scenario.object.model), *robot);
+  // A tracker that follows the object alone gets the gripper from the arm's kinematics and
+  // the camera's exact extrinsics: cMg = cMw wMe(q) eMg.
+  const auto kinematic_cMg = [&]() -> std::optional<vpHomogeneousMatrix> {
+    const std::optional<vpHomogeneousMatrix> wMg = robot->world_T_gripper();
+    if (!wMg) return std::nullopt;
+    return robot->world_T_camera().inverse() * *wMg;
+  };
 
   ServoResult result;
   result.scenario = scenario.name;
@@ -106,11 +124,14 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   const double motion_end = scenario.object.motion_start + scenario.object.motion_duration;
   vpHomogeneousMatrix previous_wMc = robot->world_T_camera();
   vpHomogeneousMatrix trusted_cMo;  ///< the last pose the tracker did not report lost
+  std::optional<vpHomogeneousMatrix> trusted_cMg;  ///< the same for the gripper (grasp)
   {
-    // The tracker starts at the true pose, as after a detection.
-    const RgbdCapture& first = simulator.capture(0.0, previous_wMc, previous_wMc, robot->world_T_held_object());
+    // The tracker starts at the true poses, as after a detection.
+    const RgbdCapture& first =
+        simulator.capture(0.0, previous_wMc, previous_wMc, robot->world_T_held_object(), robot->world_T_gripper());
     trusted_cMo = first.cMo_true;
-    estimator->start(first, trusted_cMo);
+    trusted_cMg = first.cMg_true;
+    estimator->start(first, trusted_cMo, trusted_cMg);
   }
 
   ConvergenceMonitor convergence(scenario.stop);
@@ -125,20 +146,25 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     step.time = k * dt;
     const vpHomogeneousMatrix wMc = robot->world_T_camera();
     const auto t0 = Clock::now();
-    const RgbdCapture& capture = simulator.capture(step.time, wMc, previous_wMc, robot->world_T_held_object());
+    const RgbdCapture& capture =
+        simulator.capture(step.time, wMc, previous_wMc, robot->world_T_held_object(), robot->world_T_gripper());
     const auto t1 = Clock::now();
     previous_wMc = wMc;
     step.dropped = capture.dropped;
     if (!capture.dropped) {
       estimate = estimator->track(capture);
+      if (!estimate.cMg) estimate.cMg = kinematic_cMg();
       if (estimate.lost) {
-        // The robot stops, so the pose last trusted still holds for a static object: restart
+        // The robot stops, so the poses last trusted still hold for a static object: restart
         // the tracker there for the next frame rather than let it wander while lost.
-        estimator->start(capture, trusted_cMo);
+        estimator->start(capture, trusted_cMo, trusted_cMg);
       } else {
         trusted_cMo = estimate.cMo;
+        trusted_cMg = estimate.cMg;
       }
     }
+    const vpHomogeneousMatrix servoed_estimate = servoed_pose(estimate.cMo, estimate.cMg);
+    const vpHomogeneousMatrix servoed_truth = servoed_pose(capture.cMo_true, capture.cMg_true);
     const auto t2 = Clock::now();
 
     vpColVector velocity;
@@ -149,7 +175,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
       step.safety_stop = true;
       if (!stopped) ++result.safety_stops;
     } else {
-      velocity = controller.compute(estimate.cMo, *robot);
+      velocity = controller.compute(servoed_estimate, *robot);
       step.servo_error_norm = controller.error().frobeniusNorm();
     }
     stopped = estimate.lost;
@@ -158,8 +184,8 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
 
     step.cMo_true = capture.cMo_true;
     step.cMo_estimated = estimate.cMo;
-    const PoseError servo = pose_error(capture.cMo_true, desired_cMo);
-    const PoseError tracking = pose_error(estimate.cMo, capture.cMo_true);
+    const PoseError servo = pose_error(servoed_truth, desired);
+    const PoseError tracking = pose_error(servoed_estimate, servoed_truth);
     step.servo_t = servo.translation;
     step.servo_r = servo.rotation;
     step.track_t = tracking.translation;
@@ -171,7 +197,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     if (options.on_step) options.on_step(capture, step);
     progress.show(step);
 
-    const bool settled = !estimate.lost && convergence.update(step.time, pose_error(estimate.cMo, desired_cMo),
+    const bool settled = !estimate.lost && convergence.update(step.time, pose_error(servoed_estimate, desired),
                                                               step.time >= motion_end);
     if (settled) {
       result.converged = true;

@@ -175,6 +175,37 @@ class Viper850EyeToHand final : public Viper850Arm {
   vpHomogeneousMatrix world_T_camera_;
 };
 
+// A gripper on the flange (eMg), a fixed camera and an object standing still: the PBVS
+// law treats the gripper as vpServo's "camera", the frame whose pose to the object (gMo)
+// it servoes. Its twist is gVe eJe qdot, as the eye-in-hand camera's is cVe eJe qdot.
+class Viper850Grasp final : public Viper850Arm {
+ public:
+  explicit Viper850Grasp(const Scenario& scenario)
+      : Viper850Arm(scenario), eMg_(to_homogeneous_matrix(grasp_of(scenario).eMg)) {
+    const GraspSpec& grasp = grasp_of(scenario);
+    world_T_camera_ = gripper() * to_homogeneous_matrix(grasp.start_gMo) * to_homogeneous_matrix(scenario.initial_cMo).inverse();
+  }
+
+  vpHomogeneousMatrix world_T_camera() const override { return world_T_camera_; }
+  std::optional<vpHomogeneousMatrix> world_T_gripper() const override { return gripper(); }
+  vpServo::vpServoType servo_type() const override { return vpServo::EYEINHAND_L_cVe_eJe; }
+  void update_jacobians(vpServo& task) const override {
+    task.set_cVe(vpVelocityTwistMatrix(eMg_.inverse()));  // gVe, from the constant gMe
+    task.set_eJe(e_J_e());
+  }
+  std::string name() const override { return "Viper 850 (gripper on the flange, fixed camera)"; }
+
+ private:
+  static const GraspSpec& grasp_of(const Scenario& scenario) {
+    if (!scenario.grasp) throw std::invalid_argument("Viper 850 grasp: the scenario has no gripper (GraspSpec)");
+    return *scenario.grasp;
+  }
+  vpHomogeneousMatrix gripper() const { return f_T_e() * eMg_; }
+
+  vpHomogeneousMatrix eMg_;
+  vpHomogeneousMatrix world_T_camera_;
+};
+
 }  // namespace
 
 std::unique_ptr<SimulatedRobot> make_robot(const Scenario& scenario) {
@@ -185,6 +216,8 @@ std::unique_ptr<SimulatedRobot> make_robot(const Scenario& scenario) {
       return std::make_unique<Viper850EyeInHand>(scenario);
     case RobotKind::kViper850EyeToHand:
       return std::make_unique<Viper850EyeToHand>(scenario);
+    case RobotKind::kViper850Grasp:
+      return std::make_unique<Viper850Grasp>(scenario);
   }
   throw std::invalid_argument("make_robot: unknown robot kind");
 }

@@ -2,6 +2,7 @@
 # Runs `icgp servo` on a small scenario and checks the summary JSON has every key of the
 # machine-readable contract (README / issue: scenario, tracker, trials, ...).
 # -DICGP=<program> -DSCENARIO=<yaml> -DOUT=<folder> [-DARGS=<extra arguments, ;-separated>]
+# [-DJSON_MATCH=<regular expression summary.json must match>]
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND "${ICGP}" servo "${SCENARIO}" --out "${OUT}" --summary "${OUT}/summary.json" --quiet ${ARGS}
                 RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE errors)
@@ -16,6 +17,9 @@ foreach(key scenario tracker trials converged success_rate final_t_mm final_r_de
     message(FATAL_ERROR "summary.json has no \"${key}\":\n${json}")
   endif()
 endforeach()
+if(DEFINED JSON_MATCH AND NOT json MATCHES "${JSON_MATCH}")
+  message(FATAL_ERROR "summary.json does not match ${JSON_MATCH}:\n${json}")
+endif()
 foreach(file log.csv error.png velocity.png)
   if(NOT EXISTS "${OUT}/${file}" AND NOT ARGS MATCHES "--trials")
     message(FATAL_ERROR "icgp servo did not write ${OUT}/${file}")

@@ -59,7 +59,7 @@ void check_converged(const ServoResult& result, double max_t, double max_r) {
 class FailingTracker : public PoseEstimator {
  public:
   FailingTracker(int first_lost, int count) : first_lost_(first_lost), count_(count) {}
-  void start(const RgbdCapture&, const vpHomogeneousMatrix&) override {}
+  void start(const RgbdCapture&, const vpHomogeneousMatrix&, const std::optional<vpHomogeneousMatrix>&) override {}
   PoseEstimate track(const RgbdCapture& capture) override {
     const int step = steps_++;
     return {capture.cMo_true, step >= first_lost_ && step < first_lost_ + count_, 0.0};

@@ -458,3 +458,106 @@ TEST_CASE("eye-to-hand without the minus sign of vpServo's eye-to-hand law does 
   }
   CHECK(update() > e0);
 }
+
+namespace {
+
+// A grasp: the gripper on a 1 cm plate turned 90 deg on the flange, the object 0.2 m ahead of
+// it along its approach axis, tilted; the camera sees the object 0.6 m away.
+Scenario make_grasp_scenario() {
+  Scenario s = make_scenario(RobotKind::kViper850Grasp);
+  GraspSpec grasp;
+  grasp.eMg = icgp::to_pose(make_pose(0.0, 0.0, 0.01, 0, 0, 90));
+  grasp.start_gMo = icgp::to_pose(make_pose(0.03, -0.02, 0.2, 80, -10, 5));
+  grasp.desired_gMo = icgp::to_pose(make_pose(0.0, 0.0, 0.15, 90, 0, 0));
+  s.grasp = grasp;
+  s.initial_cMo = icgp::to_pose(make_pose(0.0, 0.05, 0.6, -150, -10, 40));
+  return s;
+}
+
+vpHomogeneousMatrix gripper_T_object(const SimulatedRobot& robot, const vpHomogeneousMatrix& wMo) {
+  return robot.world_T_gripper().value().inverse() * wMo;
+}
+
+}  // namespace
+
+TEST_CASE("Viper grasp: the gripper follows fMe(q) eMg, the camera and the object stand where the scenario says",
+          "[servo][robot][viper][grasp]") {
+  const vpColVector q0 = joints_rad(kArmJointsDeg);
+  const Scenario s = make_grasp_scenario();
+  const auto robot = make_robot(s);
+  CHECK(robot->servo_type() == vpServo::EYEINHAND_L_cVe_eJe);
+  CHECK_FALSE(robot->world_T_held_object().has_value());
+  const vpHomogeneousMatrix eMg = icgp::to_homogeneous_matrix(s.grasp->eMg);
+  vpViper850 model;
+  vpHomogeneousMatrix fMe;
+  model.get_fMe(q0, fMe);
+  REQUIRE(robot->world_T_gripper().has_value());
+  CHECK(poses_equal(*robot->world_T_gripper(), fMe * eMg, 1e-12));
+  // At the start the object stands at start_gMo from the gripper, and the camera sees it at
+  // initial_cMo.
+  const vpHomogeneousMatrix wMo = initial_world_T_object(s, *robot);
+  CHECK(poses_equal(gripper_T_object(*robot, wMo), icgp::to_homogeneous_matrix(s.grasp->start_gMo), 1e-12));
+  const vpHomogeneousMatrix wMc = robot->world_T_camera();
+  CHECK(poses_equal(wMc.inverse() * wMo, icgp::to_homogeneous_matrix(s.initial_cMo), 1e-12));
+
+  const vpColVector qdot = vec6(-0.2, 0.1, 0.3, -0.4, 0.2, 0.6);
+  robot->move(qdot, 0.1);
+  model.get_fMe(q0 + qdot * 0.1, fMe);
+  CHECK(poses_equal(*robot->world_T_gripper(), fMe * eMg, 1e-12));
+  CHECK(poses_equal(robot->world_T_camera(), wMc, 1e-15));  // fixed
+}
+
+TEST_CASE("Viper grasp: a robot without a gripper spec is refused", "[servo][robot][grasp]") {
+  CHECK_THROWS_AS(make_robot(make_scenario(RobotKind::kViper850Grasp)), std::invalid_argument);
+}
+
+TEST_CASE("Viper grasp: cVe eJe qdot (gVe from eMg) is the gripper's twist (first order)", "[servo][robot][viper][grasp]") {
+  const vpColVector qdot = vec6(0.3, -0.2, 0.25, 0.4, -0.3, 0.5);
+  double error_at[2] = {0, 0};
+  const double dts[2] = {1e-2, 1e-3};
+  for (int k = 0; k < 2; ++k) {
+    const auto robot = make_robot(make_grasp_scenario());
+    vpServo task;
+    task.setServo(robot->servo_type());
+    robot->update_jacobians(task);
+    const vpColVector predicted = task.get_cVe() * task.get_eJe() * qdot;
+    const vpHomogeneousMatrix before = *robot->world_T_gripper();
+    robot->move(qdot, dts[k]);
+    const vpColVector measured = measured_twist(before, *robot->world_T_gripper(), dts[k]);
+    error_at[k] = (measured - predicted).frobeniusNorm() * dts[k];
+    CHECK(error_at[k] < 2.0 * dts[k] * dts[k]);
+    CHECK(predicted.frobeniusNorm() > 0.1);
+  }
+  CHECK(error_at[0] / error_at[1] > 50.0);
+}
+
+TEST_CASE("Viper grasp: PBVS on gMo brings the gripper to the desired pose, the object and camera stay",
+          "[servo][robot][viper][grasp]") {
+  const Scenario s = make_grasp_scenario();
+  const auto robot = make_robot(s);
+  const vpHomogeneousMatrix wMo = initial_world_T_object(s, *robot);
+  const vpHomogeneousMatrix wMc0 = robot->world_T_camera();
+  const vpHomogeneousMatrix gdMo = icgp::to_homogeneous_matrix(s.grasp->desired_gMo);
+  vpServo task;
+  task.setServo(robot->servo_type());
+  task.setInteractionMatrixType(vpServo::CURRENT);
+  task.setLambda(0.5);
+  vpFeatureTranslation t(vpFeatureTranslation::cdMc);
+  vpFeatureThetaU tu(vpFeatureThetaU::cdRc);
+  task.addFeature(t);
+  task.addFeature(tu);
+  int steps = 0;
+  for (; steps < 600; ++steps) {
+    const vpHomogeneousMatrix gdMg = gdMo * gripper_T_object(*robot, wMo).inverse();
+    if (gdMg.getTranslationVector().frobeniusNorm() < 1e-4 && vpThetaUVector(gdMg.getRotationMatrix()).getTheta() < vpMath::rad(0.01))
+      break;
+    t.buildFrom(gdMg);
+    tu.buildFrom(gdMg);
+    robot->update_jacobians(task);
+    robot->move(task.computeControlLaw(), kDt);
+  }
+  CHECK(steps > 100);
+  CHECK(steps < 600);
+  CHECK(robot->joint_limit_stops() == 0);
+  CHECK(poses_equal(robot->world_T_camera(), wMc0, 1e-15));
+}

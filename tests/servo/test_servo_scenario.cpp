@@ -277,7 +277,8 @@ TEST_CASE("scenario errors name the file and the field") {
   }
   SECTION("bad enums and modalities") {
     CHECK(error(kMinimal + "robot: ur5\n") ==
-          file + ": robot: expected one of free_flying, viper850_eye_in_hand, viper850_eye_to_hand, got 'ur5'");
+          file + ": robot: expected one of free_flying, viper850_eye_in_hand, viper850_eye_to_hand, viper850_grasp, "
+                 "got 'ur5'");
     CHECK_THAT(error(kMinimal + "control: {law: vvs}\n"), Contains(file + ": control.law: expected one of pbvs, ibvs"));
     CHECK_THAT(error(kMinimal + "tracker: {visp_configuration: edge}\n"),
                Contains(file + ": tracker.visp_configuration: expected one of edge + dense depth, KLT + dense depth"));
@@ -308,6 +309,74 @@ TEST_CASE("scenario errors name the file and the field") {
     CHECK_THAT(error(kMinimal + "tracker: {config: icgp.yaml}\n"),
                Contains(file + ": tracker.config: ") && Contains((dir.path() / "icgp.yaml").string()));
   }
+}
+
+namespace {
+
+/// The smallest valid grasp scenario: the required keys only.
+const std::string kMinimalGrasp =
+    "robot: viper850_grasp\n"
+    "object: {model: textured_box}\n"
+    "gripper: {model: gripper}\n"
+    "start: {t: [0, 0, 0.6], r_deg: [0, 0, 0]}\n"
+    "start_gMo: {t: [0, 0, 0.25], r_deg: [0, 0, 0]}\n"
+    "desired_gMo: {t: [0, 0, 0.15], r_deg: [0, 0, 0]}\n";
+
+/// `text` without the line that starts with `key`.
+std::string without(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find(key);
+  return text.substr(0, at) + text.substr(text.find('\n', at) + 1);
+}
+
+}  // namespace
+
+TEST_CASE("a grasp scenario: gripper, start_gMo and desired_gMo read with their units") {
+  TempDir dir("icgp-scenario");
+  const Scenario s = load_scenario(
+      dir.write("grasp.yaml", without(kMinimalGrasp, "gripper:") +
+                                  "gripper: {model: gripper, eMg: {t: [0, 0, 0.01], r_deg: [0, 0, 90]}}\n"),
+      ICGP_MODELS_DIR);
+  CHECK(s.robot == icgp::servo::RobotKind::kViper850Grasp);
+  REQUIRE(s.grasp);
+  CHECK(same_file(s.grasp->gripper_model, std::string(ICGP_MODELS_DIR) + "/gripper/gripper.obj"));
+  CHECK(s.grasp->eMg.translation().isApprox(Eigen::Vector3d(0, 0, 0.01)));
+  CHECK(angle(s.grasp->eMg.rotation()) == Approx(kPi / 2));
+  CHECK(s.grasp->start_gMo.translation().isApprox(Eigen::Vector3d(0, 0, 0.25)));
+  CHECK(s.grasp->desired_gMo.translation().isApprox(Eigen::Vector3d(0, 0, 0.15)));
+  // eMg defaults to the identity: the gripper's mount on the flange.
+  const Scenario t = load_scenario(dir.write("plain.yaml", kMinimalGrasp), ICGP_MODELS_DIR);
+  REQUIRE(t.grasp);
+  CHECK(t.grasp->eMg.matrix().isIdentity());
+  // Other robots have none.
+  CHECK_FALSE(load_scenario(dir.write("camera.yaml", kMinimal), ICGP_MODELS_DIR).grasp);
+}
+
+TEST_CASE("grasp keys: required for a grasp, refused elsewhere, bounded, each error naming the file and the field") {
+  TempDir dir("icgp-scenario");
+  const auto error = [&](const std::string& text) { return error_of(dir, text); };
+  const std::string file = (dir.path() / "bad.yaml").string();
+  for (const std::string key : {"gripper", "start_gMo", "desired_gMo"}) {
+    INFO(key);
+    CHECK(error(without(kMinimalGrasp, key + ":")) == file + ": " + key + ": required when robot is viper850_grasp");
+    CHECK(error(kMinimal + key + ": {t: [0, 0, 0.1], r_deg: [0, 0, 0]}\n") ==
+          file + ": " + key + ": only a viper850_grasp scenario has a gripper (robot is free_flying)");
+  }
+  CHECK(error(kMinimalGrasp + "desired: {t: [0, 0, 0.35], r_deg: [0, 0, 0]}\n") ==
+        file + ": desired: a viper850_grasp scenario servoes the gripper to the object: give desired_gMo, not desired");
+  CHECK(error(kMinimalGrasp + "control: {law: ibvs}\n") ==
+        file + ": control.law: expected pbvs (a viper850_grasp scenario servoes the gripper's pose gMo), got 'ibvs'");
+  CHECK(error(without(kMinimalGrasp, "gripper:") + "gripper: {eMg: {t: [0, 0, 0], r_deg: [0, 0, 0]}}\n") ==
+        file + ": gripper.model: required");
+  CHECK_THAT(error(without(kMinimalGrasp, "gripper:") + "gripper: {model: no_such_gripper}\n"),
+             Contains(file + ": gripper.model: expected a model folder of") && Contains("'no_such_gripper'"));
+  CHECK_THAT(error(without(kMinimalGrasp, "gripper:") + "gripper: {model: gripper, mount: 1}\n"),
+             Contains(file + ": gripper.mount: unknown key (expected one of model, eMg)"));
+  CHECK(error(without(kMinimalGrasp, "gripper:") + "gripper: {model: gripper, eMg: {t: [0, 0, 1e3], r_deg: [0, 0, 0]}}\n") ==
+        file + ": gripper.eMg.t: expected a list of 3 numbers in [-100, 100], got [0, 0, 1e3]");
+  CHECK(error(without(kMinimalGrasp, "start_gMo:") + "start_gMo: {t: [0, 0, 0.25], r_deg: [400, 0, 0]}\n") ==
+        file + ": start_gMo.r_deg: expected a list of 3 numbers in [-360, 360], got [400, 0, 0]");
+  CHECK(error(without(kMinimalGrasp, "desired_gMo:") + "desired_gMo: {t: [0, 0, 0.15]}\n") ==
+        file + ": desired_gMo.r_deg: required");
 }
 
 TEST_CASE("every number of a scenario is bounded, and a refusal names the field, the value and the range") {

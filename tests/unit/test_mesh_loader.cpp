@@ -462,6 +462,16 @@ TEST_CASE("models/labelled_can: a printed side and plain caps as two regions of 
   CHECK(caps.parts[0].material.diffuse_rgb.isApprox(Eigen::Vector3f(0.85f, 0.10f, 0.12f), 1e-3f));
 }
 
+TEST_CASE("models/gripper: mount, palm and two fingers 0.10 m apart, origin on the flange, z towards the tips") {
+  const Mesh mesh = load_mesh(model("gripper/gripper.obj"));
+  CHECK(mesh.triangle_count() == 48);  // four boxes
+  check_bounds(mesh, Eigen::Vector3f(-0.025f, -0.07f, 0.0f), Eigen::Vector3f(0.025f, 0.07f, 0.13f));
+  CHECK(closed_and_consistently_oriented(mesh));
+  const double mount = 0.04 * 0.04 * 0.02, palm = 0.05 * 0.14 * 0.03, finger = 0.024 * 0.014 * 0.08;
+  CHECK(mesh_signed_volume(mesh) == Approx(mount + palm + 2 * finger));
+  check_untextured(mesh);
+}
+
 TEST_CASE("models/hinged_box: a closed base and a closed lid whose origin is on its hinge edge") {
   const Mesh base = load_mesh(model("hinged_box/base.obj"));
   const Mesh lid = load_mesh(model("hinged_box/lid.obj"));

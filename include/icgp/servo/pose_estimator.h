@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <visp3/core/vpHomogeneousMatrix.h>
 
@@ -16,21 +17,27 @@ struct PoseEstimate {
   vpHomogeneousMatrix cMo;
   bool lost = false;     ///< the tracker's own verdict (vpMbTracker::testTracking threw)
   double track_ms = 0.0;  ///< the track() call alone
+  /// Grasp: the gripper's pose, when the tracker gives it (icgp tracks it as a second body,
+  /// the oracle knows it). Empty: the loop takes it from the arm's kinematics.
+  std::optional<vpHomogeneousMatrix> cMg;
 };
 
 /// A pose tracker fed with the simulated RGB-D captures through ViSP's API.
 class PoseEstimator {
  public:
   virtual ~PoseEstimator() = default;
-  /// Starts tracking at `cMo` on `first`.
-  virtual void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo) = 0;
+  /// Starts tracking at `cMo` on `first`; in a grasp, the gripper at `cMg` (trackers that
+  /// do not follow the gripper ignore it).
+  virtual void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo,
+                     const std::optional<vpHomogeneousMatrix>& cMg) = 0;
   virtual PoseEstimate track(const RgbdCapture& capture) = 0;
   virtual std::string name() const = 0;  ///< e.g. "icgp (region + depth)"
 };
 
 /// The tracker of `spec` for `scenario`'s object and the simulator's cameras: vpMbIcgTracker
-/// (icgp), vpMbGenericTracker (visp, on a .cao written from the object's mesh into a temp
-/// folder), or the ground truth (oracle). Model generation for icgp shows its progress on
+/// (icgp; in a grasp it tracks the gripper too, as a second body), vpMbGenericTracker
+/// (visp, the object alone, on a .cao written from the object's mesh into a temp folder),
+/// or the ground truth (oracle, of the gripper too). Model generation for icgp shows its progress on
 /// stderr the first time and is cached.
 std::unique_ptr<PoseEstimator> make_pose_estimator(const TrackerSpec& spec, const Scenario& scenario,
                                                    const RgbdSimulator& simulator);

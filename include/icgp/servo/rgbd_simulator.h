@@ -23,9 +23,10 @@ struct RgbdCapture {
   vpImage<uint16_t> depth_raw;        ///< depth camera "Camera2", Z = value * depth_scale, 0 = none
   double depth_scale = 1e-4;          ///< metres per unit
   vpHomogeneousMatrix cMo_true;       ///< ground truth, colour camera -> object
+  std::optional<vpHomogeneousMatrix> cMg_true;  ///< grasp: ground truth, colour camera -> gripper
 };
 
-/// Renders the scenario's scene (object, background plane, occluder) with the EGL renderer
+/// Renders the scenario's scene (object, gripper, background plane, occluder) with the EGL renderer
 /// for the colour and depth cameras, and adds the sensor's imperfections (NoiseSpec) from
 /// its own seeded generator: the same scenario, seed and camera path give the same images.
 /// Needs a headless OpenGL context (throws icgp::RenderError without one).
@@ -45,9 +46,11 @@ class RgbdSimulator {
 
   /// What the sensor sees at `time` with the colour camera at wMc. `previous_wMc` is where
   /// it was at the last capture (motion blur); `held_object`: the object's world pose when a
-  /// robot holds it (eye-to-hand).
+  /// robot holds it (eye-to-hand); `gripper`: the gripper's world pose (grasp scenarios,
+  /// required there). The arm carrying the gripper is not rendered.
   RgbdCapture& capture(double time, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& previous_wMc,
-                       const std::optional<vpHomogeneousMatrix>& held_object = std::nullopt);
+                       const std::optional<vpHomogeneousMatrix>& held_object = std::nullopt,
+                       const std::optional<vpHomogeneousMatrix>& gripper = std::nullopt);
 
   vpCameraParameters color_camera() const;
   vpCameraParameters depth_camera() const;

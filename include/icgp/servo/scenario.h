@@ -30,6 +30,9 @@ enum class RobotKind {
   kFreeFlyingCamera,    ///< ViSP's vpSimulatorCamera: the camera follows the commanded twist
   kViper850EyeInHand,   ///< camera on the flange of a Viper 850 arm, joint velocities
   kViper850EyeToHand,   ///< fixed camera watching the object held by a Viper 850 arm
+  /// Fixed camera watching a Viper 850 whose flange carries a gripper, and the object
+  /// standing still: the arm brings the gripper to a pre-grasp pose (GraspSpec).
+  kViper850Grasp,
 };
 
 enum class ControlLawKind {
@@ -160,6 +163,21 @@ struct ArmSpec {
   Pose eMo = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.0, 0.1));
 };
 
+/// Grasp scenarios (RobotKind::kViper850Grasp): the gripper on the arm's flange, and the
+/// object's pose in the gripper frame where the run starts and where the servo must bring it.
+/// PBVS servoes gMo = cMg^-1 cMo onto desired_gMo; the camera stays where it sees the object
+/// at Scenario::initial_cMo.
+struct GraspSpec {
+  /// The gripper's mesh, resolved like ObjectSpec::model (YAML: gripper.model).
+  std::string gripper_model;
+  Pose eMg;          ///< the gripper in the flange frame (YAML: gripper.eMg)
+  /// Where the object stands in the gripper frame with the arm at its initial joints (YAML:
+  /// start_gMo): with initial_cMo, it places the object and the camera in the world. Batch
+  /// trials move it (the gripper starts elsewhere; the final view is the same).
+  Pose start_gMo;
+  Pose desired_gMo;  ///< the pre-grasp pose (YAML: desired_gMo)
+};
+
 struct Scenario {
   std::string name;         ///< from the file name unless given
   std::string description;  ///< one line for the summary
@@ -172,8 +190,11 @@ struct Scenario {
   LightingSpec lighting;
   CameraSpec camera;
   /// Camera-object poses (ViSP cMo): where the run starts, and where the servo must bring it.
+  /// A grasp has no desired_cMo (its camera and object stand still): it servoes
+  /// grasp->desired_gMo.
   Pose initial_cMo;
   Pose desired_cMo;
+  std::optional<GraspSpec> grasp;  ///< set exactly when robot is kViper850Grasp
   TrackerSpec tracker;
   ControlSpec control;
   StopSpec stop;

@@ -15,13 +15,14 @@
 
 namespace icgp::servo {
 
-/// One step of a run. Errors are translation (metres) and rotation (radians).
+/// One step of a run. Errors are translation (metres) and rotation (radians), of the
+/// servoed pose: cMo, or in a grasp gMo (the object in the gripper frame).
 struct ServoStep {
   double time = 0.0;                  ///< seconds of simulated time at the capture
   vpHomogeneousMatrix cMo_true;       ///< ground truth at the capture
   vpHomogeneousMatrix cMo_estimated;  ///< what the tracker said
-  double servo_t = 0.0, servo_r = 0.0;  ///< true pose to the desired pose
-  double track_t = 0.0, track_r = 0.0;  ///< estimated pose to the true pose
+  double servo_t = 0.0, servo_r = 0.0;  ///< true servoed pose to the desired pose
+  double track_t = 0.0, track_r = 0.0;  ///< estimated servoed pose to the true one
   vpColVector velocity;               ///< applied: camera twist (v, ω) or joint velocities
   double servo_error_norm = 0.0;      ///< |s - s*| of the control law
   bool lost = false;                  ///< the tracker reported lost
@@ -53,7 +54,9 @@ struct ServoResult {
 };
 
 struct ServoRunOptions {
-  /// Moves the scenario's start (batch trials): the run starts at start_offset * initial_cMo.
+  /// Moves the scenario's start (batch trials): the run starts at start_offset * initial_cMo,
+  /// or in a grasp at start_offset * start_gMo (the camera and the object stay, the gripper
+  /// starts elsewhere).
   Pose start_offset;
   unsigned seed = 1;
   bool progress = true;  ///< a progress line on stderr

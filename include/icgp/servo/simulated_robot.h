@@ -24,6 +24,9 @@ class SimulatedRobot {
   virtual vpHomogeneousMatrix world_T_camera() const = 0;
   /// Eye-to-hand: the held object's pose in the world (wMo); nullopt for eye-in-hand robots.
   virtual std::optional<vpHomogeneousMatrix> world_T_held_object() const { return std::nullopt; }
+  /// Grasp: the gripper's pose in the world (wMg = fMe(q) eMg) as the arm's kinematics give
+  /// it; nullopt for robots without a gripper.
+  virtual std::optional<vpHomogeneousMatrix> world_T_gripper() const { return std::nullopt; }
 
   /// The vpServo interaction type this robot is controlled with (vpServo::setServo).
   virtual vpServo::vpServoType servo_type() const = 0;
@@ -44,12 +47,13 @@ class SimulatedRobot {
 
 /// The robot of `scenario`, at its start: the free-flying camera at the world origin, an
 /// arm at ArmSpec::initial_joints. Eye-to-hand, the fixed camera is placed where it sees
-/// the held object at the scenario's initial_cMo.
+/// the held object at the scenario's initial_cMo. Grasp, the object stands at
+/// GraspSpec::start_gMo from the gripper and the fixed camera sees it at initial_cMo.
 std::unique_ptr<SimulatedRobot> make_robot(const Scenario& scenario);
 
 /// Where the object is in the world at the start, so that the camera sees it at
-/// initial_cMo: wMc(start) * initial_cMo for eye-in-hand robots, the held object's pose
-/// for eye-to-hand.
+/// initial_cMo: wMc(start) * initial_cMo for eye-in-hand and grasp robots, the held
+/// object's pose for eye-to-hand.
 vpHomogeneousMatrix initial_world_T_object(const Scenario& scenario, const SimulatedRobot& robot);
 
 }  // namespace icgp::servo
