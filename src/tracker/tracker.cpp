@@ -10,7 +10,8 @@ namespace icgp {
 struct Tracker::BodyState {
   BodyState(Body body, const TrackerParams& params)
       : body(std::make_unique<Body>(std::move(body))),
-        sphere(bounding_sphere(this->body->mesh)),
+        // A body without a mesh (cues that read no image) is never rendered.
+        sphere(this->body->mesh.empty() ? Sphere{} : bounding_sphere(this->body->mesh)),
         optimizer(OptimizerParams{params.tikhonov_rotation, params.tikhonov_translation}) {}
 
   std::unique_ptr<Body> body;
