@@ -70,3 +70,29 @@ TEST_CASE("region checking: a contour point is valid on the free silhouette, not
   CHECK(RenderedScene().on_silhouette(s.front(0.03f, 0.0f), right, true));
   CHECK_FALSE(RenderedScene().hidden(s.front(-0.03f, 0.0f), 0.f, 0.01, 0.03));
 }
+
+TEST_CASE("a cue asks for the scene's render only when another body may cover its body") {
+  const Intrinsics k = Intrinsics::centred(640, 480, 600.0);
+  const Body box{"box", test::make_box(0.1f, 0.1f, 0.1f), Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 0.6))};
+  const Sphere sphere = bounding_sphere(box.mesh);
+  auto request_with_other_at = [&](const Eigen::Vector3d& centre, Stage::Kind kind = Stage::kCorrespondences,
+                                   int corr_iter = 0) {
+    const std::vector<BodyExtent> scene = {{"box", box.reference_T_body * sphere.centre, sphere.radius},
+                                           {"bar", centre, 0.05}};
+    return scene_render_request({kind, corr_iter, &scene}, "Camera1", k, Pose(), box, sphere, 200);
+  };
+  // In front of the box, overlapping it in the image: a render of the box's crop.
+  const std::optional<RenderRequest> request = request_with_other_at({0.05, 0.0, 0.4});
+  REQUIRE(request);
+  CHECK(request->size == 200);
+  CHECK(*request == *focused_render_request("Camera1", k, Pose(), box.reference_T_body, sphere, 200));
+  // Far to the side: nothing can hide the box, no render.
+  CHECK_FALSE(request_with_other_at({0.5, 0.0, 0.6}));
+  // Reaching the camera's plane: it may cover anything.
+  CHECK(request_with_other_at({0.5, 0.0, 0.02}));
+  // Only at the first correspondence iteration of a frame.
+  CHECK_FALSE(request_with_other_at({0.05, 0.0, 0.4}, Stage::kCorrespondences, 1));
+  CHECK_FALSE(request_with_other_at({0.05, 0.0, 0.4}, Stage::kFinish));
+  // The body alone: no render.
+  CHECK_FALSE(scene_render_request({Stage::kCorrespondences, 0, nullptr}, "Camera1", k, Pose(), box, sphere, 200));
+}
