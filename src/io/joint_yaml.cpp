@@ -2,6 +2,7 @@
 #include "icgp/io/joint_yaml.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace icgp {
@@ -120,9 +121,13 @@ bool is_identity(const Pose& pose) { return pose.matrix().isIdentity(0.0); }
 void write_direction_settings(YAML::Emitter& out, const JointDirection& d) {
   const bool rotation = d.kind == JointDirection::Kind::kRotation;
   const double scale = rotation ? 180.0 / kPi : 1.0;
-  if (std::isfinite(d.min) || std::isfinite(d.max))
+  if (std::isfinite(d.min) || std::isfinite(d.max)) {
+    // A file holds finite numbers: an open end is written as the farthest value it may hold.
+    const Interval& range = rotation ? kLimitDeg : kLimitM;
+    auto bounded = [&](double limit) { return std::clamp(limit * scale, range.min, range.max); };
     out << YAML::Key << (rotation ? "limits_deg" : "limits") << YAML::Value << YAML::Flow << YAML::BeginSeq
-        << yaml::exact_number(d.min * scale) << yaml::exact_number(d.max * scale) << YAML::EndSeq;
+        << yaml::exact_number(bounded(d.min)) << yaml::exact_number(bounded(d.max)) << YAML::EndSeq;
+  }
   if (d.stiffness != 0.0) out << YAML::Key << "stiffness" << YAML::Value << yaml::exact_number(d.stiffness);
 }
 

@@ -3,6 +3,7 @@
 // input refused with the file, the body and the field named.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 #include "icgp/tracker/tracker_builder.h"
 #include "icgp/tracker/tracker_config.h"
@@ -68,6 +69,19 @@ TEST_CASE("bodies: a joint is read as written, with relative meshes beside the f
   // Written and read back, the list is the same.
   const TrackerConfig back = load_tracker_config(dir.write("back.yaml", to_yaml(config)));
   CHECK(to_yaml(back) == to_yaml(config));
+}
+
+TEST_CASE("bodies: a joint open at one end is written as the farthest limit a file may hold") {
+  TempDir dir("icgp-bodies");
+  TrackerConfig config;
+  config.bodies = {BodyConfig{"lid", "lid.obj", 1.0, false,
+                              Joint::revolute("box", Pose(), Eigen::Vector3d::UnitX(), 0.0,
+                                              std::numeric_limits<double>::infinity())}};
+  const TrackerConfig back = load_tracker_config(dir.write("open.yaml", to_yaml(config)));
+  REQUIRE(back.bodies.size() == 1);
+  const JointDirection& d = back.bodies[0].joint->directions.at(0);
+  CHECK(d.min == 0.0);
+  CHECK(d.max == Approx(36000.0 * kPi / 180.0));
 }
 
 TEST_CASE("bodies: bad lists name the file, the body and the field") {
