@@ -107,7 +107,7 @@ region:
   modeled_occlusion_radius: 0.02
   modeled_occlusion_threshold: 0.01
   occlusion_render_size: 128
-  region_checking: false
+  region_checking: true
   n_unoccluded_iterations: 0
   min_n_unoccluded_lines: 5
 depth:
