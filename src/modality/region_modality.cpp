@@ -127,11 +127,12 @@ void RegionModality::count_line_pixels(const Frame& frame) {
   histograms_->clear_counts();
   ProjectedPoint p;
   for (int i = 0; i < n; ++i) {
-    // The occlusions measured for this frame's correspondences still hold at its final pose.
+    // What this frame's correspondences found hidden (by another body, or measured) still
+    // is at its final pose.
+    if (ruled_out_.measured(view, i) && ruled_out_.occluded(i)) continue;
     const bool occluded = occlusions_.measured(view, i)
                               ? occlusions_.occluded(i)
                               : hidden(frame, points[i].position, model_->depth_offsets(view, i));
-    if (ruled_out_.measured(view, i) && ruled_out_.occluded(i)) continue;
     if (occluded || !project(points[i], pose, k, p)) continue;
     auto walk = [&](float length, float sign, bool foreground) {
       for (float t = start; t <= length; t += 1.f) {

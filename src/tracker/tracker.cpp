@@ -2,6 +2,7 @@
 #include "icgp/tracker/tracker.h"
 
 #include <algorithm>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -89,7 +90,7 @@ std::vector<Body*> Tracker::bodies() {
 const std::vector<double>& Tracker::joint_values(const std::string& name) const { return state(name).joint_values; }
 
 void Tracker::set_joint_values(const std::string& name, std::vector<double> values) {
-  BodyState& link = const_cast<BodyState&>(state(name));
+  BodyState& link = state(name);
   if (!link.joint) throw std::invalid_argument("body '" + name + "' has no joint");
   if (static_cast<int>(values.size()) != link.joint->size())
     throw std::invalid_argument("body '" + name + "': its joint has " + std::to_string(link.joint->size()) +
@@ -101,24 +102,23 @@ void Tracker::set_joint_values(const std::string& name, std::vector<double> valu
 const std::vector<std::vector<TreeLink>>& Tracker::trees() {
   if (!trees_.empty()) return trees_;
   // Parents are added before their links, so one pass in the order of adding puts every
-  // link after its parent.
+  // link after its parent, in its parent's tree.
+  std::map<std::string, std::pair<std::size_t, int>> placed;  // body -> its tree, its index there
   for (auto& s : states_) {
     if (s->occluder) continue;
     TreeLink link{s->body.get(), &s->cues, &s->optimizer};
-    if (!s->joint) {
-      trees_.push_back({link});
-      continue;
+    std::size_t tree = trees_.size();
+    if (s->joint) {
+      const auto [parent_tree, parent_index] = placed.at(s->joint->parent);
+      tree = parent_tree;
+      link.parent = parent_index;
+      link.joint = &*s->joint;
+      link.joint_values = &s->joint_values;
+    } else {
+      trees_.emplace_back();
     }
-    for (std::vector<TreeLink>& tree : trees_)
-      for (std::size_t i = 0; i < tree.size(); ++i)
-        if (tree[i].body->name == s->joint->parent) {
-          link.parent = static_cast<int>(i);
-          link.joint = &*s->joint;
-          link.joint_values = &s->joint_values;
-          tree.push_back(link);
-          goto placed;
-        }
-  placed:;
+    placed[s->body->name] = {tree, static_cast<int>(trees_[tree].size())};
+    trees_[tree].push_back(link);
   }
   return trees_;
 }
@@ -133,6 +133,10 @@ const Tracker::BodyState& Tracker::state(const std::string& name) const {
   for (const auto& s : states_)
     if (s->body->name == name) return *s;
   throw std::invalid_argument("tracker has no body named '" + name + "'");
+}
+
+Tracker::BodyState& Tracker::state(const std::string& name) {
+  return const_cast<BodyState&>(static_cast<const Tracker&>(*this).state(name));
 }
 
 const Mat66& Tracker::last_hessian(const std::string& name) const { return state(name).optimizer.total().hessian; }
@@ -153,7 +157,8 @@ std::vector<const Modality*> Tracker::modalities(const std::string& name) const 
 void Tracker::render(const Frame& frame, Stage stage) {
   scene_.clear();
   for (const auto& s : states_)
-    scene_.push_back({s->body->name, s->body->reference_T_body * s->sphere.centre, s->sphere.radius});
+    if (!s->body->mesh.empty())
+      scene_.push_back({s->body->name, s->body->reference_T_body * s->sphere.centre, s->sphere.radius});
   stage.scene = &scene_;
   std::vector<RenderRequest> requests;
   for (auto& s : states_)

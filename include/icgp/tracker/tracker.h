@@ -105,6 +105,7 @@ class Tracker {
  private:
   struct BodyState;
   const BodyState& state(const std::string& body) const;
+  BodyState& state(const std::string& body);
   BodyState& add_state(Body body);
   /// The kinematic trees of the tracked bodies, each in tree order (rebuilt after adds).
   const std::vector<std::vector<TreeLink>>& trees();
