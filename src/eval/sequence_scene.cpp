@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "icgp/geometry/tree_order.h"
 #include "icgp/io/joint_yaml.h"
 #include "icgp/io/mesh_loader.h"
 #include "icgp/io/model_reference.h"
@@ -108,31 +109,20 @@ SceneBody read_body(const Value& entry, const Location& list, const std::string&
 /// The bodies with every parent before its links. Fails on a parent that is not a body
 /// and on a cycle of parents, naming the link and its `parent`.
 std::vector<SceneBody> parents_first(std::vector<SceneBody> bodies, const Location& list) {
-  std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < bodies.size(); ++i) index[bodies[i].name] = i;
+  std::vector<std::string> names, parents;
   for (const SceneBody& body : bodies) {
-    if (!body.joint) continue;
-    const Location parent = list.child(body.name).child("parent");
-    if (!index.count(body.joint->parent)) parent.fail("no body is named '" + body.joint->parent + "'");
-    // Walk up the parents: reaching the body again closes a cycle. A chain without one has
-    // fewer steps than there are bodies; a cycle above this body is reported at its bodies.
-    std::string chain = body.name;
-    const SceneBody* up = &body;
-    for (std::size_t step = 0; step < bodies.size() && up->joint && index.count(up->joint->parent); ++step) {
-      up = &bodies[index.at(up->joint->parent)];
-      chain += " → " + up->name;
-      if (up == &body) parent.fail("the parents form a cycle: " + chain);
-    }
+    names.push_back(body.name);
+    parents.push_back(body.joint ? body.joint->parent : "");
+  }
+  const TreeOrder tree = icgp::parents_first(names, parents);
+  if (const std::optional<TreeOrderProblem>& problem = tree.problem) {
+    const Location parent = list.child(names[problem->body]).child("parent");
+    if (problem->kind == TreeOrderProblem::Kind::kUnknownParent)
+      parent.fail("no body is named '" + parents[problem->body] + "'");
+    parent.fail("the parents form a cycle: " + problem->chain);
   }
   std::vector<SceneBody> ordered;
-  std::vector<bool> placed(bodies.size(), false);
-  while (ordered.size() < bodies.size())
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (placed[i]) continue;
-      if (bodies[i].joint && !placed[index.at(bodies[i].joint->parent)]) continue;
-      placed[i] = true;
-      ordered.push_back(bodies[i]);
-    }
+  for (const std::size_t i : tree.order) ordered.push_back(std::move(bodies[i]));
   return ordered;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "icgp/geometry/tree_order.h"
 #include "icgp/io/joint_yaml.h"
 
 namespace icgp {
@@ -15,23 +16,15 @@ const BodyConfig* find(const std::vector<BodyConfig>& bodies, const std::string&
   return nullptr;
 }
 
-/// The parents from `body` upwards until a body without parent, or the first repeated
-/// name: "lid → box → lid" (empty when there is no cycle).
-std::string cycle_from(const std::vector<BodyConfig>& bodies, const BodyConfig& body) {
-  std::vector<std::string> chain = {body.name};
-  for (const BodyConfig* at = &body; at->joint;) {
-    const std::string& parent = at->joint->parent;
-    const bool repeated = std::find(chain.begin(), chain.end(), parent) != chain.end();
-    chain.push_back(parent);
-    if (repeated) {
-      std::string text;
-      for (const std::string& name : chain) text += (text.empty() ? "" : " -> ") + name;
-      return text;
-    }
-    at = find(bodies, parent);
-    if (!at) break;
+/// The bodies' tree order, parents outside the list taken as placed when `outside_roots`
+/// names them.
+TreeOrder tree_order(const std::vector<BodyConfig>& bodies, const std::vector<std::string>& outside_roots) {
+  std::vector<std::string> names, parents;
+  for (const BodyConfig& body : bodies) {
+    names.push_back(body.name);
+    parents.push_back(body.joint ? body.joint->parent : "");
   }
-  return "";
+  return parents_first(names, parents, outside_roots);
 }
 
 }  // namespace
@@ -54,10 +47,14 @@ std::vector<BodyConfig> read_body_configs(const yaml::Value& list) {
     if (body.occluder && body.joint) m.required("parent").at.fail("an occluder is placed by the caller, not by a joint");
     bodies.push_back(std::move(body));
   }
-  for (const BodyConfig& body : bodies) {
-    const std::string cycle = cycle_from(bodies, body);
-    if (!cycle.empty()) list.at.child(body.name).child("parent").fail("the parents form a cycle: " + cycle);
-  }
+  // The main body is named by the program, not the file: only cycles are refused here.
+  std::vector<std::string> outside;
+  for (const BodyConfig& body : bodies)
+    if (body.joint && !find(bodies, body.joint->parent)) outside.push_back(body.joint->parent);
+  const TreeOrder tree = tree_order(bodies, outside);
+  if (tree.problem)
+    list.at.child(bodies[tree.problem->body].name).child("parent").fail("the parents form a cycle: " +
+                                                                       tree.problem->chain);
   return bodies;
 }
 
@@ -81,28 +78,21 @@ std::vector<const BodyConfig*> in_tree_order(const std::vector<BodyConfig>& bodi
     names.push_back(body.name);
   }
   for (const BodyConfig& body : bodies) {
-    if (!body.joint) continue;
-    const std::string& parent = body.joint->parent;
-    const BodyConfig* parent_config = find(bodies, parent);
-    if (parent != main_body && !parent_config)
-      throw std::invalid_argument("body '" + body.name + "': parent: no body is named '" + parent +
-                                  "' (the bodies are " + yaml::join(names) + ")");
-    if (parent_config && parent_config->occluder)
-      throw std::invalid_argument("body '" + body.name + "': parent: '" + parent +
+    const BodyConfig* parent = body.joint ? find(bodies, body.joint->parent) : nullptr;
+    if (parent && parent->occluder)
+      throw std::invalid_argument("body '" + body.name + "': parent: '" + parent->name +
                                   "' is an occluder, which is not tracked");
-    const std::string cycle = cycle_from(bodies, body);
-    if (!cycle.empty()) throw std::invalid_argument("body '" + body.name + "': parent: the parents form a cycle: " + cycle);
   }
-  // Free bodies and occluders first, then links whose parent is placed, until all are.
+  const TreeOrder tree = tree_order(bodies, {main_body});
+  if (const std::optional<TreeOrderProblem>& problem = tree.problem) {
+    const BodyConfig& body = bodies[problem->body];
+    if (problem->kind == TreeOrderProblem::Kind::kUnknownParent)
+      throw std::invalid_argument("body '" + body.name + "': parent: no body is named '" + body.joint->parent +
+                                  "' (the bodies are " + yaml::join(names) + ")");
+    throw std::invalid_argument("body '" + body.name + "': parent: the parents form a cycle: " + problem->chain);
+  }
   std::vector<const BodyConfig*> ordered;
-  std::vector<std::string> placed = {main_body};
-  while (ordered.size() < bodies.size())
-    for (const BodyConfig& body : bodies) {
-      const bool done = std::find(ordered.begin(), ordered.end(), &body) != ordered.end();
-      if (done || (body.joint && std::find(placed.begin(), placed.end(), body.joint->parent) == placed.end())) continue;
-      ordered.push_back(&body);
-      placed.push_back(body.name);
-    }
+  for (const std::size_t i : tree.order) ordered.push_back(&bodies[i]);
   return ordered;
 }
 

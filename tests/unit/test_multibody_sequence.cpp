@@ -254,7 +254,7 @@ TEST_CASE("make-sequence scenes: errors name the file, the body and the field") 
   CHECK(error("bodies:\n" + lid + "    trajectory: {from_deg: 0, to_deg: 10, period: 1}\n") ==
         file + ": bodies.lid.parent: no body is named 'box'");
   CHECK(error("bodies:\n  - name: a\n" + box + "    parent: b\n    joint: fixed\n  - name: b\n" + box +
-              "    parent: a\n    joint: fixed\n") == file + ": bodies.a.parent: the parents form a cycle: a → b → a");
+              "    parent: a\n    joint: fixed\n") == file + ": bodies.a.parent: the parents form a cycle: a -> b -> a");
   CHECK_THAT(error("bodies:\n  - name: box\n" + box + lid +
                    "    limits_deg: [90, 0]\n    trajectory: {from_deg: 0, to_deg: 10, period: 1}\n"),
              Contains(file + ": bodies.lid.limits_deg: expected min <= max"));
