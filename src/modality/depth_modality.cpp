@@ -15,7 +15,7 @@ DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> m
     : Modality(body),
       model_(std::move(model)),
       params_(std::move(params)),
-      sphere_(bounding_sphere(body.mesh)),
+      crop_(body, params_.depth_camera, params_.occlusion.render_size),
       noise_(params_.noise) {
   if (!model_ || model_->kind() != ViewpointModel::Kind::kDepth)
     throw std::invalid_argument("depth modality of '" + body.name + "' needs a depth viewpoint model");
@@ -55,8 +55,7 @@ std::vector<RenderRequest> DepthModality::render_requests(const Frame& frame, St
   const DepthImage* depth = frame.find_depth(params_.depth_camera);
   if (!params_.occlusion.model || !depth) return {};
   if (std::optional<RenderRequest> request =
-          scene_render_request(stage, params_.depth_camera, depth->intrinsics, depth->camera_T_reference, body(),
-                               sphere_, params_.occlusion.render_size))
+          crop_.request(stage, depth->intrinsics, depth->camera_T_reference))
     return {*request};
   return {};
 }
@@ -173,8 +172,7 @@ void DepthModality::correspondences(const Frame& frame, const Renders& renders, 
   n_considered_ = std::min(model_->view_point_count(view), params_.n_points_max);
   const ModelPoint* points = model_->points(view);
   if (corr_iter == 0)
-    scene_ = RenderedScene::find(renders, params_.depth_camera, depth.intrinsics, depth.camera_T_reference, body(),
-                                 sphere_, params_.occlusion.render_size);
+    scene_ = crop_.find(renders, depth.intrinsics, depth.camera_T_reference);
   const OcclusionParams& o = params_.occlusion;
   hidden_by_bodies_.update(corr_iter, view, n_considered_, [&](int p) {
     return scene_.hidden(depth_T_body_now * points[p].position, model_->depth_offsets(view, p)[modeled_offset_index_],

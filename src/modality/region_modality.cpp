@@ -17,7 +17,7 @@ RegionModality::RegionModality(Body& body, std::shared_ptr<const ViewpointModel>
       model_(std::move(model)),
       params_(std::move(params)),
       extent_(extent),
-      sphere_(bounding_sphere(body.mesh)),
+      crop_(body, params_.color_camera, params_.occlusion.render_size),
       noise_(params_.noise) {
   if (!model_ || model_->kind() != ViewpointModel::Kind::kRegion)
     throw std::invalid_argument("region modality of '" + body.name + "' needs a region viewpoint model");
@@ -96,8 +96,7 @@ std::vector<RenderRequest> RegionModality::render_requests(const Frame& frame, S
   if (!params_.occlusion.model && !params_.region_checking) return {};
   const ColorImage& image = color_image(frame);
   if (std::optional<RenderRequest> request =
-          scene_render_request(stage, params_.color_camera, image.intrinsics, image.camera_T_reference, body(),
-                               sphere_, params_.occlusion.render_size))
+          crop_.request(stage, image.intrinsics, image.camera_T_reference))
     return {*request};
   return {};
 }
@@ -265,8 +264,7 @@ void RegionModality::correspondences(const Frame& frame, const Renders& renders,
   const ModelPoint* points = model_->points(view);
 
   if (corr_iter == 0)
-    scene_ = RenderedScene::find(renders, params_.color_camera, image.intrinsics, image.camera_T_reference, body(),
-                                 sphere_, params_.occlusion.render_size);
+    scene_ = crop_.find(renders, image.intrinsics, image.camera_T_reference);
   occlusions_.update(corr_iter, view, n_considered_,
                      [&](int i) { return hidden(frame, points[i].position, model_->depth_offsets(view, i)); });
   ruled_out_.update(corr_iter, view, n_considered_,

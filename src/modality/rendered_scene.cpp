@@ -17,15 +17,20 @@ bool overlap(const ImageSquare& a, const ImageSquare& b) {
 
 }  // namespace
 
-std::optional<RenderRequest> scene_render_request(const Stage& stage, const std::string& camera,
-                                                  const Intrinsics& intrinsics, const Pose& camera_T_reference,
-                                                  const Body& body, const Sphere& sphere, int size) {
+SceneCrop::SceneCrop(const Body& body, std::string camera, int size)
+    : body_(&body), camera_(std::move(camera)), sphere_(bounding_sphere(body.mesh)), size_(size) {}
+
+std::optional<RenderRequest> SceneCrop::crop(const Intrinsics& intrinsics, const Pose& camera_T_reference) const {
+  return focused_render_request(camera_, intrinsics, camera_T_reference, body_->reference_T_body, sphere_, size_);
+}
+
+std::optional<RenderRequest> SceneCrop::request(const Stage& stage, const Intrinsics& intrinsics,
+                                                const Pose& camera_T_reference) const {
   if (stage.kind != Stage::kCorrespondences || stage.corr_iter != 0 || !stage.scene) return std::nullopt;
-  std::optional<RenderRequest> request =
-      focused_render_request(camera, intrinsics, camera_T_reference, body.reference_T_body, sphere, size);
+  std::optional<RenderRequest> request = crop(intrinsics, camera_T_reference);
   if (!request) return std::nullopt;
   for (const BodyExtent& other : *stage.scene) {
-    if (other.name == body.name) continue;
+    if (other.name == body_->name) continue;
     const Eigen::Vector3d centre = camera_T_reference * other.centre;
     // A sphere that reaches the camera's plane may cover any part of the image.
     if (!(centre.z() > other.radius) ||
@@ -35,13 +40,12 @@ std::optional<RenderRequest> scene_render_request(const Stage& stage, const std:
   return std::nullopt;
 }
 
-RenderedScene RenderedScene::find(const Renders& renders, const std::string& camera, const Intrinsics& intrinsics,
-                                  const Pose& camera_T_reference, const Body& body, const Sphere& sphere, int size) {
-  const std::optional<RenderRequest> request =
-      focused_render_request(camera, intrinsics, camera_T_reference, body.reference_T_body, sphere, size);
+RenderedScene SceneCrop::find(const Renders& renders, const Intrinsics& intrinsics,
+                              const Pose& camera_T_reference) const {
+  const std::optional<RenderRequest> request = crop(intrinsics, camera_T_reference);
   if (!request) return {};
   const FocusedRender* render = renders.find(*request);
-  return render ? RenderedScene(*render, renders.id(body.name)) : RenderedScene();
+  return render ? RenderedScene(*render, renders.id(body_->name)) : RenderedScene();
 }
 
 bool RenderedScene::hidden(const Eigen::Vector3f& point, float depth_offset, double radius, double threshold) const {

@@ -192,9 +192,8 @@ TextureModality::TextureModality(Body& body, TextureParams params)
       extractor_(params_),
       lifter_(MeasuredOcclusion{params_.occlusion.radius, params_.occlusion.threshold}),
       matcher_(extractor_.norm()),
-      noise_(params_.noise) {
-  sphere_ = bounding_sphere(body.mesh);
-}
+      crop_(body, params_.color_camera, params_.occlusion.render_size),
+      noise_(params_.noise) {}
 
 const ColorImage& TextureModality::color_image(const Frame& frame) const {
   const ColorImage* color = frame.find_color(params_.color_camera);
@@ -213,13 +212,13 @@ void TextureModality::detect(const Frame& frame) {
   const ColorImage& color = color_image(frame);
   intrinsics_ = color.intrinsics;
   camera_T_reference_ = color.camera_T_reference;
-  const Eigen::Vector3d centre = camera_T_body() * sphere_.centre;
-  if (!(centre.z() > sphere_.radius)) {
+  const Eigen::Vector3d centre = camera_T_body() * crop_.sphere().centre;
+  if (!(centre.z() > crop_.sphere().radius)) {
     points_.clear();
     descriptors_.release();
     return;
   }
-  extractor_.extract(color.image, square_around_sphere(intrinsics_, centre, sphere_.radius), points_, descriptors_);
+  extractor_.extract(color.image, square_around_sphere(intrinsics_, centre, crop_.sphere().radius), points_, descriptors_);
   if (!color.mask.all_pixels()) drop_masked_points(color.mask);
 }
 
@@ -237,7 +236,7 @@ void TextureModality::drop_masked_points(const PixelMask& mask) {
 std::optional<RenderRequest> TextureModality::keyframe_render(const Frame& frame) const {
   const ColorImage& color = color_image(frame);
   return focused_render_request(params_.color_camera, color.intrinsics, color.camera_T_reference,
-                                body().reference_T_body, sphere_, params_.focused_image_size);
+                                body().reference_T_body, crop_.sphere(), params_.focused_image_size);
 }
 
 bool TextureModality::keyframe_due(const Pose& camera_T_body, int age) const {
@@ -251,8 +250,7 @@ std::vector<RenderRequest> TextureModality::render_requests(const Frame& frame, 
     const ColorImage& color = color_image(frame);
     std::optional<RenderRequest> request;
     if (params_.occlusion.model)
-      request = scene_render_request(stage, params_.color_camera, color.intrinsics, color.camera_T_reference, body(),
-                                     sphere_, params_.occlusion.render_size);
+      request = crop_.request(stage, color.intrinsics, color.camera_T_reference);
     return request ? std::vector<RenderRequest>{*request} : std::vector<RenderRequest>{};
   }
   const bool keyframe = stage.kind == Stage::kStart ||
@@ -320,8 +318,7 @@ void TextureModality::correspondences(const Frame& frame, const Renders& renders
     detect(frame);
     match();
     const ColorImage& color = color_image(frame);
-    scene_ = RenderedScene::find(renders, params_.color_camera, color.intrinsics, color.camera_T_reference, body(),
-                                 sphere_, params_.occlusion.render_size);
+    scene_ = crop_.find(renders, color.intrinsics, color.camera_T_reference);
   }
   update_weights();
   estimate_noise();

@@ -75,11 +75,12 @@ TEST_CASE("a cue asks for the scene's render only when another body may cover it
   const Intrinsics k = Intrinsics::centred(640, 480, 600.0);
   const Body box{"box", test::make_box(0.1f, 0.1f, 0.1f), Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 0.6))};
   const Sphere sphere = bounding_sphere(box.mesh);
+  const SceneCrop crop(box, "Camera1", 200);
   auto request_with_other_at = [&](const Eigen::Vector3d& centre, Stage::Kind kind = Stage::kCorrespondences,
                                    int corr_iter = 0) {
     const std::vector<BodyExtent> scene = {{"box", box.reference_T_body * sphere.centre, sphere.radius},
                                            {"bar", centre, 0.05}};
-    return scene_render_request({kind, corr_iter, &scene}, "Camera1", k, Pose(), box, sphere, 200);
+    return crop.request({kind, corr_iter, &scene}, k, Pose());
   };
   // In front of the box, overlapping it in the image: a render of the box's crop.
   const std::optional<RenderRequest> request = request_with_other_at({0.05, 0.0, 0.4});
@@ -94,5 +95,5 @@ TEST_CASE("a cue asks for the scene's render only when another body may cover it
   CHECK_FALSE(request_with_other_at({0.05, 0.0, 0.4}, Stage::kCorrespondences, 1));
   CHECK_FALSE(request_with_other_at({0.05, 0.0, 0.4}, Stage::kFinish));
   // The body alone: no render.
-  CHECK_FALSE(scene_render_request({Stage::kCorrespondences, 0, nullptr}, "Camera1", k, Pose(), box, sphere, 200));
+  CHECK_FALSE(crop.request({Stage::kCorrespondences, 0, nullptr}, k, Pose()));
 }

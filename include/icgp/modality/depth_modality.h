@@ -72,7 +72,7 @@ class DepthModality : public Modality {
   MeasuredOcclusion occlusion_;
   int occlusion_offset_index_;
   int modeled_offset_index_;  ///< depth offsets for the modeled-occlusion radius
-  Sphere sphere_;             ///< bounding_sphere of the body's mesh: the focused render's crop
+  SceneCrop crop_;            ///< of the scene's render
   RenderedScene scene_;       ///< this frame's render of the scene (empty without other bodies)
   Posef depth_T_reference_;
   ViewSelector view_selector_;

@@ -119,7 +119,7 @@ class RegionModality : public Modality {
   int occlusion_offset_index_;
   int modeled_offset_index_;  ///< depth offsets for the modeled-occlusion radius
   Extent extent_;
-  Sphere sphere_;  ///< bounding_sphere of the body's mesh: the focused render's crop
+  SceneCrop crop_;  ///< of the scene's render
   RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)
   std::optional<ColorHistograms> histograms_;
   /// Smoothed step at the segment centres as h_b and h_f − h_b, so that a segment's term

@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "icgp/base/body.h"
 #include "icgp/base/frame.h"
@@ -10,15 +12,6 @@
 #include "icgp/modality/modality_params.h"
 
 namespace icgp {
-
-/// The request of a cue of `body` (bounding sphere `sphere`) in camera `camera` for the
-/// focused render of modeled occlusions and region checking, `size` pixels: at the first
-/// correspondence iteration of a frame (the pose then moves by far less than an occlusion
-/// radius or a line's length), and only when another body of stage.scene may cover the
-/// body there: its sphere's square overlaps the body's in this camera.
-std::optional<RenderRequest> scene_render_request(const Stage& stage, const std::string& camera,
-                                                  const Intrinsics& intrinsics, const Pose& camera_T_reference,
-                                                  const Body& body, const Sphere& sphere, int size);
 
 /// The focused render of every body that a cue reads about its own body in one frame:
 /// modeled occlusions (ALGORITHMS.md §7) and region checking (§6). Empty (no render: the
@@ -29,10 +22,6 @@ class RenderedScene {
   RenderedScene() = default;
   /// `render` shows the cue's body with id `body_id`.
   RenderedScene(const FocusedRender& render, std::uint8_t body_id) : render_(render), body_id_(body_id) {}
-  /// The render of this frame's `renders` that scene_render_request asked for with these
-  /// arguments, or none when it asked for none.
-  static RenderedScene find(const Renders& renders, const std::string& camera, const Intrinsics& intrinsics,
-                            const Pose& camera_T_reference, const Body& body, const Sphere& sphere, int size);
 
   bool empty() const { return render_.depth.empty(); }
   /// Modeled occlusion: a surface of another body within `radius` (metres) of the
@@ -47,6 +36,34 @@ class RenderedScene {
  private:
   FocusedRender render_;
   std::uint8_t body_id_ = 0;
+};
+
+/// What one cue's scene render shows: the square around its body's bounding sphere in the
+/// cue's camera, resampled to `size` pixels.
+class SceneCrop {
+ public:
+  SceneCrop(const Body& body, std::string camera, int size);
+
+  /// The request for the render of modeled occlusions and region checking in `stage` (the
+  /// camera's image intrinsics and camera_T_reference): at the first correspondence
+  /// iteration of a frame (the pose then moves by far less than an occlusion radius or a
+  /// line's length), and only when another body of stage.scene may cover the body: its
+  /// sphere's square overlaps the body's in this camera.
+  std::optional<RenderRequest> request(const Stage& stage, const Intrinsics& intrinsics,
+                                       const Pose& camera_T_reference) const;
+  /// The render of this frame's `renders` that request() asked for, empty when it asked
+  /// for none.
+  RenderedScene find(const Renders& renders, const Intrinsics& intrinsics, const Pose& camera_T_reference) const;
+  /// bounding_sphere of the body's mesh.
+  const Sphere& sphere() const { return sphere_; }
+
+ private:
+  std::optional<RenderRequest> crop(const Intrinsics& intrinsics, const Pose& camera_T_reference) const;
+
+  const Body* body_;
+  std::string camera_;
+  Sphere sphere_;
+  int size_;
 };
 
 }  // namespace icgp

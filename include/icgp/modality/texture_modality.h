@@ -151,7 +151,7 @@ class TextureModality : public Modality {
   FeatureExtractor extractor_;
   KeyframeLifter lifter_;
   cv::BFMatcher matcher_;
-  Sphere sphere_;  ///< bounding_sphere of the body's mesh
+  SceneCrop crop_;  ///< of the scene's render; its sphere bounds the detection crop and keyframe renders
   RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)
   Intrinsics intrinsics_;
   Pose camera_T_reference_;
