@@ -34,6 +34,13 @@ class TreeOptimizer {
  public:
   /// One update. A singular system leaves the tree as it is.
   void step(const std::vector<TreeLink>& links, int corr_iter, int update_iter);
+
+ private:
+  // Kept between updates so that a frame's steps reuse their memory.
+  std::vector<int> offset_;  ///< column of each link's first joint value
+  std::vector<JointJacobian> jacobians_;
+  Eigen::MatrixXd A_;
+  Eigen::VectorXd b_;
 };
 
 /// Places every link after the root at its parent's pose times its joint's motion.
