@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <opencv2/core.hpp>
 #include <optional>
 
@@ -95,15 +96,20 @@ std::string caption(const FrameEvaluation& e) {
   return text;
 }
 
-void print_summary(const TrackingSummary& s) {
-  std::printf("\nframes     %d, tracked %d\n", s.frames, s.tracked);
+/// The frames tracked and, with ground truth, the pose errors and AUCs of one body.
+void print_errors(const TrackingSummary& s) {
+  std::printf("frames     %d, tracked %d\n", s.frames, s.tracked);
   if (s.frames_with_truth > 0) {
     std::printf("translation mean %.2f mm, max %.2f mm\n", s.mean_t_mm, s.max_t_mm);
     std::printf("rotation   mean %.2f deg, max %.2f deg\n", s.mean_r_deg, s.max_r_deg);
     std::printf("ADD AUC    %.2f %%, ADD-S AUC %.2f %% (threshold 10 cm)\n", s.add_auc, s.adds_auc);
-  } else {
-    std::printf("no ground truth: errors not available\n");
   }
+}
+
+void print_summary(const TrackingSummary& s) {
+  std::printf("\n");
+  print_errors(s);
+  if (s.frames_with_truth == 0) std::printf("no ground truth: errors not available\n");
   std::printf("time       median %.2f ms (%.0f Hz), mean %.2f ms, single thread\n", s.median_ms, s.hz, s.mean_ms);
 }
 
@@ -223,12 +229,7 @@ void print_body_summary(const TrackedBody& body) {
                            : body.link   ? "link of " + object.joint->parent
                                          : "free; a link of " + object.joint->parent + " in the sequence";
   std::printf("\nbody       %s (%s)\n", object.name.c_str(), role.c_str());
-  std::printf("frames     %d, tracked %d\n", s.frames, s.tracked);
-  if (s.frames_with_truth > 0) {
-    std::printf("translation mean %.2f mm, max %.2f mm\n", s.mean_t_mm, s.max_t_mm);
-    std::printf("rotation   mean %.2f deg, max %.2f deg\n", s.mean_r_deg, s.max_r_deg);
-    std::printf("ADD AUC    %.2f %%, ADD-S AUC %.2f %% (threshold 10 cm)\n", s.add_auc, s.adds_auc);
-  }
+  print_errors(s);
   if (!body.joint) return;
   const std::vector<JointEvaluation::DirectionSummary> directions = body.joint->summary();
   for (std::size_t k = 0; k < directions.size(); ++k) {
@@ -282,14 +283,17 @@ void run_multi_body_track(const TrackOptions& o, const Sequence& sequence) {
     if (!o.independent) body.joint = object.joint;
     config.bodies.push_back(body);
   }
+  // Each mesh is read once: the evaluation and the tracker see the same one.
+  std::map<std::string, Mesh> meshes;
   std::vector<TrackedBody> bodies;
   for (const SequenceObject& object : objects) {
-    const Mesh mesh = load_any_mesh(object.mesh_path);
+    const Mesh& mesh = meshes.try_emplace(object.mesh_path, load_any_mesh(object.mesh_path)).first->second;
     TrackedBody body{&object, object.joint && !o.independent, TrackingEvaluation(mesh), std::nullopt};
     if (object.joint && (body.link || object.joint->size() == 1)) body.joint.emplace(*object.joint);
     bodies.push_back(std::move(body));
   }
-  std::unique_ptr<Tracker> tracker = build_tracker(config, load_any_mesh(main.mesh_path), main.name);
+  std::unique_ptr<Tracker> tracker = build_tracker(config, meshes.at(main.mesh_path), main.name,
+                                                   [&](const std::string& path, double) { return meshes.at(path); });
 
   std::cout << "sequence   " << o.sequence << " (" << sequence.layout() << ", " << sequence.size() << " frames)\n"
             << "bodies     ";

@@ -91,7 +91,8 @@ Mesh read_body_mesh(const BodyConfig& body, const MeshReader& read_mesh) {
 
 }  // namespace
 
-std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name) {
+std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
+                                       const MeshReader& read_mesh) {
   // The cameras the parameters name: the colour cues' camera, which looks for occlusions
   // in the region cue's depth camera (the texture cue's when region is off), and the depth
   // cue's camera.
@@ -108,7 +109,7 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   camera(config.region.color_camera).region = true;
   camera(config.texture.color_camera).texture = true;
   camera(config.depth.depth_camera).depth = true;
-  return build_tracker(config, mesh, body_name, cameras);
+  return build_tracker(config, mesh, body_name, cameras, nullptr, read_mesh);
 }
 
 Mesh read_mesh_file(const std::string& path, double scale) {

@@ -35,7 +35,8 @@ Mesh read_mesh_file(const std::string& path, double scale);
 /// progress output on first use. Bodies start at the identity pose and links at joint
 /// values 0: set the free bodies' reference_T_body and the joint values, then start().
 /// Errors name the body and the field (in_tree_order, validate(Joint&)).
-std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name);
+std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
+                                       const MeshReader& read_mesh = read_mesh_file);
 /// The same for a rig of cameras: each camera gets the cues it names (those of
 /// config.modalities only), all fused in one Newton step per update. The viewpoint models
 /// are the object's, shared by every camera. `renderer`: the one the tracker renders with
