@@ -124,6 +124,20 @@ PbvsResult run_pbvs(SimulatedRobot& robot, const vpHomogeneousMatrix& fixed_wMo,
   return r;
 }
 
+/// Moves the arm from q0 for 0.1 s: the frame it carries (`carried`, eMx from the end
+/// effector) follows fMe(q0 + q̇ · 0.1) eMx, and the fixed camera stays where it was.
+void check_arm_carries(SimulatedRobot& robot, const vpColVector& q0, const vpHomogeneousMatrix& eMx,
+                       std::optional<vpHomogeneousMatrix> (SimulatedRobot::*carried)() const) {
+  const vpHomogeneousMatrix wMc = robot.world_T_camera();
+  const vpColVector qdot = vec6(-0.2, 0.1, 0.3, -0.4, 0.2, 0.6);
+  robot.move(qdot, 0.1);
+  vpViper850 model;
+  vpHomogeneousMatrix fMe;
+  model.get_fMe(q0 + qdot * 0.1, fMe);
+  CHECK(poses_equal(*(robot.*carried)(), fMe * eMx, 1e-12));
+  CHECK(poses_equal(robot.world_T_camera(), wMc, 1e-15));  // fixed
+}
+
 }  // namespace
 
 TEST_CASE("make_robot builds the scenario's robot at its start", "[servo][robot]") {
@@ -304,11 +318,7 @@ TEST_CASE("Viper eye-to-hand: the held object follows fMe(q) eMo, the camera sta
   const vpHomogeneousMatrix wMc = robot->world_T_camera();
   CHECK(poses_equal(wMc.inverse() * *robot->world_T_held_object(), icgp::to_homogeneous_matrix(s.initial_cMo), 1e-12));
 
-  const vpColVector qdot = vec6(-0.2, 0.1, 0.3, -0.4, 0.2, 0.6);
-  robot->move(qdot, 0.1);
-  model.get_fMe(q0 + qdot * 0.1, fMe);
-  CHECK(poses_equal(*robot->world_T_held_object(), fMe * eMo, 1e-12));
-  CHECK(poses_equal(robot->world_T_camera(), wMc, 1e-15));  // fixed
+  check_arm_carries(*robot, q0, eMo, &SimulatedRobot::world_T_held_object);
 }
 
 TEST_CASE("Viper eye-to-hand: cVf fVe eJe qdot is the object's twist seen by the camera", "[servo][robot][viper]") {
@@ -500,11 +510,7 @@ TEST_CASE("Viper grasp: the gripper follows fMe(q) eMg, the camera and the objec
   const vpHomogeneousMatrix wMc = robot->world_T_camera();
   CHECK(poses_equal(wMc.inverse() * wMo, icgp::to_homogeneous_matrix(s.initial_cMo), 1e-12));
 
-  const vpColVector qdot = vec6(-0.2, 0.1, 0.3, -0.4, 0.2, 0.6);
-  robot->move(qdot, 0.1);
-  model.get_fMe(q0 + qdot * 0.1, fMe);
-  CHECK(poses_equal(*robot->world_T_gripper(), fMe * eMg, 1e-12));
-  CHECK(poses_equal(robot->world_T_camera(), wMc, 1e-15));  // fixed
+  check_arm_carries(*robot, q0, eMg, &SimulatedRobot::world_T_gripper);
 }
 
 TEST_CASE("Viper grasp: a robot without a gripper spec is refused", "[servo][robot][grasp]") {
