@@ -3,6 +3,7 @@
 // exponential map and Viper 850 forward kinematics, finite differences of the poses, and
 // closed PBVS loops (vpServo) built from the true camera-object pose.
 #include <catch2/catch.hpp>
+#include <functional>
 
 #include <cmath>
 #include <visp3/core/vpExponentialMap.h>
@@ -87,29 +88,27 @@ vpColVector measured_twist(const vpHomogeneousMatrix& before, const vpHomogeneou
 
 struct PbvsResult {
   int steps = 0;
-  double translation = 0.0;  // m, camera to desired camera
+  double translation = 0.0;  // m, servoed frame to its desired pose
   double rotation = 0.0;     // rad
   bool converged = false;
 };
 
-// PBVS with vpServo on the true cMo: s = (t, θu) of cdMc, s* = 0.
-PbvsResult run_pbvs(SimulatedRobot& robot, const vpHomogeneousMatrix& fixed_wMo, const vpHomogeneousMatrix& cdMo,
-                    int max_steps) {
+// PBVS with vpServo on the true pose of the servoed frame c (the camera, or a grasp's
+// gripper) to the object, cMo = `servoed_T_object()`: s = (t, θu) of cdMc, s* = 0.
+PbvsResult run_pbvs(SimulatedRobot& robot, const std::function<vpHomogeneousMatrix()>& servoed_T_object,
+                    const vpHomogeneousMatrix& cdMo, int max_steps) {
   vpServo task;
   task.setServo(robot.servo_type());
   task.setInteractionMatrixType(vpServo::CURRENT);
   task.setLambda(0.5);
   vpFeatureTranslation t(vpFeatureTranslation::cdMc);
   vpFeatureThetaU tu(vpFeatureThetaU::cdRc);
-  vpHomogeneousMatrix cdMc = cdMo * camera_T_object(robot, fixed_wMo).inverse();
-  t.buildFrom(cdMc);
-  tu.buildFrom(cdMc);
   task.addFeature(t);  // desired features default to zero
   task.addFeature(tu);
 
   PbvsResult r;
   for (r.steps = 0; r.steps <= max_steps; ++r.steps) {
-    cdMc = cdMo * camera_T_object(robot, fixed_wMo).inverse();
+    const vpHomogeneousMatrix cdMc = cdMo * servoed_T_object().inverse();
     t.buildFrom(cdMc);
     tu.buildFrom(cdMc);
     r.translation = cdMc.getTranslationVector().frobeniusNorm();
@@ -420,7 +419,7 @@ TEST_CASE("PBVS converges in closed loop with each robot", "[servo][robot][sign]
     const vpHomogeneousMatrix wMc0 = robot->world_T_camera();
     const vpHomogeneousMatrix wMo0 = world_T_object(*robot, wMo);
 
-    const PbvsResult r = run_pbvs(*robot, wMo, cdMo, 600);
+    const PbvsResult r = run_pbvs(*robot, [&] { return camera_T_object(*robot, wMo); }, cdMo, 600);
     CAPTURE(r.steps, r.translation, vpMath::deg(r.rotation));
     CHECK(r.converged);
     CHECK(r.steps > 100);  // it really had to move there, at the gain's pace
@@ -544,24 +543,7 @@ TEST_CASE("Viper grasp: PBVS on gMo brings the gripper to the desired pose, the 
   const vpHomogeneousMatrix wMo = initial_world_T_object(s, *robot);
   const vpHomogeneousMatrix wMc0 = robot->world_T_camera();
   const vpHomogeneousMatrix gdMo = icgp::to_homogeneous_matrix(s.grasp->desired_gMo);
-  vpServo task;
-  task.setServo(robot->servo_type());
-  task.setInteractionMatrixType(vpServo::CURRENT);
-  task.setLambda(0.5);
-  vpFeatureTranslation t(vpFeatureTranslation::cdMc);
-  vpFeatureThetaU tu(vpFeatureThetaU::cdRc);
-  task.addFeature(t);
-  task.addFeature(tu);
-  int steps = 0;
-  for (; steps < 600; ++steps) {
-    const vpHomogeneousMatrix gdMg = gdMo * gripper_T_object(*robot, wMo).inverse();
-    if (gdMg.getTranslationVector().frobeniusNorm() < 1e-4 && vpThetaUVector(gdMg.getRotationMatrix()).getTheta() < vpMath::rad(0.01))
-      break;
-    t.buildFrom(gdMg);
-    tu.buildFrom(gdMg);
-    robot->update_jacobians(task);
-    robot->move(task.computeControlLaw(), kDt);
-  }
+  const int steps = run_pbvs(*robot, [&] { return gripper_T_object(*robot, wMo); }, gdMo, 599).steps;
   CHECK(steps > 100);
   CHECK(steps < 600);
   CHECK(robot->joint_limit_stops() == 0);
