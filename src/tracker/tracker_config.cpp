@@ -305,9 +305,11 @@ TrackerConfig tracker_config_preset(const std::string& name) {
   return config;
 }
 
-TrackerConfig load_tracker_config(const std::string& path) {
-  const yaml::Value root = yaml::load_file(path, kWording);
-  TrackerConfig config;
+namespace {
+
+/// The keys of `root` read over `config` (a `preset` key starts again from that preset),
+/// relative mesh paths resolved against `folder`.
+TrackerConfig read_over(const yaml::Value& root, const std::filesystem::path& folder, TrackerConfig config) {
   if (root.node.IsMap() && root.node["preset"]) {
     const yaml::Value preset{root.node["preset"], root.at.child("preset")};
     const std::string name = preset.as(yaml::kNonEmptyString);
@@ -315,13 +317,34 @@ TrackerConfig load_tracker_config(const std::string& path) {
     config = tracker_config_preset(name);
   }
   read_map(root, kConfigFields, config);
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   auto resolve = [&](std::string& file) {
     if (std::filesystem::path(file).is_relative()) file = (folder / file).lexically_normal().string();
   };
-  for (std::string& region : config.regions) resolve(region);
-  for (BodyConfig& body : config.bodies) resolve(body.mesh);
+  // Only the lists this document wrote (each replaces the base's whole): the base's paths
+  // were resolved against the folder they came from.
+  const bool map = root.node.IsMap();
+  if (map && root.node["regions"])
+    for (std::string& region : config.regions) resolve(region);
+  if (map && root.node["bodies"])
+    for (BodyConfig& body : config.bodies) resolve(body.mesh);
   return config;
+}
+
+}  // namespace
+
+TrackerConfig load_tracker_config(const std::string& path) {
+  return read_over(yaml::load_file(path, kWording), std::filesystem::path(path).parent_path(), TrackerConfig{});
+}
+
+TrackerConfig read_tracker_config(const std::string& yaml_text, const std::string& source, const std::string& folder,
+                                  const TrackerConfig& base) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw yaml::Error(source + ": not valid YAML: " + e.msg);
+  }
+  return read_over(yaml::Value{root, yaml::Location{source, "", kWording}}, folder, base);
 }
 
 void validate(const TrackerConfig& config, const std::string& source) {

@@ -7,6 +7,7 @@
 #include <visp3/core/vpImageConvert.h>
 
 #include "icgp/modality/cue_kind.h"
+#include "icgp/optimizer/covariance.h"
 #include "icgp/visp/conversions.h"
 
 #include "vpMbIcgTracker_impl.h"
@@ -463,22 +464,7 @@ vpMatrix vpMbIcgTracker::getCovarianceMatrix() const {
   if (!impl_->hessian)
     throw vpTrackingException(vpTrackingException::initializationError,
                               "vpMbIcgTracker::getCovarianceMatrix: no frame has been tracked yet");
-  // Σ_θ = (−H)⁻¹ over the body-frame variation θ = [θ_r; θ_t] (T ← T exp(θ)). A body-frame
-  // twist ξ_b is the camera-frame twist ξ_c = Ad(cMo) ξ_b; ViSP orders twists (v, ω).
-  const Eigen::Matrix<double, 6, 6> information = -*impl_->hessian;
-  const Eigen::Matrix<double, 6, 6> body_covariance = information.completeOrthogonalDecomposition().pseudoInverse();
-  Eigen::Matrix<double, 6, 6> to_v_omega = Eigen::Matrix<double, 6, 6>::Zero();  // (v, ω) = P θ
-  to_v_omega.block<3, 3>(0, 3).setIdentity();
-  to_v_omega.block<3, 3>(3, 0).setIdentity();
-  const icgp::Pose cMo = icgp::to_pose(m_cMo);
-  const Eigen::Matrix3d R = cMo.rotation();
-  Eigen::Matrix<double, 6, 6> adjoint = Eigen::Matrix<double, 6, 6>::Zero();
-  adjoint.block<3, 3>(0, 0) = R;
-  adjoint.block<3, 3>(0, 3) = icgp::skew(cMo.translation()) * R;
-  adjoint.block<3, 3>(3, 3) = R;
-  const Eigen::Matrix<double, 6, 6> A = adjoint * to_v_omega;
-  const Eigen::Matrix<double, 6, 6> product = A * body_covariance * A.transpose();
-  const Eigen::Matrix<double, 6, 6> camera_covariance = 0.5 * (product + product.transpose());  // exactly symmetric
+  const Eigen::Matrix<double, 6, 6> camera_covariance = icgp::camera_twist_covariance(*impl_->hessian, icgp::to_pose(m_cMo));
   vpMatrix out(6, 6);
   for (unsigned int i = 0; i < 6; ++i)
     for (unsigned int j = 0; j < 6; ++j) out[i][j] = camera_covariance(i, j);

@@ -53,6 +53,11 @@ const std::vector<std::string>& tracker_config_presets();
 /// Reads a YAML configuration over the defaults. Unknown keys and values of the wrong type
 /// or range throw std::runtime_error naming the file and the key.
 TrackerConfig load_tracker_config(const std::string& path);
+/// Reads a configuration given as YAML text (the keys of a file) over `base`; a `preset`
+/// key starts again from that preset. Errors name `source` as they name a file
+/// ("<source>: <key>: expected …"); relative mesh paths are resolved against `folder`.
+TrackerConfig read_tracker_config(const std::string& yaml_text, const std::string& source, const std::string& folder,
+                                  const TrackerConfig& base = {});
 /// The configuration as YAML (every key, so `icgp config` can print the defaults).
 std::string to_yaml(const TrackerConfig& config);
 /// Applies a file's checks (ranges and resource bounds) to a configuration made in code;

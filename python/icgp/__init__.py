@@ -1,0 +1,26 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""icgp: the ICG+ multi-modality 6-DoF object tracker, and a closed-loop servo simulator.
+
+    import icgp
+    seq = icgp.Sequence("tests/data/teabox-blender")
+    tracker = icgp.Tracker(seq.objects[0]["model"])
+    tracker.set_pose(seq[0].truth())
+    for i in range(len(seq)):
+        frame = seq[i]
+        result = tracker.track(frame.color, frame.depth, seq.K_color, seq.K_depth, seq.depth_T_color)
+
+Tracker      the tracker on NumPy images (help(icgp.Tracker))
+Sequence     RGB-D sequences as `icgp track` reads them; make_sequence renders one
+servo        scenarios, closed-loop runs and batch trials (local or on a Dask cluster)
+Error        every error of icgp's C++ core, with the message the icgp program prints
+"""
+from ._icgp import (  # noqa: F401  (the package's public names)
+    BodyResult,
+    Error,
+    Frame,
+    Sequence,
+    Tracker,
+    TrackResult,
+    __version__,
+    models_dir,
+)

@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The parts of the extension module icgp._icgp, each registered by its own file.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+namespace icgp::python {
+
+/// The tracker: icgp.Tracker, icgp.TrackResult.
+void register_tracker(pybind11::module_& m);
+/// Sequences: icgp.Sequence, icgp.Frame, icgp.make_sequence.
+void register_sequence(pybind11::module_& m);
+/// The servo simulator: scenarios, runs and trials (icgp._icgp.servo, wrapped by icgp.servo).
+void register_servo(pybind11::module_& m);
+
+/// The models folder: $ICGP_MODELS_DIR, else the installed share/icgp/models beside the
+/// package, else the source tree's.
+std::string models_dir();
+
+}  // namespace icgp::python
