@@ -14,6 +14,9 @@ void register_tracker(pybind11::module_& m);
 void register_sequence(pybind11::module_& m);
 /// The servo simulator: scenarios, runs and trials (icgp._icgp.servo, wrapped by icgp.servo).
 void register_servo(pybind11::module_& m);
+/// Batch trials of the servo simulator: one trial's result as a picklable value, and the
+/// summaries of many (icgp._icgp.servo, used by icgp.batch).
+void register_trials(pybind11::module_& m);
 
 /// The models folder: $ICGP_MODELS_DIR, else the installed share/icgp/models beside the
 /// package, else the source tree's.

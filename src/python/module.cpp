@@ -63,4 +63,5 @@ PYBIND11_MODULE(_icgp, m) {
   icgp::python::register_tracker(m);
   icgp::python::register_sequence(m);
   icgp::python::register_servo(m);
+  icgp::python::register_trials(m);
 }
