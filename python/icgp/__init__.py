@@ -22,5 +22,6 @@ from ._icgp import (  # noqa: F401  (the package's public names)
     Tracker,
     TrackResult,
     __version__,
+    make_sequence,
     models_dir,
 )

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "icgp/base/resource_limits.h"
+#include "icgp/eval/make_sequence.h"
 #include "icgp/io/yaml_reader.h"
 
 namespace icgp::app {
@@ -24,12 +25,11 @@ CLI::Validator image_side();
 void check_image_pixels(int width, int height, const char* width_option, const char* height_option);
 
 // Ranges several commands share.
-inline constexpr yaml::Interval kFocalPx{0.0, 100000.0, true};   ///< focal length, pixels
-inline constexpr yaml::Interval kMeshScale{0.0, 1000.0, true};   ///< metres per mesh unit
+inline constexpr yaml::Interval kFocalPx = make_sequence_range::kFocal;  ///< focal length, pixels
+inline constexpr yaml::Interval kMeshScale = make_sequence_range::kScale;  ///< metres per mesh unit
 inline constexpr long long kMaxFramesRead = 1000000;  ///< --frames of a sequence read (first N frames)
-/// --frames of a sequence rendered and written (make-sequence, bench --sweep's cells): each
-/// frame is colour and depth images, about 0.6 MB at 640x480, so 100 000 frames are ~60 GB.
-inline constexpr long long kMaxFramesWritten = 100000;
+/// --frames of a sequence rendered and written (make-sequence, bench --sweep's cells).
+inline constexpr long long kMaxFramesWritten = make_sequence_range::kMaxFrames;
 inline constexpr long long kMaxRounds = 100;          ///< timing rounds of bench and compare
 
 }  // namespace icgp::app

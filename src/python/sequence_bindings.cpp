@@ -9,7 +9,10 @@
 #include <filesystem>
 
 #include "bindings.h"
+#include "icgp/base/resource_limits.h"
+#include "icgp/eval/make_sequence.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/visp_camera_xml.h"
 #include "numpy_conversions.h"
 
@@ -49,6 +52,37 @@ constexpr const char* kFrameDoc = R"doc(One instant of a sequence: every camera'
 color and depth are the first colour and depth cameras' images (BGR uint8 or grey; float32
 metres with 0 where there is no measurement); colors/depths list every camera with its
 calibration. Hand a Frame to Tracker.track_frame, or its arrays to Tracker.track.
+)doc";
+
+/// The keyword's value, checked as the program checks its option:
+/// "frames: expected an integer in [1, 100000], got 0".
+template <typename T>
+T checked(const char* keyword, const py::object& value, const yaml::Interval& range) {
+  const bool integer = std::is_integral_v<T>;
+  const std::string expected = std::string(keyword) + ": expected " + (integer ? "an integer in " : "a number in ") + range.text();
+  if (integer ? !py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value)
+              : !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) || py::isinstance<py::bool_>(value))
+    throw py::type_error(expected + ", got " + py::repr(value).cast<std::string>());
+  const double number = value.cast<double>();
+  if (!range.contains(number)) throw py::value_error(expected + ", got " + py::repr(value).cast<std::string>());
+  return static_cast<T>(number);
+}
+
+yaml::Interval integers(long long min, long long max) {
+  return {static_cast<double>(min), static_cast<double>(max)};
+}
+
+constexpr const char* kMakeSequenceDoc = R"doc(Renders an RGB-D sequence with exact ground truth and returns it opened.
+
+make_sequence(out, model=None, *, scene=None, frames=100, rate=30, seed=1, speed=1,
+              distance=0.5, width=640, height=480, focal=600, baseline=0, stereo_baseline=0,
+              spin=0, scale=1, color_noise=0, depth_noise=0, depth_dropout=0,
+              grazing_angle=90, depth_edge_holes=0, antialias=0, motion_blur=1, exposure=0.5)
+
+What `icgp make-sequence` does, with its options as keywords and the same ranges: `model`
+(a mesh or .cao, default models/textured_box) seen by a camera on a smooth random orbit, or
+the bodies of a `scene` file (scenes/*.yaml). Writes icgp's layout into `out` (an earlier
+sequence there is replaced), which Sequence and `icgp track` read.
 )doc";
 
 }  // namespace
@@ -162,6 +196,59 @@ void register_sequence(py::module_& m) {
       .def("__repr__", [](const Sequence& s) {
         return "<icgp.Sequence " + s.directory() + " (" + s.layout() + ", " + std::to_string(s.size()) + " frames)>";
       });
+
+  m.def(
+      "make_sequence",
+      [](const std::filesystem::path& out, const std::optional<std::filesystem::path>& model,
+         const std::optional<std::filesystem::path>& scene, const py::kwargs& options) {
+        namespace range = make_sequence_range;
+        MakeSequenceRequest r;
+        r.out = out.string();
+        if (scene && model) throw py::value_error("make_sequence: give a model or a scene, not both");
+        if (model) r.model = model->string();
+        else if (!scene) r.model = models_dir() + "/textured_box/textured_box.obj";
+        if (scene) r.scene = scene->string();
+        for (const auto& [key, value] : options) {
+          const std::string k = key.cast<std::string>();
+          const py::object v = py::reinterpret_borrow<py::object>(value);
+          if ((k == "scale" || k == "spin") && scene)
+            throw py::value_error(k + ": a scene gives each body its mesh, scale and motion");
+          if (k == "frames") r.writer.frame_count = checked<int>("frames", v, integers(1, range::kMaxFrames));
+          else if (k == "rate") r.writer.frame_rate = checked<double>("rate", v, range::kRate);
+          else if (k == "seed") r.writer.seed = checked<std::uint64_t>("seed", v, integers(0, std::numeric_limits<unsigned>::max()));
+          else if (k == "speed") r.writer.motion.speed = checked<double>("speed", v, range::kSpeed);
+          else if (k == "distance") r.writer.motion.distance = checked<double>("distance", v, range::kDistance);
+          else if (k == "width") r.width = checked<int>("width", v, integers(1, kMaxImageSide));
+          else if (k == "height") r.height = checked<int>("height", v, integers(1, kMaxImageSide));
+          else if (k == "focal") r.focal = checked<double>("focal", v, range::kFocal);
+          else if (k == "baseline") r.baseline = checked<double>("baseline", v, range::kBaseline);
+          else if (k == "stereo_baseline") r.stereo_baseline = checked<double>("stereo_baseline", v, range::kBaseline);
+          else if (k == "spin") r.spin = checked<double>("spin", v, range::kSpin);
+          else if (k == "scale") r.scale = checked<double>("scale", v, range::kScale);
+          else if (k == "color_noise") r.writer.noise.color_sigma = checked<double>("color_noise", v, range::kColorNoise);
+          else if (k == "depth_noise") r.writer.noise.depth_sigma_at_1m = checked<double>("depth_noise", v, range::kDepthNoise);
+          else if (k == "depth_dropout") r.writer.noise.depth_dropout = checked<double>("depth_dropout", v, range::kDepthDropout);
+          else if (k == "grazing_angle") r.writer.noise.grazing_angle_deg = checked<double>("grazing_angle", v, range::kGrazingAngle);
+          else if (k == "depth_edge_holes")
+            r.writer.noise.depth_edge_holes_px = checked<int>("depth_edge_holes", v, integers(0, range::kMaxDepthEdgeHoles));
+          else if (k == "antialias")
+            r.writer.antialias_samples = checked<int>("antialias", v, integers(0, range::kMaxAntialiasSamples));
+          else if (k == "motion_blur")
+            r.writer.motion_blur.samples = checked<int>("motion_blur", v, integers(1, range::kMaxMotionBlurSamples));
+          else if (k == "exposure") r.writer.motion_blur.exposure = checked<double>("exposure", v, range::kExposure);
+          else if (k == "progress") r.writer.progress = v.cast<bool>();
+          else throw py::type_error("make_sequence() got an unexpected keyword argument '" + k + "'");
+        }
+        if (static_cast<long long>(r.width) * r.height > kMaxImagePixels)
+          throw py::value_error("width " + std::to_string(r.width) + " x height " + std::to_string(r.height) +
+                                ": more than the " + std::to_string(kMaxImagePixels) + " pixels an image may have");
+        {
+          py::gil_scoped_release release;
+          make_sequence(r, models_dir(), [](const std::string& path, double scale) { return load_any_mesh(path, scale); });
+        }
+        return Sequence::open(r.out, visp_sequence_options());
+      },
+      py::arg("out"), py::arg("model") = py::none(), py::kw_only(), py::arg("scene") = py::none(), kMakeSequenceDoc);
 }
 
 }  // namespace icgp::python
