@@ -94,8 +94,8 @@ class PythonTracker {
     mesh_ = load_any_mesh(model_, scale_);
   }
 
-  void add_body(const std::string& name, const std::string& model, const std::optional<py::dict>& joint, double scale,
-                bool occluder) {
+  void add_body(const std::string& name, const std::filesystem::path& model, const std::optional<py::dict>& joint,
+                double scale, bool occluder) {
     if (tracker_)
       throw std::invalid_argument("add_body('" + name + "'): bodies are added before the first track(), which builds the tracker");
     BodyConfig body;
@@ -359,7 +359,7 @@ void register_tracker(py::module_& m) {
            "pose before each frame). `joint` is a dict of the keys a configuration's body entry takes for its\n"
            "joint (docs/configuration.md), e.g. {'parent': 'object', 'joint': 'revolute', 'axis': [1, 0, 0],\n"
            "'origin': {'t': [0, 0.05, 0.04], 'r_deg': [0, 0, 0]}, 'limits_deg': [0, 110]}.")
-      .def("add_occluder", [](PythonTracker& t, const std::string& name, const std::string& model, double scale) {
+      .def("add_occluder", [](PythonTracker& t, const std::string& name, const std::filesystem::path& model, double scale) {
              t.add_body(name, model, std::nullopt, scale, true);
            }, py::arg("name"), py::arg("model"), py::arg("scale") = 1.0,
            "Adds a body that hides the tracked ones but is not tracked: set its pose before each track().")
