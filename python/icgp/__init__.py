@@ -11,12 +11,14 @@
 
 Tracker      the tracker on NumPy images (help(icgp.Tracker))
 Sequence     RGB-D sequences as `icgp track` reads them; make_sequence renders one
+Evaluation   the errors and AUCs `icgp track` reports, for poses tracked here
 servo        scenarios, closed-loop runs and batch trials (local or on a Dask cluster)
 Error        every error of icgp's C++ core, with the message the icgp program prints
 """
 from ._icgp import (  # noqa: F401  (the package's public names)
     BodyResult,
     Error,
+    Evaluation,
     Frame,
     Sequence,
     Tracker,
@@ -24,4 +26,5 @@ from ._icgp import (  # noqa: F401  (the package's public names)
     __version__,
     make_sequence,
     models_dir,
+    set_num_threads,
 )

@@ -12,6 +12,8 @@ namespace icgp::python {
 void register_tracker(pybind11::module_& m);
 /// Sequences: icgp.Sequence, icgp.Frame, icgp.make_sequence.
 void register_sequence(pybind11::module_& m);
+/// Tracking errors as `icgp track` reports them: icgp.Evaluation.
+void register_evaluation(pybind11::module_& m);
 /// The servo simulator: scenarios, runs and trials (icgp._icgp.servo, wrapped by icgp.servo).
 void register_servo(pybind11::module_& m);
 /// Batch trials of the servo simulator: one trial's result as a picklable value, and the

@@ -9,6 +9,8 @@
 #include <dlfcn.h>
 #include <filesystem>
 #include <new>
+#include <omp.h>
+#include <opencv2/core/utility.hpp>
 #include <visp3/core/vpException.h>
 
 #include "bindings.h"
@@ -60,8 +62,19 @@ PYBIND11_MODULE(_icgp, m) {
   });
 
   m.def("models_dir", &icgp::python::models_dir, "The folder of icgp's models (textured_box, ...).");
+  m.def(
+      "set_num_threads",
+      [](int threads) {
+        if (threads < 1) throw py::value_error("threads: expected a positive integer, got " + std::to_string(threads));
+        // ViSP's OpenMP loops and OpenCV's pool; icgp's own code is single-threaded.
+        omp_set_num_threads(threads);
+        cv::setNumThreads(threads);
+      },
+      py::arg("threads"),
+      "Threads OpenMP (ViSP) and OpenCV may use. The icgp program tracks and times with 1, as the paper does.");
   icgp::python::register_tracker(m);
   icgp::python::register_sequence(m);
+  icgp::python::register_evaluation(m);
   icgp::python::register_servo(m);
   icgp::python::register_trials(m);
 }

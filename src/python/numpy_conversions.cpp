@@ -36,9 +36,10 @@ Eigen::MatrixXd dense_matrix(const py::handle& object, int rows, int cols, const
     throw py::value_error(std::string(argument) + ": expected shape (" + std::to_string(rows) + ", " +
                           std::to_string(cols) + "), got " + shape_text(array));
   Eigen::MatrixXd m(rows, cols);
+  const auto values = array.unchecked<2>();  // shape checked above
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
-      m(r, c) = array.at(r, c);
+      m(r, c) = values(r, c);
       if (!std::isfinite(m(r, c))) throw py::value_error(std::string(argument) + ": expected finite numbers, got " +
                                                          py::repr(py::float_(m(r, c))).cast<std::string>() + " at [" +
                                                          std::to_string(r) + ", " + std::to_string(c) + "]");

@@ -7,6 +7,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -57,33 +58,43 @@ Joint joint_from(const py::dict& keys, const std::string& body) {
   return *joint;
 }
 
-py::dict cue_dict(const Modality& modality, const ModalityQuality& q) {
-  py::dict d;
-  d["cue"] = modality.name();
-  d["camera"] = modality.camera();
-  d["score"] = q.score;
-  d["sigma"] = q.sigma;
-  d["valid_fraction"] = q.valid_fraction;
-  d["n_valid"] = q.n_valid;
-  d["abstained"] = q.abstained;
-  return d;
-}
-
-/// One frame's outcome for one body, as Python sees it.
+/// One frame's outcome for one body, as Python sees it: the C++ result and the name and
+/// camera of each of its cues (dicts are made only when Python asks for them).
 struct BodyOutcome {
-  std::string body;
-  Pose pose;
-  double quality = 0.0;
-  bool tracked = false;
-  py::list cues;
-  std::vector<double> joint_values;
+  BodyResult result;
+  std::vector<std::pair<std::string, std::string>> cue_names;  ///< (cue, camera), as result.modalities
+
+  py::list cues() const {
+    py::list cues;
+    for (std::size_t i = 0; i < result.modalities.size(); ++i) {
+      const ModalityQuality& q = result.modalities[i];
+      py::dict d;
+      d["cue"] = cue_names[i].first;
+      d["camera"] = cue_names[i].second;
+      d["score"] = q.score;
+      d["sigma"] = q.sigma;
+      d["valid_fraction"] = q.valid_fraction;
+      d["n_valid"] = q.n_valid;
+      d["abstained"] = q.abstained;
+      cues.append(d);
+    }
+    return cues;
+  }
+  /// "'teabox' quality 0.81 tracked", for the results' __repr__.
+  std::string describe() const {
+    char quality[32];
+    std::snprintf(quality, sizeof quality, "%.3f", result.quality);
+    return "'" + result.body + "' quality " + quality + (result.tracked ? " tracked" : " LOST");
+  }
 };
 
-/// What Tracker.track returns: the main body's outcome, every body's, and the time.
+/// What Tracker.track returns: every body's outcome, which is the main body's, and the time.
 struct TrackOutcome {
-  BodyOutcome main;
-  std::map<std::string, BodyOutcome> bodies;
+  std::vector<BodyOutcome> bodies;
+  std::size_t main = 0;
   double ms = 0.0;
+
+  const BodyOutcome& main_body() const { return bodies.at(main); }
 };
 
 class PythonTracker {
@@ -199,13 +210,11 @@ class PythonTracker {
     started_once_ = true;
     TrackOutcome outcome;
     outcome.ms = ms;
-    for (const BodyResult& r : results) {
-      BodyOutcome b{r.body, r.reference_T_body, r.quality, r.tracked, py::list(), r.joint_values};
-      const std::vector<const Modality*> modalities = tracker.modalities(r.body);
-      for (std::size_t i = 0; i < r.modalities.size() && i < modalities.size(); ++i)
-        b.cues.append(cue_dict(*modalities[i], r.modalities[i]));
-      if (r.body == body_) outcome.main = b;
-      outcome.bodies.emplace(r.body, std::move(b));
+    for (BodyResult& r : results) {
+      if (r.body == body_) outcome.main = outcome.bodies.size();
+      BodyOutcome& b = outcome.bodies.emplace_back();
+      for (const Modality* modality : tracker.modalities(r.body)) b.cue_names.emplace_back(modality->name(), modality->camera());
+      b.result = std::move(r);
     }
     return outcome;
   }
@@ -291,37 +300,38 @@ camera's frame (ViSP's cMo), metres.
 
 void register_tracker(py::module_& m) {
   py::class_<BodyOutcome>(m, "BodyResult", "One body's outcome of a frame (see TrackResult).")
-      .def_property_readonly("body", [](const BodyOutcome& b) { return b.body; }, "The body's name.")
-      .def_property_readonly("pose", [](const BodyOutcome& b) { return matrix(b.pose); },
+      .def_property_readonly("body", [](const BodyOutcome& b) { return b.result.body; }, "The body's name.")
+      .def_property_readonly("pose", [](const BodyOutcome& b) { return matrix(b.result.reference_T_body); },
                              "4x4 pose of the body in the colour camera's frame (cMo), metres.")
-      .def_readonly("quality", &BodyOutcome::quality,
-                    "Mean score of the cues that measured something, in [0, 1].")
-      .def_readonly("tracked", &BodyOutcome::tracked, "False when the quality fell below the configured threshold.")
-      .def_readonly("cues", &BodyOutcome::cues,
-                    "Per-cue diagnostics, one dict per cue: cue, camera, score, sigma (px; depth: m at 1 m), "
-                    "valid_fraction, n_valid, abstained (nothing to measure).")
-      .def_readonly("joint_values", &BodyOutcome::joint_values,
-                    "A link's joint values (radians, metres) in its joint's order; empty for a free body.")
-      .def("__repr__", [](const BodyOutcome& b) {
-        return "<icgp.BodyResult '" + b.body + "' quality " + std::to_string(b.quality) +
-               (b.tracked ? " tracked>" : " LOST>");
-      });
+      .def_property_readonly("quality", [](const BodyOutcome& b) { return b.result.quality; },
+                             "Mean score of the cues that measured something, in [0, 1].")
+      .def_property_readonly("tracked", [](const BodyOutcome& b) { return b.result.tracked; },
+                             "False when the quality fell below the configured threshold (lost).")
+      .def_property_readonly("cues", &BodyOutcome::cues,
+                             "Per-cue diagnostics, one dict per cue: cue, camera, score, sigma (px; depth: m at 1 m), "
+                             "valid_fraction, n_valid, abstained (nothing to measure).")
+      .def_property_readonly("joint_values", [](const BodyOutcome& b) { return b.result.joint_values; },
+                             "A link's joint values (radians, metres) in its joint's order; empty for a free body.")
+      .def("__repr__", [](const BodyOutcome& b) { return "<icgp.BodyResult " + b.describe() + ">"; });
 
-  py::class_<TrackOutcome>(m, "TrackResult", "What Tracker.track returns for one frame.")
-      .def_property_readonly("pose", [](const TrackOutcome& t) { return matrix(t.main.pose); },
+  py::class_<TrackOutcome>(m, "TrackResult", "What Tracker.track returns for one frame: the main body's outcome.")
+      .def_property_readonly("pose", [](const TrackOutcome& t) { return matrix(t.main_body().result.reference_T_body); },
                              "4x4 pose of the main body in the colour camera's frame (cMo), metres.")
-      .def_property_readonly("quality", [](const TrackOutcome& t) { return t.main.quality; },
+      .def_property_readonly("quality", [](const TrackOutcome& t) { return t.main_body().result.quality; },
                              "The main body's quality: the mean score of its cues that measured something.")
-      .def_property_readonly("tracked", [](const TrackOutcome& t) { return t.main.tracked; },
+      .def_property_readonly("tracked", [](const TrackOutcome& t) { return t.main_body().result.tracked; },
                              "False when the main body's quality fell below the threshold (lost).")
-      .def_property_readonly("cues", [](const TrackOutcome& t) { return t.main.cues; },
+      .def_property_readonly("cues", [](const TrackOutcome& t) { return t.main_body().cues(); },
                              "The main body's per-cue diagnostics (see BodyResult.cues).")
-      .def_property_readonly("bodies", [](const TrackOutcome& t) { return t.bodies; },
+      .def_property_readonly("bodies",
+                             [](const TrackOutcome& t) {
+                               py::dict bodies;
+                               for (const BodyOutcome& b : t.bodies) bodies[py::str(b.result.body)] = py::cast(b);
+                               return bodies;
+                             },
                              "Every tracked body's BodyResult, by name.")
       .def_readonly("ms", &TrackOutcome::ms, "Milliseconds the C++ tracker spent on the frame.")
-      .def("__repr__", [](const TrackOutcome& t) {
-        return "<icgp.TrackResult quality " + std::to_string(t.main.quality) + (t.main.tracked ? " tracked>" : " LOST>");
-      });
+      .def("__repr__", [](const TrackOutcome& t) { return "<icgp.TrackResult " + t.main_body().describe() + ">"; });
 
   py::class_<PythonTracker>(m, "Tracker", kTrackerDoc)
       .def(py::init([](const std::filesystem::path& model, const py::object& config, const std::string& body, double scale,
