@@ -15,7 +15,22 @@ Evaluation   the errors and AUCs `icgp track` reports, for poses tracked here
 servo        scenarios, closed-loop runs and batch trials (local or on a Dask cluster)
 Error        every error of icgp's C++ core, with the message the icgp program prints
 """
-from ._icgp import (  # noqa: F401  (the package's public names)
+import sys
+
+try:
+    import numpy  # noqa: F401  (every image and pose is a NumPy array)
+except ImportError as error:
+    raise ImportError(f"icgp needs NumPy, which {sys.executable} does not have: run icgp with the Python it "
+                      "was built for (by default Debian's /usr/bin/python3, with python3-numpy)") from error
+
+try:
+    from . import _icgp
+except ImportError as error:
+    raise ImportError(f"icgp's extension module cannot be loaded by {sys.executable} (Python "
+                      f"{sys.version.split()[0]}): {error}. It is built for one interpreter (CMake's "
+                      "Python3_EXECUTABLE, by default Debian's /usr/bin/python3)") from error
+
+from ._icgp import (  # noqa: E402,F401  (the package's public names)
     BodyResult,
     Error,
     Evaluation,
