@@ -101,9 +101,7 @@ class PythonTracker {
  public:
   PythonTracker(const std::string& model, const py::object& config, const std::string& body, double scale,
                 const py::kwargs& settings)
-      : model_(model), config_(tracker_config(config, settings)), body_(body), scale_(scale) {
-    mesh_ = load_any_mesh(model_, scale_);
-  }
+      : model_(model), config_(tracker_config(config, settings)), body_(body), mesh_(load_any_mesh(model, scale)) {}
 
   void add_body(const std::string& name, const std::filesystem::path& model, const std::optional<py::dict>& joint,
                 double scale, bool occluder) {
@@ -143,12 +141,14 @@ class PythonTracker {
     else
       pending_poses_[name] = reference_T_body;
     if (name == body_) has_initial_pose_ = true;
-    needs_start_ = true;
+    // An occluder's pose is set every frame and restarts nothing; a tracked body's restarts
+    // the cues there.
+    if (!(config && config->occluder)) needs_start_ = true;
   }
 
   py::array_t<double> pose(const std::optional<std::string>& body) {
     const std::string name = body.value_or(body_);
-    body_config_or_main(name);
+    require_body(name);
     if (tracker_) return matrix(tracker_->body(name).reference_T_body);
     const auto it = pending_poses_.find(name);
     return matrix(it == pending_poses_.end() ? Pose() : it->second);
@@ -163,7 +163,7 @@ class PythonTracker {
   }
 
   std::vector<double> joint_values(const std::string& body) {
-    body_config_or_main(body);
+    require_body(body);
     return built().joint_values(body);
   }
 
@@ -221,7 +221,7 @@ class PythonTracker {
 
   py::array_t<double> covariance(const std::optional<std::string>& body) {
     const std::string name = body.value_or(body_);
-    body_config_or_main(name);
+    require_body(name);
     if (!started_once_) throw std::invalid_argument("covariance: no frame has been tracked yet");
     const Mat66 covariance = camera_twist_covariance(tracker_->last_hessian(name), tracker_->body(name).reference_T_body);
     py::array_t<double> out({6, 6});
@@ -251,18 +251,19 @@ class PythonTracker {
     return *tracker_;
   }
 
+  /// The added body named `name`; null for the main body.
   const BodyConfig* body_config(const std::string& name) const {
     for (const BodyConfig& b : config_.bodies)
       if (b.name == name) return &b;
     if (name == body_) return nullptr;
     throw std::invalid_argument("no body named '" + name + "' (the bodies are " + yaml::join(body_names()) + ")");
   }
-  void body_config_or_main(const std::string& name) const { body_config(name); }
+  /// Throws naming the bodies when there is none named `name`.
+  void require_body(const std::string& name) const { body_config(name); }
 
   std::string model_;
   TrackerConfig config_;
   std::string body_;
-  double scale_;
   Mesh mesh_;
   std::unique_ptr<Tracker> tracker_;
   std::map<std::string, Pose> pending_poses_;  ///< set before the tracker was built

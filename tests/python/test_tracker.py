@@ -174,3 +174,40 @@ def test_a_bad_configuration_gets_the_program_s_message(icgp_program, tmp_path):
 def test_a_missing_model_names_the_file():
     with pytest.raises(icgp.Error, match="/no/such/model.obj"):
         icgp.Tracker("/no/such/model.obj")
+
+
+def test_an_occluder_hides_what_its_pose_puts_in_front(tmp_path):
+    # The mug crosses in front of the box. Tracked with the mug as an occluder at its true
+    # pose every frame, the box's cues leave out what the mug hides: the run differs from one
+    # without it, and is the one a configuration's occluder gives. Far away, it hides nothing.
+    sequence = icgp.make_sequence(tmp_path / "crossing", scene=SOURCE_DIR / "scenes" / "crossing.yaml", frames=50,
+                                  width=320, height=240, focal=300, progress=False)
+    box = SOURCE_DIR / "models" / "textured_box" / "textured_box.obj"
+    mug = SOURCE_DIR / "models" / "textureless_mug" / "textureless_mug.obj"
+    far = np.eye(4)
+    far[:3, 3] = [5.0, 5.0, 5.0]
+
+    def run(tracker, mug_pose):
+        tracker.set_pose(sequence[0].truth("box"))
+        poses = []
+        for i in range(len(sequence)):
+            frame = sequence[i]
+            if mug_pose:
+                tracker.set_pose(mug_pose(frame), body="mug")
+                np.testing.assert_array_equal(tracker.pose("mug"), mug_pose(frame))
+            result = tracker.track_frame(frame)
+            assert list(result.bodies) == ["box"]  # an occluder is not tracked
+            poses.append(result.pose)
+        return np.array(poses)
+
+    def with_occluder():
+        tracker = icgp.Tracker(box, COARSE, body="box")
+        tracker.add_occluder("mug", mug)
+        return tracker
+
+    alone = run(icgp.Tracker(box, COARSE, body="box"), None)
+    np.testing.assert_array_equal(run(with_occluder(), lambda frame: far), alone)
+    in_front = run(with_occluder(), lambda frame: frame.truth("mug"))
+    assert np.abs(in_front - alone).max() > 1e-6
+    configured = icgp.Tracker(box, COARSE, body="box", bodies=[{"name": "mug", "mesh": str(mug), "role": "occluder"}])
+    np.testing.assert_array_equal(run(configured, lambda frame: frame.truth("mug")), in_front)
