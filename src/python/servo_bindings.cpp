@@ -64,7 +64,7 @@ std::optional<TrackerKind> tracker_kind(const py::object& tracker) {
 }
 
 /// An integer argument in [0, max], or nullopt for None. bool is refused: True is no seed.
-std::optional<long long> count(const py::object& value, const char* argument, long long max, const char* none) {
+std::optional<long long> integer_or_none(const py::object& value, const char* argument, long long max, const char* none) {
   if (value.is_none()) return std::nullopt;
   if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
     const py::int_ number = value;
@@ -164,10 +164,10 @@ py::dict run(const Scenario& scenario, const py::object& tracker, const py::obje
              const py::object& trial_arg, const py::object& on_step_arg, const py::object& control_arg, bool progress) {
   Scenario s = scenario;
   if (const std::optional<TrackerKind> kind = tracker_kind(tracker)) s.tracker.kind = *kind;
-  if (const auto seed = count(seed_arg, "seed", std::numeric_limits<unsigned>::max(), "the scenario's"))
+  if (const auto seed = integer_or_none(seed_arg, "seed", std::numeric_limits<unsigned>::max(), "the scenario's"))
     s.seed = static_cast<unsigned>(*seed);
   const std::optional<long long> trial =
-      count(trial_arg, "trial", std::numeric_limits<int>::max(), "the scenario's own start");
+      integer_or_none(trial_arg, "trial", std::numeric_limits<int>::max(), "the scenario's own start");
   const std::optional<py::function> on_step = callback(on_step_arg, "on_step");
   const std::optional<py::function> control = callback(control_arg, "control");
 
