@@ -5,7 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "icgp/base/stop_request.h"
 #include "icgp/eval/metrics.h"
@@ -73,6 +76,25 @@ vpHomogeneousMatrix servoed_pose(const vpHomogeneousMatrix& cMo, const std::opti
   return cMg ? cMg->inverse() * cMo : cMo;
 }
 
+/// What the values of a velocity for `robot` are (velocity_size), for error messages.
+std::string velocity_meaning(RobotKind robot) {
+  if (robot == RobotKind::kFreeFlyingCamera) return "the camera twist (v, w) in the camera frame, m/s and rad/s";
+  return "the Viper 850's joint velocities, rad/s";
+}
+
+/// options.control_law's velocity at a step, checked: the size the robot takes, finite.
+vpColVector custom_velocity(const ControlLaw& law, const ControlState& state) {
+  const vpColVector velocity = law(state);
+  if (velocity.size() != state.velocity_size)
+    throw std::invalid_argument("control law: expected " + std::to_string(state.velocity_size) + " values (" +
+                                velocity_meaning(state.robot) + "), got " + std::to_string(velocity.size()));
+  for (unsigned i = 0; i < velocity.size(); ++i)
+    if (!std::isfinite(velocity[i]))
+      throw std::invalid_argument("control law: expected finite numbers, got " + std::to_string(velocity[i]) +
+                                  " at index " + std::to_string(i) + " (at t = " + std::to_string(state.time) + " s)");
+  return velocity;
+}
+
 void summarise_tracking(ServoResult& result) {
   std::vector<double> ms;
   double sum_t = 0.0, sum_r = 0.0;
@@ -91,6 +113,10 @@ void summarise_tracking(ServoResult& result) {
 
 }  // namespace
 
+unsigned velocity_size(RobotKind) {
+  return 6;  // a camera twist, or the Viper 850's 6 joints
+}
+
 ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) {
   check_run_length(original);
   Scenario scenario = original;
@@ -106,7 +132,11 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   RgbdSimulator simulator(scenario, robot->world_T_camera(), initial_world_T_object(scenario, *robot), options.seed);
   std::unique_ptr<PoseEstimator> estimator =
       options.make_estimator ? options.make_estimator(simulator) : make_pose_estimator(scenario.tracker, scenario, simulator);
-  ServoController controller(scenario.control, desired, bounding_box_corners(scenario.object.model), *robot);
+  // The scenario's law, unless one is given in code.
+  std::unique_ptr<ServoController> controller;
+  if (!options.control_law)
+    controller = std::make_unique<ServoController>(scenario.control, desired,
+                                                   bounding_box_corners(scenario.object.model), *robot);
   // A tracker that follows the object alone gets the gripper from the arm's kinematics and
   // the camera's exact extrinsics: cMg = cMw wMe(q) eMg.
   const auto kinematic_cMg = [&]() -> std::optional<vpHomogeneousMatrix> {
@@ -171,12 +201,16 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     step.lost = estimate.lost;
     if (estimate.lost) {
       // Safety stop: never move on a pose the tracker itself does not trust.
-      velocity = vpColVector(6, 0.0);  // every robot here takes 6 values: a twist or 6 joints
+      velocity = vpColVector(velocity_size(scenario.robot), 0.0);
       step.safety_stop = true;
       if (!stopped) ++result.safety_stops;
+    } else if (controller) {
+      velocity = controller->compute(servoed_estimate, *robot);
+      step.servo_error_norm = controller->error().frobeniusNorm();
     } else {
-      velocity = controller.compute(servoed_estimate, *robot);
-      step.servo_error_norm = controller.error().frobeniusNorm();
+      velocity = custom_velocity(options.control_law, {step.time, servoed_estimate, desired, scenario.robot,
+                                                       velocity_size(scenario.robot)});
+      step.servo_error_norm = std::numeric_limits<double>::quiet_NaN();  // no features s
     }
     stopped = estimate.lost;
     step.velocity = robot->move(velocity, dt);

@@ -1,16 +1,18 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The closed loop with rendering, tracking and ViSP's control laws: PBVS and IBVS converge
 // with icgp in the loop (checked against the ground truth), and a tracker that reports lost
-// stops the robot within the step.
+// stops the robot within the step. A control law given in code replaces vpServo's.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>
+#include <visp3/core/vpThetaUVector.h>
 
 #include "icgp/base/stop_request.h"
 #include "icgp/servo/scenario.h"
 #include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_controller.h"
 #include "icgp/servo/servo_run.h"
+#include "icgp/visp/conversions.h"
 #include "../unit/test_temp_dir.h"
 
 using namespace icgp::servo;
@@ -69,6 +71,30 @@ class FailingTracker : public PoseEstimator {
  private:
   int first_lost_, count_, steps_ = 0;
 };
+
+/// tests/servo/data/small_pbvs.yaml with the oracle tracker and a constant PBVS gain `gain`.
+Scenario small_pbvs_oracle(double gain) {
+  Scenario scenario = load_scenario(ICGP_TEST_DATA_DIR "/../servo/data/small_pbvs.yaml", ICGP_MODELS_DIR);
+  scenario.tracker.kind = TrackerKind::kOracle;
+  scenario.control.gain.at_zero = scenario.control.gain.at_infinity = gain;
+  return scenario;
+}
+
+/// PBVS written out for the features vpServo's law uses, s = (t, θu) of cdMc = cdMo cMo^-1
+/// with s* = 0. Their interaction matrix is L = [[R, 0], [0, L_θu]] (R the rotation of
+/// cdMc), and L_θu θu = θu, so the camera twist that makes ds/dt = -λ s is
+/// v = -λ R^T t, ω = -λ θu.
+vpColVector hand_written_pbvs(const ControlState& state, double gain) {
+  const vpHomogeneousMatrix cdMc = state.desired * state.pose.inverse();
+  const vpColVector v = -gain * (cdMc.getRotationMatrix().t() * vpColVector(cdMc.getTranslationVector()));
+  const vpThetaUVector tu(cdMc.getRotationMatrix());
+  vpColVector twist(6);
+  for (unsigned i = 0; i < 3; ++i) {
+    twist[i] = v[i];
+    twist[3 + i] = -gain * tu[i];
+  }
+  return twist;
+}
 
 /// Clears the process-wide stop request when a test ends, however it ends, so that it does
 /// not stop the tests after it.
@@ -205,5 +231,78 @@ TEST_CASE("servo: a batch stopped early keeps only the trials every tracker fini
     REQUIRE(batch.runs.size() == 1);
     REQUIRE(batch.runs[0].size() == 1);
     CHECK_FALSE(batch.runs[0][0].interrupted);
+  }
+}
+
+TEST_CASE("servo: a PBVS law given in code converges, as vpServo's with the same gain") {
+  constexpr double kGain = 1.5;
+  const Scenario scenario = small_pbvs_oracle(kGain);
+  ServoRunOptions options = quiet();
+  std::vector<ControlState> states;
+  options.control_law = [&states](const ControlState& state) {
+    states.push_back(state);
+    return hand_written_pbvs(state, kGain);
+  };
+  const ServoResult custom = run_servo(scenario, options);
+  check_converged(custom, 0.5e-3, 0.05 * kDegree);
+
+  // Called once per step, told the step's time, the free-flying camera's 6 values, and the
+  // desired pose of the scenario; with the oracle the estimated pose is the true one.
+  REQUIRE(states.size() == custom.steps.size());
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    INFO("step " << k);
+    CHECK(states[k].time == custom.steps[k].time);
+    CHECK(states[k].robot == RobotKind::kFreeFlyingCamera);
+    CHECK(states[k].velocity_size == 6);
+    const PoseError to_desired = pose_error(states[k].desired, icgp::to_homogeneous_matrix(scenario.desired_cMo));
+    CHECK((to_desired.translation == 0.0 && to_desired.rotation == 0.0));
+    CHECK(pose_error(states[k].pose, custom.steps[k].cMo_true).translation < 1e-12);
+    CHECK(std::isnan(custom.steps[k].servo_error_norm));  // no features s
+  }
+
+  // vpServo's PBVS with the same constant gain commands the same velocities: the same run.
+  const ServoResult visp = run_servo(scenario, quiet());
+  REQUIRE(visp.steps.size() == custom.steps.size());
+  for (std::size_t k = 0; k < visp.steps.size(); ++k) {
+    INFO("step " << k);
+    CHECK((visp.steps[k].velocity - custom.steps[k].velocity).frobeniusNorm() < 1e-9);
+  }
+  // Saturated as vpServo's output is: far from the goal, the first step moves slower than
+  // the law commands, in the same direction (one factor for the whole twist).
+  const vpColVector commanded = hand_written_pbvs(states.front(), kGain);
+  const vpColVector& applied = custom.steps.front().velocity;
+  const double factor = applied.frobeniusNorm() / commanded.frobeniusNorm();
+  CHECK(factor < 0.9);
+  CHECK((applied - factor * commanded).frobeniusNorm() < 1e-12);
+}
+
+TEST_CASE("servo: a law given in code is not called at a safety stop, and a wrong size is refused") {
+  ServoRunOptions options = quiet();
+  SECTION("the robot stays still while the tracker is lost, whatever the law") {
+    static constexpr int kFirstLost = 10, kLostSteps = 5;
+    options.make_estimator = [](const RgbdSimulator&) -> std::unique_ptr<PoseEstimator> {
+      return std::make_unique<FailingTracker>(kFirstLost, kLostSteps);
+    };
+    std::size_t calls = 0;
+    options.control_law = [&calls](const ControlState& state) {
+      ++calls;
+      return hand_written_pbvs(state, 1.5);
+    };
+    const ServoResult result = run_servo(small_pbvs_oracle(1.5), options);
+    CHECK(result.converged);
+    CHECK(calls == result.steps.size() - kLostSteps);
+    for (int k = kFirstLost; k < kFirstLost + kLostSteps; ++k) CHECK(result.steps[k].velocity.frobeniusNorm() == 0.0);
+  }
+  SECTION("5 values for the free-flying camera's 6") {
+    options.control_law = [](const ControlState&) { return vpColVector(5, 0.0); };
+    CHECK_THROWS_AS(run_servo(small_pbvs_oracle(1.5), options), std::invalid_argument);
+    CHECK_THROWS_WITH(run_servo(small_pbvs_oracle(1.5), options),
+                      "control law: expected 6 values (the camera twist (v, w) in the camera frame, m/s and rad/s), "
+                      "got 5");
+  }
+  SECTION("a value that is not finite") {
+    options.control_law = [](const ControlState&) { return vpColVector(6, std::nan("")); };
+    CHECK_THROWS_WITH(run_servo(small_pbvs_oracle(1.5), options),
+                      Catch::Matchers::StartsWith("control law: expected finite numbers, got nan at index 0"));
   }
 }

@@ -24,7 +24,10 @@ struct ServoStep {
   double servo_t = 0.0, servo_r = 0.0;  ///< true servoed pose to the desired pose
   double track_t = 0.0, track_r = 0.0;  ///< estimated servoed pose to the true one
   vpColVector velocity;               ///< applied: camera twist (v, ω) or joint velocities
-  double servo_error_norm = 0.0;      ///< |s - s*| of the control law
+  /// |s - s*| of the scenario's control law (vpServo); NaN when a control law given in code
+  /// (ServoRunOptions::control_law) computed the velocity, as it has no features s; 0 at a
+  /// safety stop, where no law runs.
+  double servo_error_norm = 0.0;
   bool lost = false;                  ///< the tracker reported lost
   bool safety_stop = false;           ///< the commanded velocity was zeroed
   bool dropped = false;               ///< the sensor lost this frame
@@ -53,6 +56,32 @@ struct ServoResult {
   std::vector<ServoStep> steps;
 };
 
+/// What a control law given in code (ServoRunOptions::control_law) is told at a step.
+struct ControlState {
+  double time = 0.0;  ///< simulated seconds at the step's capture
+  /// The servoed pose as the tracker estimates it: cMo (the object in the camera frame), or
+  /// in a grasp gMo (the object in the gripper frame), metres.
+  vpHomogeneousMatrix pose;
+  vpHomogeneousMatrix desired;  ///< where the law must bring `pose`: desired_cMo, or desired_gMo
+  RobotKind robot = RobotKind::kFreeFlyingCamera;
+  /// How many values the law returns (velocity_size(robot)).
+  unsigned velocity_size = 6;
+};
+
+/// A control law given in code: the velocity the robot takes (see velocity_size), from the
+/// step's state. It replaces the scenario's vpServo law at every step where the tracker did
+/// not report lost; the robot saturates its output as it does vpServo's.
+using ControlLaw = std::function<vpColVector(const ControlState&)>;
+
+/// The number of velocity values `robot` takes, the same as vpServo's output for it:
+/// * free-flying camera: 6, the camera twist (v, ω) in the current camera frame (m/s,
+///   rad/s), applied as wMc <- wMc exp([v, ω] dt); scaled down uniformly when |v| or |ω|
+///   exceeds control.max_linear_velocity or max_angular_velocity;
+/// * Viper 850 (eye-in-hand, eye-to-hand, grasp): 6, the joint velocities q̇1..q̇6 (rad/s),
+///   scaled down uniformly when one exceeds control.max_joint_velocity; a joint stops at
+///   its limit.
+unsigned velocity_size(RobotKind robot);
+
 struct ServoRunOptions {
   /// Moves the scenario's start (batch trials): the run starts at start_offset * initial_cMo,
   /// or in a grasp at start_offset * start_gMo (the camera and the object stay, the gripper
@@ -64,17 +93,23 @@ struct ServoRunOptions {
   std::function<void(const RgbdCapture&, const ServoStep&)> on_step;
   /// Replaces the scenario's tracker (tests: a tracker that fails on purpose).
   std::function<std::unique_ptr<PoseEstimator>(const RgbdSimulator&)> make_estimator;
+  /// Replaces the scenario's control law (empty: the scenario's vpServo law). It is not
+  /// called at a safety stop: the velocity is zero then, whatever the law. A velocity of
+  /// another size than velocity_size(robot), or not finite, ends the run with
+  /// std::invalid_argument.
+  ControlLaw control_law;
 };
 
 /// Runs `scenario` to convergence or to its time limit: each step captures the RGB-D
-/// frame at the robot's pose, tracks it, computes the control law from the estimated pose
-/// and moves the robot for one frame period. When the tracker reports lost, the commanded
+/// frame at the robot's pose, tracks it, computes the control law (the scenario's, or
+/// options.control_law) from the estimated pose and moves the robot for one frame period. When the tracker reports lost, the commanded
 /// velocity is zero (safety stop) and the tracker restarts at the last pose it did not
 /// report lost, until it tracks again. The run converges when the servo
 /// error as the tracker estimates it stays within the scenario's thresholds for its settle
 /// time, after any target motion has ended. A stop request (icgp::stop_requested()) ends the
 /// run after the current step, marked interrupted. Throws ScenarioError when the scenario's
-/// run length is out of bounds (check_run_length).
+/// run length is out of bounds (check_run_length). Exceptions of options.on_step and
+/// options.control_law end the run and go on to the caller as they were thrown.
 ServoResult run_servo(const Scenario& scenario, const ServoRunOptions& options = {});
 
 /// The start offset of trial `trial` of a batch seeded with `seed`: a translation and a
