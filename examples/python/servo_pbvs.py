@@ -8,7 +8,9 @@ simulator, and the scenario's own vpServo law on the same seed for comparison.
 Without a scenario it runs scenarios/default.yaml (a free-flying camera, icgp tracking).
 The law drives s = (t, θu) of cdMc, the current camera in the desired camera's frame, to
 zero: with R and t the rotation and translation of cdMc, the camera twist v = -λ Rᵀ t,
-ω = -λ θu makes ds/dt = -λ s, so the camera moves along a straight line.
+ω = -λ θu makes ds/dt = -λ s, so the camera moves along a straight line. On a Viper 850
+carrying the camera (arm_eye_in_hand.yaml) or a gripper (grasp_approach.yaml, where the
+law drives the gripper's pose to the object), the joints get pinv(J) times that twist.
 """
 import sys
 from pathlib import Path
@@ -30,10 +32,13 @@ def theta_u(R):
 
 
 def pbvs(state):
-    """The camera twist (vx, vy, vz, wx, wy, wz), camera frame, m/s and rad/s."""
-    cdMc = state["desired"] @ np.linalg.inv(state["pose"])  # pose: the estimated cMo
+    """The velocity the robot takes: the camera's twist (vx, vy, vz, wx, wy, wz) in its own
+    frame, m/s and rad/s, through the robot's Jacobian (the identity for a free-flying camera;
+    an arm's joint velocities otherwise)."""
+    cdMc = state["desired"] @ np.linalg.inv(state["pose"])  # pose: the estimated cMo (gMo)
     R, t = cdMc[:3, :3], cdMc[:3, 3]
-    return np.concatenate([-GAIN * R.T @ t, -GAIN * theta_u(R)])
+    twist = np.concatenate([-GAIN * R.T @ t, -GAIN * theta_u(R)])
+    return np.linalg.pinv(state["jacobian"]) @ twist
 
 
 def report(label, run):
@@ -46,8 +51,8 @@ def report(label, run):
 def main():
     default = Path(icgp.models_dir()).parent / "scenarios" / "default.yaml"
     scenario = icgp.servo.load_scenario(sys.argv[1] if len(sys.argv) > 1 else default)
-    if scenario.robot != "free_flying":
-        sys.exit(f"{scenario.file}: this law moves a free-flying camera; the robot is {scenario.robot}")
+    if scenario.robot == "viper850_eye_to_hand":
+        sys.exit(f"{scenario.file}: this law moves the camera or the gripper; eye-to-hand, the arm moves the object")
     print(scenario)
     python = icgp.servo.run(scenario, control=pbvs)
     visp = icgp.servo.run(scenario)  # the scenario's law, same seed: same noise

@@ -157,6 +157,10 @@ py::dict state_dict(const servo::ControlState& state) {
   d["desired"] = matrix_of(state.desired);
   d["robot"] = robot_name(state.robot);
   d["velocity_size"] = state.velocity_size;
+  py::array_t<double> jacobian({state.jacobian.getRows(), state.jacobian.getCols()});
+  for (unsigned r = 0; r < state.jacobian.getRows(); ++r)
+    for (unsigned c = 0; c < state.jacobian.getCols(); ++c) jacobian.mutable_at(r, c) = state.jacobian[r][c];
+  d["jacobian"] = jacobian;
   return d;
 }
 
@@ -242,6 +246,12 @@ control   a control law in place of the scenario's vpServo law: control(state) -
             desired        4x4 where `pose` must go (the scenario's desired_cMo / desired_gMo)
             robot          the scenario's robot: 'free_flying', 'viper850_eye_in_hand', ...
             velocity_size  how many values to return: 6
+            jacobian       6 x velocity_size: the twist (v, w) the returned velocity gives the
+                           frame the law drives: identity for 'free_flying'; for a Viper 850
+                           cVe.eJe (eye-in-hand: the camera's twist), gVe.eJe (grasp: the
+                           gripper's) or cVf.fVe.eJe (eye-to-hand: the end effector's, in
+                           the camera frame). A law that computes a twist returns
+                           pinv(jacobian) @ twist.
           It returns a sequence of floats (a list, a NumPy array): for 'free_flying' the
           camera twist (vx, vy, vz, wx, wy, wz) in the current camera frame, m/s and rad/s;
           for the Viper 850 robots the joint velocities q1'..q6', rad/s. The robot saturates

@@ -95,6 +95,28 @@ vpColVector custom_velocity(const ControlLaw& law, const ControlState& state) {
   return velocity;
 }
 
+/// ControlState::jacobian of `robot` at its current configuration: the product of the
+/// Jacobians vpServo is given for its servo type.
+vpMatrix robot_jacobian(const SimulatedRobot& robot) {
+  vpServo task;
+  task.setServo(robot.servo_type());
+  robot.update_jacobians(task);
+  switch (robot.servo_type()) {
+    case vpServo::EYEINHAND_CAMERA: {
+      vpMatrix identity;
+      identity.eye(6);
+      return identity;
+    }
+    case vpServo::EYEINHAND_L_cVe_eJe:
+      return vpMatrix(task.get_cVe()) * task.get_eJe();
+    case vpServo::EYETOHAND_L_cVf_fVe_eJe:
+      return vpMatrix(task.get_cVf()) * vpMatrix(task.get_fVe()) * task.get_eJe();
+    default:
+      throw std::logic_error("robot_jacobian: a robot controlled with vpServo type " +
+                             std::to_string(static_cast<int>(robot.servo_type())));
+  }
+}
+
 void summarise_tracking(ServoResult& result) {
   std::vector<double> ms;
   double sum_t = 0.0, sum_r = 0.0;
@@ -209,7 +231,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
       step.servo_error_norm = controller->error().frobeniusNorm();
     } else {
       velocity = custom_velocity(options.control_law, {step.time, servoed_estimate, desired, scenario.robot,
-                                                       velocity_size(scenario.robot)});
+                                                       velocity_size(scenario.robot), robot_jacobian(*robot)});
       step.servo_error_norm = std::numeric_limits<double>::quiet_NaN();  // no features s
     }
     stopped = estimate.lost;

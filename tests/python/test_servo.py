@@ -131,12 +131,32 @@ def test_a_control_law_in_python_converges(scenario):
     for state, step in zip(states, result["steps"]):
         assert state["time"] == step["time"]
         assert (state["robot"], state["velocity_size"]) == ("free_flying", 6)
+        np.testing.assert_array_equal(state["jacobian"], np.eye(6))  # the camera's own twist
         np.testing.assert_array_equal(state["desired"], scenario.desired_cMo)
         np.testing.assert_allclose(state["pose"], step["cMo_true"], atol=1e-12)  # the oracle's
         assert math.isnan(step["servo_error_norm"])  # no vpServo features
     # Applied as commanded once within the robot's limits (0.1 m/s, 0.5 rad/s by default).
     last = result["steps"][-1]
     np.testing.assert_allclose(last["velocity"], pbvs(states[-1]), atol=1e-12)
+
+
+def test_a_law_in_python_drives_an_arm_through_its_jacobian(tmp_path):
+    # The eye-in-hand Viper 850 at the small scenario's size and start, with the oracle.
+    arm = tmp_path / "arm.yaml"
+    arm.write_text(SMALL.read_text().replace("object: {model: textured_box}",
+                                             "object: {model: textured_box}\nrobot: viper850_eye_in_hand")
+                   .replace("../../configs/coarse_models.yaml", str(SOURCE / "tests" / "configs" / "coarse_models.yaml")))
+    jacobians = []
+
+    def law(state):
+        jacobians.append(state["jacobian"])
+        return np.linalg.pinv(state["jacobian"]) @ pbvs(state)
+
+    result = icgp.servo.run(icgp.servo.load_scenario(arm), "oracle", control=law)
+    assert result["succeeded"], (result["final_t_mm"], result["final_r_deg"])
+    # cVe eJe: full rank away from singularities, and changing as the joints move.
+    assert jacobians[0].shape == (6, 6) and np.linalg.matrix_rank(jacobians[0]) == 6
+    assert np.abs(jacobians[-1] - jacobians[0]).max() > 1e-3
 
 
 def test_a_law_of_the_wrong_size_is_an_error_naming_6(scenario):

@@ -8,6 +8,7 @@
 #include <vector>
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpMatrix.h>
 
 #include "icgp/servo/pose_estimator.h"
 #include "icgp/servo/rgbd_simulator.h"
@@ -66,6 +67,14 @@ struct ControlState {
   RobotKind robot = RobotKind::kFreeFlyingCamera;
   /// How many values the law returns (velocity_size(robot)).
   unsigned velocity_size = 6;
+  /// 6 x velocity_size: the twist (v, ω) the returned velocity gives the frame the law
+  /// drives, at the current configuration: the identity for the free-flying camera (its
+  /// own twist); cVe·eJe for the eye-in-hand arm (the camera's twist in its frame); gVe·eJe
+  /// in a grasp (the gripper's twist in its frame); cVf·fVe·eJe eye-to-hand (the end
+  /// effector's twist, which moves the object, in the fixed camera's frame). A law that
+  /// computes a twist ξ for a Viper 850 returns J⁺ξ (eye-to-hand: of the object's relative
+  /// motion, see vpServo::EYETOHAND_L_cVf_fVe_eJe).
+  vpMatrix jacobian;
 };
 
 /// A control law given in code: the velocity the robot takes (see velocity_size), from the
