@@ -34,6 +34,10 @@ TRACKERS = ("icgp", "visp", "oracle")
 # calling thread) read these when they start, before the first trial.
 WORKER_ENVIRONMENT = {"OMP_NUM_THREADS": "1", "LP_NUM_THREADS": "0"}
 
+# Batches per worker by default: a worker that draws slow trials, or the last batch, holds up
+# the end by at most an eighth of a worker's share; a task costs milliseconds.
+BATCHES_PER_WORKER = 8
+
 
 @dataclass
 class Trials:
@@ -70,7 +74,7 @@ def trials(scenario, n, seed=None, trackers=None, client=None, batch_size=None, 
 
     Without `client`, in this process: every tracker runs trial i before any runs trial i + 1.
     With a dask.distributed Client: the trials are split into batches of `batch_size` indices
-    (default: about four batches per worker), one task per batch running every tracker on
+    (default: BATCHES_PER_WORKER batches per worker), one task per batch running every tracker on
     them. `progress` prints a line per finished run on stderr, with the time elapsed and
     left, as the icgp program does. Ctrl-C stops the batch and returns the trials done,
     marked interrupted. Returns a Trials."""
@@ -158,7 +162,7 @@ def _run_on(client, scenario, n, trackers, batch_size, report):
 
     if batch_size is None:
         workers = max(1, sum(client.nthreads().values()))
-        batch_size = max(1, math.ceil(n / (4 * workers)))
+        batch_size = max(1, math.ceil(n / (BATCHES_PER_WORKER * workers)))
     batch_size = _count(batch_size, "batch_size")
     batches = [list(range(start, min(n, start + batch_size))) for start in range(0, n, batch_size)]
     futures = client.map(run_batch, [scenario] * len(batches), [trackers] * len(batches), batches, pure=False)
