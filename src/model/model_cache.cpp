@@ -223,16 +223,16 @@ std::optional<ViewpointModel> cached_model(const ModelRequest& request, std::uin
 /// saves the model, so that others needing it at the same time wait and load its file
 /// instead of generating it too. When no lock can be had (a read-only cache folder, a file
 /// system without flock), the model is generated as without one: the rename of
-/// save_viewpoint_model still never lets a reader see half a file. The lock files stay (an
-/// empty file per model): removing one while another process waits on it would let a third
-/// lock a new file and generate the model a second time.
+/// save_viewpoint_model still never lets a reader see half a file. The lock file is removed
+/// before the lock is released, so none stays in the cache. A process that took the lock
+/// looks for the model file again before generating it, so a lock file removed under a waiter
+/// costs at most a second generation, and only when the first one was not saved.
 class GenerationLock {
  public:
-  GenerationLock(const std::string& model_path, const std::string& what) {
-    const fs::path lock_path = model_path + ".lock";
+  GenerationLock(const std::string& model_path, const std::string& what) : path_(model_path + ".lock") {
     std::error_code ec;
-    fs::create_directories(lock_path.parent_path(), ec);
-    fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    fs::create_directories(fs::path(path_).parent_path(), ec);
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
     if (fd_ < 0) return;
     if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
     if (errno == EWOULDBLOCK) {
@@ -246,12 +246,19 @@ class GenerationLock {
     fd_ = -1;
   }
   ~GenerationLock() {
-    if (fd_ >= 0) ::close(fd_);  // releases the lock
+    if (fd_ < 0) return;
+    // Only the file this process locked: another may have made a new one at the same path.
+    struct stat locked {}, at_path {};
+    if (::fstat(fd_, &locked) == 0 && ::stat(path_.c_str(), &at_path) == 0 && locked.st_ino == at_path.st_ino &&
+        locked.st_dev == at_path.st_dev)
+      ::unlink(path_.c_str());
+    ::close(fd_);  // releases the lock
   }
   GenerationLock(const GenerationLock&) = delete;
   GenerationLock& operator=(const GenerationLock&) = delete;
 
  private:
+  std::string path_;
   int fd_ = -1;
 };
 
@@ -379,10 +386,11 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
 
   // One process generates a model, the others wait for its file. Locks are taken in path
   // order, so two processes that need the same models never wait for each other.
-  std::sort(missing_index.begin(), missing_index.end(),
+  std::vector<std::size_t> lock_order = missing_index;
+  std::sort(lock_order.begin(), lock_order.end(),
             [&](std::size_t a, std::size_t b) { return outcome[a].path < outcome[b].path; });
   std::list<GenerationLock> locks;
-  for (const std::size_t i : missing_index)
+  for (const std::size_t i : lock_order)
     locks.emplace_back(outcome[i].path, to_string(requests[i].kind) + " model cache " + outcome[i].path);
   std::vector<ModelRequest> missing;
   std::vector<std::size_t> still_missing;

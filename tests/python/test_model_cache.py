@@ -34,8 +34,8 @@ def test_processes_started_together_generate_each_model_once(tmp_path):
     first, second = start_model(shared), start_model(shared)
     errors = [finish(first), finish(second)]
     files = model_files(shared)
-    assert len(files) == 2  # region and depth, no temporary left over
-    assert not list(shared.glob("*.tmp.*"))
+    assert len(files) == 2  # region and depth, no temporary or lock file left over
+    assert not list(shared.glob("*.tmp.*")) and not list(shared.glob("*.lock"))
     for name in files:
         assert sum(f"{name}: not found; generating" in e for e in errors) == 1, errors
     # One process generated both (they are made together); the other waited for its files, or
