@@ -19,7 +19,9 @@ generate a model while the others wait for it).
 """
 import math
 import os
+import signal
 import sys
+import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -29,10 +31,15 @@ from ._icgp.servo import Scenario
 
 TRACKERS = ("icgp", "visp", "oracle")
 
-# Every trial on one core: two trials on two cores must not fight over both. OpenMP (ViSP,
-# the tracker) and llvmpipe (Mesa's software renderer; LP_NUM_THREADS=0 renders in the
-# calling thread) read these when they start, before the first trial.
-WORKER_ENVIRONMENT = {"OMP_NUM_THREADS": "1", "LP_NUM_THREADS": "0"}
+# Every trial on one core: two trials on two cores must not fight over both. OpenMP (ViSP and
+# the tracker use it) reads this when icgp's extension loads, so it is set when a worker
+# process starts: local_cluster does, and so does Dask's nanny by default
+# (distributed.nanny.pre-spawn-environ) for workers started with dask-worker. Measured on two
+# cores other jobs also used: 8 small_pbvs oracle trials in one process took 11.5-19.5 s with
+# OpenMP's default two threads, 4.0-4.5 s with one. LP_NUM_THREADS (llvmpipe's render
+# threads) made no measurable difference (0 or 2: 38.9 and 39.1 s for 24 textured_pbvs trials
+# on two workers).
+WORKER_ENVIRONMENT = {"OMP_NUM_THREADS": "1"}
 
 # Batches per worker by default: a worker that draws slow trials, or the last batch, holds up
 # the end by at most an eighth of a worker's share; a task costs milliseconds.
@@ -64,7 +71,15 @@ def local_cluster(workers, **options):
 
     options.setdefault("dashboard_address", None)
     env = dict(WORKER_ENVIRONMENT, **options.pop("env", {}))
-    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, env=env, **options)
+    # Ctrl-C reaches the workers too (one process group): they start with SIGINT ignored, and
+    # the client stops the batch (trials() returns the trials done) and closes them.
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if in_main_thread else None
+    try:
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, env=env, **options)
+    finally:
+        if in_main_thread:
+            signal.signal(signal.SIGINT, previous)
 
 
 def trials(scenario, n, seed=None, trackers=None, client=None, batch_size=None, progress=True):
@@ -99,8 +114,6 @@ def trials(scenario, n, seed=None, trackers=None, client=None, batch_size=None, 
 def run_batch(scenario, trackers, indices):
     """The task of one batch on a worker: every tracker on each trial of `indices`, a list
     [trial][tracker] of TrialResults."""
-    for name, value in WORKER_ENVIRONMENT.items():
-        os.environ.setdefault(name, value)  # a worker that was started without them
     return [[_icgp.servo.run_trial(scenario, tracker, i) for tracker in trackers] for i in indices]
 
 
