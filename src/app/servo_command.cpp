@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -242,6 +243,10 @@ void run_single(const ServoOptions& o, const Scenario& scenario, const fs::path&
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   std::cout.flush();
+  // Python turns Ctrl-C into KeyboardInterrupt (the trials done are written) only when
+  // SIGINT is not ignored, as it is in a shell's background jobs: the C++ batch stops on it
+  // there too (install_stop_on_sigint).
+  std::signal(SIGINT, SIG_DFL);
   ::execv(argv[0], argv.data());
   throw std::runtime_error(option + ": cannot run the Python interpreter " + args[0] + ": " + std::strerror(errno));
 #else
