@@ -93,7 +93,7 @@ def servo(options):
     print(f"scenario {scenario.name}" + (f": {description}" if description else ""), file=sys.stderr)
     out = options.out or os.path.join("out", "servo", scenario.name)
     summary = options.summary or os.path.join(out, "summary.json")
-    trackers = ["oracle", "visp", "icgp"] if options.compare else [options.tracker]
+    trackers = ["oracle", "visp", "icgp"] if options.compare else [options.tracker] if options.tracker else None
 
     client = cluster = None
     if options.scheduler or options.jobs:

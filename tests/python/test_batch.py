@@ -107,6 +107,15 @@ def test_jobs_runs_the_trials_on_local_workers(cli, tmp_path):
     assert trial_lines(jobs.stderr) == trial_lines(run.stderr)
 
 
+def test_jobs_exits_2_naming_the_tracker_whose_runs_did_not_succeed(tmp_path):
+    scenario = SOURCE / "tests" / "servo" / "data" / "too_short.yaml"
+    run = subprocess.run([ICGP, "servo", str(scenario), "--trials", "2", "--jobs", "2", "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 2, run.stderr
+    assert run.stderr.endswith("icgp: servo: runs that did not succeed: oracle (ground truth) 2 of 2\n")
+    assert f"wrote {tmp_path / 'summary.json'}" in run.stdout
+
+
 def test_an_unreachable_scheduler_is_a_clear_error():
     run = icgp_servo("--trials", "2", "--tracker", "oracle", "--scheduler", "tcp://127.0.0.1:9", timeout=120)
     assert run.returncode == 1
