@@ -209,7 +209,7 @@ std::vector<TrialsSummary> summarise(const std::vector<Trial>& trials, const ser
 }
 
 constexpr const char* kTrialDoc =
-    "One trial of a batch (icgp.servo.run_trial): the run's outcome without its steps. Distances are\n"
+    "One trial of a batch (run_trial, icgp.batch.trials): the run's outcome without its steps. Distances are\n"
     "metres, angles radians, as in the C++ ServoResult. Picklable (Dask returns it from workers); == compares\n"
     "every simulated number, not the wall-clock timings (median_track_ms, steps_per_s).";
 
@@ -259,7 +259,7 @@ void register_trials(py::module_& m) {
       .def(py::pickle(&pickled, &unpickled));
 
   py::class_<TrialsSummary>(servo, "TrialsSummary",
-                            "The statistics of one tracker's trials (icgp.servo.summarise); metres, radians.")
+                            "The statistics of one tracker's trials (summarise, icgp.batch.trials); metres, radians.")
       .def_readonly("scenario", &TrialsSummary::scenario)
       .def_readonly("tracker", &TrialsSummary::tracker)
       .def_readonly("trials", &TrialsSummary::trials)
