@@ -3,12 +3,17 @@
 // run with its log and plots, batch trials, or trackers compared on identical trials.
 #include <chrono>
 #include <cstdio>
+#include <cerrno>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <vector>
 #include <opencv2/imgproc.hpp>
+#include <unistd.h>
 #include <visp3/core/vpImageConvert.h>
 #include <visp3/gui/vpDisplayX.h>
 
@@ -46,6 +51,8 @@ struct ServoOptions {
   std::string video;
   bool display = false;
   bool quiet = false;
+  std::string scheduler;  ///< a Dask scheduler's address: the trials run on its workers
+  int jobs = 0;           ///< > 0: the trials run on this many local worker processes
 };
 
 TrackerKind tracker_kind(const std::string& name) {
@@ -196,7 +203,60 @@ void run_single(const ServoOptions& o, const Scenario& scenario, const fs::path&
     throw CommandOutcome(kExitNotAchieved, "servo run failed: " + failure_reason(result, scenario.stop));
 }
 
+/// --scheduler, --jobs: the trials run on Dask workers through icgp's Python package, whose
+/// `python -m icgp servo` prints and writes what run_batch does. This process becomes that
+/// interpreter (exec), so Ctrl-C and the exit status are its.
+[[noreturn]] void run_on_workers(const ServoOptions& o) {
+  const std::string option = o.jobs > 0 ? "--jobs" : "--scheduler";
+  if (!o.video.empty() || o.display)
+    throw std::invalid_argument(option + " runs trials on workers; --video and --display show a single run");
+  if (o.trials < 2 && !o.compare)
+    throw std::invalid_argument(option + " runs batch trials: give --trials N with N > 1, or --compare");
+#ifdef ICGP_PYTHON_EXECUTABLE
+  std::vector<std::string> args{ICGP_PYTHON_EXECUTABLE, "-m", "icgp", "servo", o.scenario, "--trials",
+                                std::to_string(o.trials)};
+  const auto add = [&args](const std::string& name, const std::string& value) {
+    if (!value.empty()) args.insert(args.end(), {name, value});
+  };
+  add("--seed", o.seed != 0 ? std::to_string(o.seed) : "");
+  add("--tracker", o.tracker);
+  if (o.compare) args.push_back("--compare");
+  add("--summary", o.summary);
+  add("--out", o.out);
+  add("--scheduler", o.scheduler);
+  add("--jobs", o.jobs > 0 ? std::to_string(o.jobs) : "");
+
+  // The package installed beside the program (<prefix>/bin/icgp, <prefix>/lib/python3/...),
+  // else the build tree's.
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  fs::path package = exe.parent_path().parent_path() / ICGP_PYTHON_INSTALL_DIR;
+  if (ec || !fs::is_regular_file(package / "icgp" / "__main__.py")) package = ICGP_PYTHON_BUILD_DIR;
+  if (!fs::is_regular_file(package / "icgp" / "__main__.py"))
+    throw std::runtime_error(option + ": icgp's Python package is not in " + package.string() +
+                             " (build it: cmake --build, or install it)");
+  const char* path = std::getenv("PYTHONPATH");
+  const std::string python_path = package.string() + (path && *path ? ":" + std::string(path) : "");
+  ::setenv("PYTHONPATH", python_path.c_str(), 1);
+
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::cout.flush();
+  // Python turns Ctrl-C into KeyboardInterrupt (the trials done are written) only when
+  // SIGINT is not ignored, as it is in a shell's background jobs: the C++ batch stops on it
+  // there too (install_stop_on_sigint).
+  std::signal(SIGINT, SIG_DFL);
+  ::execv(argv[0], argv.data());
+  throw std::runtime_error(option + ": cannot run the Python interpreter " + args[0] + ": " + std::strerror(errno));
+#else
+  throw std::invalid_argument(option + " runs the trials through icgp's Python package, and this icgp was built "
+                              "without it (configure with -DICGP_BUILD_PYTHON=ON)");
+#endif
+}
+
 void run_command(const ServoOptions& o) {
+  if (!o.scheduler.empty() || o.jobs > 0) run_on_workers(o);
   // Runs and batches can take hours: Ctrl-C stops them at the next step, writing what is done.
   install_stop_on_sigint();
   Scenario scenario = servo::load_scenario(o.scenario, models_dir());
@@ -239,6 +299,13 @@ void register_servo_command(CLI::App& app) {
   cmd->add_option("--video", o->video, "Overlay video (.avi) of a single run: estimated (red) and true (green) outline");
   cmd->add_flag("--display", o->display, "Show the run in a ViSP window (needs an X display)");
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
+  CLI::Option* scheduler =
+      cmd->add_option("--scheduler", o->scheduler,
+                      "Batch: run the trials on the workers of this Dask scheduler (tcp://HOST:PORT), through "
+                      "icgp's Python package; each worker needs the package and the scenario's files");
+  cmd->add_option("--jobs", o->jobs, "Batch: run the trials on this many local worker processes (Dask)")
+      ->check(integer_in(1, 1024))
+      ->excludes(scheduler);
   cmd->callback([o] { run_command(*o); });
 }
 

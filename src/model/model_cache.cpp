@@ -2,6 +2,7 @@
 #include "icgp/model/model_cache.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -17,6 +18,8 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <list>
+#include <optional>
 #include <sstream>
 
 #include "icgp/model/model_key.h"
@@ -193,6 +196,72 @@ void check_contents(const ViewpointModel& model, const std::string& path) {
   }
 }
 
+/// The model of `request` from its cache file when that file fits (same kind, key and
+/// parameters, intact); else nothing, with `why` set to the line that says why it is
+/// (re)generated.
+std::optional<ViewpointModel> cached_model(const ModelRequest& request, std::uint64_t key, const std::string& path,
+                                           std::string* why = nullptr) {
+  const std::string what = to_string(request.kind) + " model cache " + path;
+  std::string reason;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    reason = what + ": not found; generating";
+  } else {
+    try {
+      ViewpointModel cached = load_viewpoint_model(path);
+      if (cached.kind() == request.kind && cached.key() == key && cached.params() == request.params) return cached;
+      reason = what + ": stale (made for another mesh, parameters or kind); regenerating";
+    } catch (const ModelFileError& e) {
+      reason = to_string(request.kind) + " " + e.what() + "; regenerating";
+    }
+  }
+  if (why) *why = reason;
+  return std::nullopt;
+}
+
+/// An exclusive lock (flock) on <model file>.lock, held while this process generates and
+/// saves the model, so that others needing it at the same time wait and load its file
+/// instead of generating it too. When no lock can be had (a read-only cache folder, a file
+/// system without flock), the model is generated as without one: the rename of
+/// save_viewpoint_model still never lets a reader see half a file. The lock file is removed
+/// before the lock is released, so none stays in the cache. A process that took the lock
+/// looks for the model file again before generating it, so a lock file removed under a waiter
+/// costs at most a second generation, and only when the first one was not saved.
+class GenerationLock {
+ public:
+  GenerationLock(const std::string& model_path, const std::string& what) : path_(model_path + ".lock") {
+    std::error_code ec;
+    fs::create_directories(fs::path(path_).parent_path(), ec);
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd_ < 0) return;
+    if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+    if (errno == EWOULDBLOCK) {
+      report(what + ": another process is generating it; waiting for it");
+      int locked;
+      while ((locked = ::flock(fd_, LOCK_EX)) != 0 && errno == EINTR) {
+      }
+      if (locked == 0) return;
+    }
+    ::close(fd_);
+    fd_ = -1;
+  }
+  ~GenerationLock() {
+    if (fd_ < 0) return;
+    // Only the file this process locked: another may have made a new one at the same path.
+    struct stat locked {}, at_path {};
+    if (::fstat(fd_, &locked) == 0 && ::stat(path_.c_str(), &at_path) == 0 && locked.st_ino == at_path.st_ino &&
+        locked.st_dev == at_path.st_dev)
+      ::unlink(path_.c_str());
+    ::close(fd_);  // releases the lock
+  }
+  GenerationLock(const GenerationLock&) = delete;
+  GenerationLock& operator=(const GenerationLock&) = delete;
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
 }  // namespace
 
 std::string default_model_cache_dir() {
@@ -297,36 +366,49 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
   const std::string name = model_name(mesh, options);
   std::vector<ViewpointModel> models(requests.size());
   std::vector<CachedModelInfo> outcome(requests.size());
-  std::vector<ModelRequest> missing;
+  std::vector<std::uint64_t> keys(requests.size());
   std::vector<std::size_t> missing_index;
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const ModelRequest& r = requests[i];
     r.params.validate();
-    const std::uint64_t key = viewpoint_model_key(r.kind, mesh, r.params, options.associated_bodies);
-    outcome[i].path = model_cache_path(dir, name, r.kind, key);
-    const std::string what = to_string(r.kind) + " model cache " + outcome[i].path;
-    std::error_code ec;
-    if (!fs::exists(outcome[i].path, ec)) {
-      report(what + ": not found; generating");
-    } else {
-      try {
-        ViewpointModel cached = load_viewpoint_model(outcome[i].path);
-        if (cached.kind() == r.kind && cached.key() == key && cached.params() == r.params) {
-          models[i] = std::move(cached);
-          continue;
-        }
-        report(what + ": stale (made for another mesh, parameters or kind); regenerating");
-      } catch (const ModelFileError& e) {
-        report(to_string(r.kind) + " " + e.what() + "; regenerating");
-      }
+    keys[i] = viewpoint_model_key(r.kind, mesh, r.params, options.associated_bodies);
+    outcome[i].path = model_cache_path(dir, name, r.kind, keys[i]);
+    if (std::optional<ViewpointModel> cached = cached_model(r, keys[i], outcome[i].path)) {
+      models[i] = std::move(*cached);
+      continue;
     }
-    missing.push_back(r);
     missing_index.push_back(i);
+  }
+  if (missing_index.empty()) {
+    if (info) *info = std::move(outcome);
+    return models;
+  }
+
+  // One process generates a model, the others wait for its file. Locks are taken in path
+  // order, so two processes that need the same models never wait for each other.
+  std::vector<std::size_t> lock_order = missing_index;
+  std::sort(lock_order.begin(), lock_order.end(),
+            [&](std::size_t a, std::size_t b) { return outcome[a].path < outcome[b].path; });
+  std::list<GenerationLock> locks;
+  for (const std::size_t i : lock_order)
+    locks.emplace_back(outcome[i].path, to_string(requests[i].kind) + " model cache " + outcome[i].path);
+  std::vector<ModelRequest> missing;
+  std::vector<std::size_t> still_missing;
+  for (const std::size_t i : missing_index) {
+    std::string why;
+    // Another process may have written it while this one waited for the lock.
+    if (std::optional<ViewpointModel> cached = cached_model(requests[i], keys[i], outcome[i].path, &why)) {
+      models[i] = std::move(*cached);
+      continue;
+    }
+    report(why);
+    missing.push_back(requests[i]);
+    still_missing.push_back(i);
   }
   if (!missing.empty()) {
     std::vector<ViewpointModel> generated = generate_viewpoint_models(mesh, missing, options);
     for (std::size_t m = 0; m < missing.size(); ++m) {
-      const std::size_t i = missing_index[m];
+      const std::size_t i = still_missing[m];
       models[i] = std::move(generated[m]);
       outcome[i].generated = true;
       try {

@@ -6,16 +6,15 @@
 #include "icgp/base/stop_request.h"
 
 namespace icgp::servo {
-namespace {
 
-ServoResult run_trial(const Scenario& scenario, int trial, ServoRunOptions run) {
+ServoResult run_trial(const Scenario& scenario, TrackerKind tracker, int trial, ServoRunOptions run) {
+  Scenario s = scenario;
+  s.tracker.kind = tracker;
   run.seed = scenario.seed + static_cast<unsigned>(trial);
   run.start_offset = perturbed_start(scenario.trials, scenario.seed, trial);
   run.progress = false;  // a batch reports per run instead (RunDone)
-  return run_servo(scenario, run);
+  return run_servo(s, run);
 }
-
-}  // namespace
 
 TrialBatch run_trials(const Scenario& scenario, const std::vector<TrackerKind>& trackers, int trials,
                       const RunDone& on_run, const ServoRunOptions& each_run) {
@@ -29,9 +28,7 @@ TrialBatch run_trials(const Scenario& scenario, const std::vector<TrackerKind>& 
         batch.interrupted = true;
         return batch;
       }
-      Scenario s = scenario;
-      s.tracker.kind = tracker;
-      trial.push_back(run_trial(s, i, each_run));
+      trial.push_back(run_trial(scenario, tracker, i, each_run));
       if (trial.back().interrupted) {
         batch.interrupted = true;
         return batch;

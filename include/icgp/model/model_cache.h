@@ -50,7 +50,9 @@ struct CachedModelInfo {
 /// The models of the requests, from the cache when a file there fits (same kind, key and
 /// parameters, intact), else generated (together, sharing renders) and saved. Every file
 /// that is not used is reported in one line on stderr saying why (missing, stale, foreign,
-/// truncated, corrupted); an unwritable cache gives a warning, never an error.
+/// truncated, corrupted); an unwritable cache gives a warning, never an error. Processes that
+/// need the same missing model at once do not all generate it: one does, holding a lock on
+/// <model file>.lock, and the others say on stderr that they wait, then load its file.
 /// `cache_dir` empty: default_model_cache_dir(). Files are named after options.name, else
 /// the mesh file's stem.
 std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector<ModelRequest>& requests,

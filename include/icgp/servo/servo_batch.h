@@ -21,6 +21,13 @@ struct TrialBatch {
 /// Called after each finished run with the index of its trial.
 using RunDone = std::function<void(int trial, const ServoResult& run)>;
 
+/// Runs trial `trial` of a batch of `scenario` with `tracker`: from
+/// perturbed_start(scenario.trials, scenario.seed, trial) with the noise seed
+/// scenario.seed + trial, no progress line. `run` holds the other options (on_step, ...).
+/// run_trials runs its trials with it; so can a process that runs some trials of a batch
+/// (a Dask worker), with the same results.
+ServoResult run_trial(const Scenario& scenario, TrackerKind tracker, int trial, ServoRunOptions run = {});
+
 /// Runs `trials` trials of `scenario` with each of `trackers`. Trial i starts at
 /// perturbed_start(scenario.trials, scenario.seed, i) with the noise seed scenario.seed + i,
 /// the same for every tracker. Every tracker runs trial i before any runs trial i + 1, so a
