@@ -10,5 +10,9 @@ load_scenario  reads a scenario file (errors: icgp.Error naming the file and key
 Scenario       what it holds: robot, law, poses (4x4), stop thresholds, trial spread, seed
 run            one closed-loop run; trial=i is `icgp servo --trials`' trial i; on_step(step)
                sees every step, control(state) replaces the scenario's control law
+trials         batch trials, here or on a Dask cluster (icgp.batch): trials(scenario, n,
+               seed, trackers=[...], client=None) -> the runs, summaries and table
+local_cluster  a Dask LocalCluster of one-thread worker processes for trials
 """
 from ._icgp.servo import Scenario, load_scenario, run  # noqa: F401
+from .batch import local_cluster, trials  # noqa: F401

@@ -12,6 +12,7 @@
 
 #include "bindings.h"
 #include "icgp/servo/scenario.h"
+#include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_report.h"
 #include "icgp/servo/servo_run.h"
 #include "icgp/visp/conversions.h"
@@ -178,11 +179,6 @@ py::dict run(const Scenario& scenario, const py::object& tracker, const py::obje
   servo::ServoRunOptions options;
   options.progress = progress;
   options.seed = s.seed;
-  if (trial) {
-    // Trial i of a batch (servo::run_trials, `icgp servo --trials`): its start and noise seed.
-    options.seed = s.seed + static_cast<unsigned>(*trial);
-    options.start_offset = servo::perturbed_start(s.trials, s.seed, static_cast<int>(*trial));
-  }
   // The GIL is held only here, around Python code. Every step polls Python's signals, so
   // Ctrl-C raises KeyboardInterrupt at the next step, with callbacks or without.
   py::list steps;
@@ -201,7 +197,8 @@ py::dict run(const Scenario& scenario, const py::object& tracker, const py::obje
   servo::ServoResult result;
   {
     py::gil_scoped_release release;
-    result = servo::run_servo(s, options);
+    // Trial i of a batch is run_trial's (`icgp servo --trials`): its start and noise seed.
+    result = trial ? servo::run_trial(s, s.tracker.kind, static_cast<int>(*trial), options) : servo::run_servo(s, options);
   }
   return summary_dict(result, s.stop, trial, std::move(steps));
 }
