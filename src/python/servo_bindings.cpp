@@ -17,6 +17,7 @@
 #include "icgp/servo/servo_run.h"
 #include "icgp/visp/conversions.h"
 #include "numpy_conversions.h"
+#include "servo_names.h"
 
 namespace icgp::python {
 namespace {
@@ -30,39 +31,7 @@ using servo::TrackerKind;
 constexpr double kMm = 1e3;                    // metres -> millimetres
 constexpr double kDeg = 1.0 / servo::kDegree;  // radians -> degrees
 
-// The names of the scenario files' keys (scenarios/*.yaml, docs/servo.md).
-std::string robot_name(RobotKind robot) {
-  switch (robot) {
-    case RobotKind::kFreeFlyingCamera: return "free_flying";
-    case RobotKind::kViper850EyeInHand: return "viper850_eye_in_hand";
-    case RobotKind::kViper850EyeToHand: return "viper850_eye_to_hand";
-    case RobotKind::kViper850Grasp: return "viper850_grasp";
-  }
-  return "?";
-}
-
-std::string law_name(ControlLawKind law) { return law == ControlLawKind::kPbvs ? "pbvs" : "ibvs"; }
-
-std::string tracker_name(TrackerKind tracker) {
-  switch (tracker) {
-    case TrackerKind::kIcgp: return "icgp";
-    case TrackerKind::kVisp: return "visp";
-    case TrackerKind::kOracle: return "oracle";
-  }
-  return "?";
-}
-
 std::string repr_text(const py::handle& object) { return py::repr(object).cast<std::string>(); }
-
-std::optional<TrackerKind> tracker_kind(const py::object& tracker) {
-  if (tracker.is_none()) return std::nullopt;
-  if (py::isinstance<py::str>(tracker)) {
-    const std::string name = tracker.cast<std::string>();
-    for (TrackerKind kind : {TrackerKind::kIcgp, TrackerKind::kVisp, TrackerKind::kOracle})
-      if (tracker_name(kind) == name) return kind;
-  }
-  throw py::value_error("tracker: expected 'icgp', 'visp', 'oracle' or None (the scenario's), got " + repr_text(tracker));
-}
 
 /// An integer argument in [0, max], or nullopt for None. bool is refused: True is no seed.
 std::optional<long long> integer_or_none(const py::object& value, const char* argument, long long max, const char* none) {

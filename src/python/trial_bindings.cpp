@@ -20,6 +20,7 @@
 #include "icgp/servo/scenario.h"
 #include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_report.h"
+#include "servo_names.h"
 
 namespace icgp::python {
 namespace {
@@ -28,13 +29,6 @@ namespace py = pybind11;
 using servo::ServoResult;
 using servo::ServoStep;
 using servo::TrialsSummary;
-
-servo::TrackerKind tracker_kind(const std::string& name) {
-  if (name == "icgp") return servo::TrackerKind::kIcgp;
-  if (name == "visp") return servo::TrackerKind::kVisp;
-  if (name == "oracle") return servo::TrackerKind::kOracle;
-  throw py::value_error("tracker: expected 'icgp', 'visp', 'oracle' or None (the scenario's), got '" + name + "'");
-}
 
 /// Trial `trial` of a batch: its run without the steps, except each step's tracker errors
 /// and time, of which servo::summarise makes the summaries of many trials.
@@ -287,8 +281,8 @@ void register_trials(py::module_& m) {
 
   servo.def(
       "run_trial",
-      [](const servo::Scenario& scenario, const std::optional<std::string>& tracker, int trial) {
-        const servo::TrackerKind kind = tracker ? tracker_kind(*tracker) : scenario.tracker.kind;
+      [](const servo::Scenario& scenario, const py::object& tracker, int trial) {
+        const servo::TrackerKind kind = tracker_kind(tracker).value_or(scenario.tracker.kind);
         if (trial < 0) throw py::value_error("trial: expected an index >= 0, got " + std::to_string(trial));
         ServoResult run;
         {
