@@ -21,14 +21,22 @@ namespace {
 
 namespace py = pybind11;
 
-py::dict camera_dict(const std::string& camera, const Intrinsics& k, const Pose& camera_T_reference) {
-  py::dict d;
-  d["camera"] = camera;
-  d["K"] = camera_matrix(k);
-  d["width"] = k.width;
-  d["height"] = k.height;
-  d["camera_T_color"] = matrix(camera_T_reference);
-  return d;
+/// Each camera of a frame (ColorImage or DepthImage) as a dict of its name, image and
+/// calibration.
+template <typename Camera>
+py::list camera_list(const std::vector<Camera>& cameras, cv::Mat Camera::*image) {
+  py::list list;
+  for (const Camera& c : cameras) {
+    py::dict d;
+    d["camera"] = c.camera;
+    d["image"] = image_array(c.*image);
+    d["K"] = camera_matrix(c.intrinsics);
+    d["width"] = c.intrinsics.width;
+    d["height"] = c.intrinsics.height;
+    d["camera_T_color"] = matrix(c.camera_T_reference);
+    list.append(d);
+  }
+  return list;
 }
 
 constexpr const char* kSequenceDoc = R"doc(An RGB-D sequence on disk, in any layout `icgp track` reads.
@@ -100,27 +108,9 @@ void register_sequence(py::module_& m) {
                              },
                              "The first depth camera's image: float32 (H, W) metres, 0 = no measurement; None "
                              "without a depth camera.")
-      .def_property_readonly("colors",
-                             [](const Frame& f) {
-                               py::list cameras;
-                               for (const ColorImage& c : f.colors) {
-                                 py::dict d = camera_dict(c.camera, c.intrinsics, c.camera_T_reference);
-                                 d["image"] = image_array(c.image);
-                                 cameras.append(d);
-                               }
-                               return cameras;
-                             },
+      .def_property_readonly("colors", [](const Frame& f) { return camera_list(f.colors, &ColorImage::image); },
                              "Every colour camera: dicts of camera, image, K, width, height, camera_T_color.")
-      .def_property_readonly("depths",
-                             [](const Frame& f) {
-                               py::list cameras;
-                               for (const DepthImage& d : f.depths) {
-                                 py::dict e = camera_dict(d.camera, d.intrinsics, d.camera_T_reference);
-                                 e["image"] = image_array(d.depth);
-                                 cameras.append(e);
-                               }
-                               return cameras;
-                             },
+      .def_property_readonly("depths", [](const Frame& f) { return camera_list(f.depths, &DepthImage::depth); },
                              "Every depth camera: dicts of camera, image, K, width, height, camera_T_color.")
       .def(
           "truth",
