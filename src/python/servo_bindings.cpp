@@ -223,7 +223,7 @@ control   a control law in place of the scenario's vpServo law: control(state) -
           for the Viper 850 robots the joint velocities q1'..q6', rad/s. The robot saturates
           it as it does vpServo's output (one factor keeping the direction; arm joints stop
           at their limits); steps' servo_error_norm is NaN (no features s).
-progress  a progress line on stderr.
+progress  a progress line on stderr (not for a trial, which runs as in a batch: quietly).
 
 Returns a dict: scenario, tracker, seed (the noise seed used), trial, succeeded (converged
 and the true final error within the thresholds), converged, converged_step and
