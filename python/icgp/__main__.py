@@ -89,8 +89,7 @@ def servo(options):
     if options.trials == 1 and not options.compare and (options.scheduler or options.jobs):
         raise UsageError("--scheduler and --jobs run batch trials: give --trials N with N > 1, or --compare")
     scenario = batch.load(options.scenario, options.seed or None)
-    description = getattr(scenario, "description", "")
-    print(f"scenario {scenario.name}" + (f": {description}" if description else ""), file=sys.stderr)
+    print(f"scenario {scenario.name}" + (f": {scenario.description}" if scenario.description else ""), file=sys.stderr)
     out = options.out or os.path.join("out", "servo", scenario.name)
     summary = options.summary or os.path.join(out, "summary.json")
     trackers = ["oracle", "visp", "icgp"] if options.compare else [options.tracker] if options.tracker else None
