@@ -102,7 +102,8 @@ def bench(rounds, sequence, program):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--sequence", default=ROOT / "tests" / "data" / "teabox-blender", type=pathlib.Path)
-    parser.add_argument("--plot", default="track_teabox.png", type=pathlib.Path, help="the error plot (PNG)")
+    parser.add_argument("--plot", default=pathlib.Path("out", "python", "track_teabox.png"), type=pathlib.Path,
+                        help="the error plot (PNG; default: out/python/track_teabox.png)")
     parser.add_argument("--bench", type=int, default=0, metavar="ROUNDS",
                         help="time the binding against `icgp track` over this many alternating rounds")
     parser.add_argument("--icgp", default=os.environ.get("ICGP", ROOT / "build" / "src" / "icgp"),
@@ -114,6 +115,7 @@ def main():
     print(f"sequence   {sequence.path} ({sequence.layout}, {len(sequence)} frames)")
     evaluation, errors, wall_ms, _ = track(sequence)
     print_summary(evaluation.summary(), wall_ms)
+    args.plot.parent.mkdir(parents=True, exist_ok=True)
     plot(errors, args.plot)
     print(f"wrote      {args.plot}")
     if args.bench:
