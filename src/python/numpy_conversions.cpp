@@ -24,12 +24,8 @@ cv::Mat wrap(const py::array& array, int type) {
 
 /// The array as doubles of exactly `rows` x `cols`.
 Eigen::MatrixXd dense_matrix(const py::handle& object, int rows, int cols, const char* argument) {
-  py::array_t<double, py::array::c_style | py::array::forcecast> array;
-  try {
-    array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(object);
-  } catch (const py::error_already_set&) {
-    array = {};
-  }
+  // ensure() converts what NumPy can, and returns null (the Python error cleared) otherwise.
+  const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(object);
   if (!array) throw py::type_error(std::string(argument) + ": expected a " + std::to_string(rows) + "x" +
                                    std::to_string(cols) + " array of numbers");
   if (array.ndim() != 2 || array.shape(0) != rows || array.shape(1) != cols)

@@ -33,9 +33,9 @@ YAML::Node yaml_node(const py::handle& value, const std::string& key) {
   // bool before int: Python's bool is an int.
   if (py::isinstance<py::bool_>(value)) return YAML::Node(value.cast<bool>() ? "true" : "false");
   if (py::isinstance<py::int_>(value)) return YAML::Node(py::str(value).cast<std::string>());
-  if (py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))
-    if (!py::isinstance<py::str>(value)) return YAML::Node(yaml::exact_number(value.cast<double>()));
   if (py::isinstance<py::str>(value)) return YAML::Node(value.cast<std::string>());
+  // Python floats and whatever converts to one (NumPy scalars).
+  if (py::hasattr(value, "__float__")) return YAML::Node(yaml::exact_number(value.cast<double>()));
   throw py::type_error((key.empty() ? std::string("value") : key) +
                        ": expected a dict, list, number, bool or string, got " +
                        py::str(value.get_type().attr("__name__")).cast<std::string>());

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include "bindings.h"
@@ -60,17 +61,20 @@ Joint joint_from(const py::dict& keys, const std::string& body) {
 
 /// One frame's outcome for one body, as Python sees it: the C++ result and the name and
 /// camera of each of its cues (dicts are made only when Python asks for them).
+/// (cue, camera) of each of a body's modalities, in the order they were added.
+using CueNames = std::vector<std::pair<std::string, std::string>>;
+
 struct BodyOutcome {
   BodyResult result;
-  std::vector<std::pair<std::string, std::string>> cue_names;  ///< (cue, camera), as result.modalities
+  std::shared_ptr<const CueNames> cue_names;  ///< as result.modalities; the tracker's, made once
 
   py::list cues() const {
     py::list cues;
     for (std::size_t i = 0; i < result.modalities.size(); ++i) {
       const ModalityQuality& q = result.modalities[i];
       py::dict d;
-      d["cue"] = cue_names[i].first;
-      d["camera"] = cue_names[i].second;
+      d["cue"] = (*cue_names)[i].first;
+      d["camera"] = (*cue_names)[i].second;
       d["score"] = q.score;
       d["sigma"] = q.sigma;
       d["valid_fraction"] = q.valid_fraction;
@@ -212,9 +216,8 @@ class PythonTracker {
     outcome.ms = ms;
     for (BodyResult& r : results) {
       if (r.body == body_) outcome.main = outcome.bodies.size();
-      BodyOutcome& b = outcome.bodies.emplace_back();
-      for (const Modality* modality : tracker.modalities(r.body)) b.cue_names.emplace_back(modality->name(), modality->camera());
-      b.result = std::move(r);
+      std::shared_ptr<const CueNames> names = cue_names_.at(r.body);
+      outcome.bodies.push_back({std::move(r), std::move(names)});
     }
     return outcome;
   }
@@ -246,6 +249,12 @@ class PythonTracker {
     }
     for (const auto& [name, reference_T_body] : pending_poses_) tracker->body(name).reference_T_body = reference_T_body;
     pending_poses_.clear();
+    // The cues' names, for every frame's results: the modalities are fixed from here on.
+    for (const Body* body : tracker->bodies()) {
+      auto names = std::make_shared<CueNames>();
+      for (const Modality* modality : tracker->modalities(body->name)) names->emplace_back(modality->name(), modality->camera());
+      cue_names_.emplace(body->name, std::move(names));
+    }
     tracker_ = std::move(tracker);
     needs_start_ = true;
     return *tracker_;
@@ -267,6 +276,7 @@ class PythonTracker {
   Mesh mesh_;
   std::unique_ptr<Tracker> tracker_;
   std::map<std::string, Pose> pending_poses_;  ///< set before the tracker was built
+  std::map<std::string, std::shared_ptr<const CueNames>> cue_names_;  ///< per tracked body
   bool has_initial_pose_ = false;  ///< set_pose was called for the main body
   bool needs_start_ = true;
   bool started_once_ = false;
