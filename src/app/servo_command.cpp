@@ -56,9 +56,8 @@ struct ServoOptions {
 };
 
 TrackerKind tracker_kind(const std::string& name) {
-  if (name == "icgp") return TrackerKind::kIcgp;
-  if (name == "visp") return TrackerKind::kVisp;
-  if (name == "oracle") return TrackerKind::kOracle;
+  for (const auto& [known, kind] : servo::tracker_names())
+    if (known == name) return kind;
   throw std::invalid_argument("--tracker: expected icgp, visp or oracle, got '" + name + "'");
 }
 

@@ -33,6 +33,11 @@ constexpr double kDeg = 1.0 / servo::kDegree;  // radians -> degrees
 
 std::string repr_text(const py::handle& object) { return py::repr(object).cast<std::string>(); }
 
+// The names scenario files give robots, laws and trackers.
+std::string servo_name(RobotKind robot) { return servo::name_of(robot, servo::robot_names()); }
+std::string servo_name(ControlLawKind law) { return servo::name_of(law, servo::control_law_names()); }
+std::string servo_name(TrackerKind tracker) { return servo::name_of(tracker, servo::tracker_names()); }
+
 /// An integer argument in [0, max], or nullopt for None. bool is refused: True is no seed.
 std::optional<long long> integer_or_none(const py::object& value, const char* argument, long long max, const char* none) {
   if (value.is_none()) return std::nullopt;
@@ -125,7 +130,7 @@ py::dict state_dict(const servo::ControlState& state) {
   d["time"] = state.time;
   d["pose"] = matrix_of(state.pose);
   d["desired"] = matrix_of(state.desired);
-  d["robot"] = robot_name(state.robot);
+  d["robot"] = servo_name(state.robot);
   d["velocity_size"] = state.velocity_size;
   py::array_t<double> jacobian({state.jacobian.getRows(), state.jacobian.getCols()});
   for (unsigned r = 0; r < state.jacobian.getRows(); ++r)
@@ -256,12 +261,12 @@ void register_servo(py::module_& m) {
       .def_readonly("description", &Scenario::description)
       .def_readonly("file", &Scenario::file, "The YAML file it was read from.")
       .def_readwrite("seed", &Scenario::seed, "Seed of the sensor noise and of the trials' random starts.")
-      .def_property_readonly("robot", [](const Scenario& s) { return robot_name(s.robot); },
+      .def_property_readonly("robot", [](const Scenario& s) { return servo_name(s.robot); },
                              "What the control law moves: 'free_flying', 'viper850_eye_in_hand', "
                              "'viper850_eye_to_hand' or 'viper850_grasp'.")
-      .def_property_readonly("law", [](const Scenario& s) { return law_name(s.control.law); },
+      .def_property_readonly("law", [](const Scenario& s) { return servo_name(s.control.law); },
                              "The scenario's control law: 'pbvs' or 'ibvs'.")
-      .def_property_readonly("tracker", [](const Scenario& s) { return tracker_name(s.tracker.kind); },
+      .def_property_readonly("tracker", [](const Scenario& s) { return servo_name(s.tracker.kind); },
                              "The tracker in the loop: 'icgp', 'visp' or 'oracle'.")
       .def_property_readonly("rate_hz", [](const Scenario& s) { return s.camera.rate_hz; },
                              "Frames per second of the camera: one step of the loop per frame.")
@@ -285,8 +290,8 @@ void register_servo(py::module_& m) {
       .def_property_readonly("trials", [](const Scenario& s) { return trials_dict(s.trials); },
                              "The largest random move of a trial's start: {'translation_mm', 'rotation_deg'}.")
       .def("__repr__", [](const Scenario& s) {
-        return "<icgp.servo.Scenario '" + s.name + "' " + robot_name(s.robot) + " " + law_name(s.control.law) + " " +
-               tracker_name(s.tracker.kind) + " seed " + std::to_string(s.seed) + " from " + s.file + ">";
+        return "<icgp.servo.Scenario '" + s.name + "' " + servo_name(s.robot) + " " + servo_name(s.control.law) + " " +
+               servo_name(s.tracker.kind) + " seed " + std::to_string(s.seed) + " from " + s.file + ">";
       })
       // Sent to other processes (Dask workers) as its file, made absolute here since a
       // worker may run in another folder, and its seed; read again there: the file and the

@@ -109,20 +109,7 @@ std::string existing_file(const Value& v, const fs::path& scenario_dir) {
 
 // ---- Sections ---------------------------------------------------------------------------
 
-const std::vector<std::pair<std::string, RobotKind>>& robot_names() {
-  static const std::vector<std::pair<std::string, RobotKind>> names = {
-      {"free_flying", RobotKind::kFreeFlyingCamera},
-      {"viper850_eye_in_hand", RobotKind::kViper850EyeInHand},
-      {"viper850_eye_to_hand", RobotKind::kViper850EyeToHand},
-      {"viper850_grasp", RobotKind::kViper850Grasp}};
-  return names;
-}
-
-std::string robot_name(RobotKind robot) {
-  for (const auto& [name, kind] : robot_names())
-    if (kind == robot) return name;
-  return "?";
-}
+std::string robot_name(RobotKind robot) { return name_of(robot, robot_names()); }
 
 void read_arm(const Value& v, ArmSpec& arm) {
   const Map s(v, {"initial_joints_deg", "eMo"});
@@ -222,8 +209,7 @@ void read_camera(const Value& v, CameraSpec& camera) {
 void read_tracker(const Value& v, TrackerSpec& tracker, const fs::path& scenario_dir) {
   const Map s(v, {"type", "modalities", "config", "visp_configuration"});
   if (auto x = s.get("type"))
-    tracker.kind = x->choice<TrackerKind>(
-        {{"icgp", TrackerKind::kIcgp}, {"visp", TrackerKind::kVisp}, {"oracle", TrackerKind::kOracle}});
+    tracker.kind = x->choice<TrackerKind>(tracker_names());
   if (auto x = s.get("modalities"))
     tracker.modalities = parse_cue_list(x->as(Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}));
   if (auto x = s.get("config"))
@@ -252,7 +238,7 @@ void read_gain(const Value& v, GainSpec& gain) {
 void read_control(const Value& v, ControlSpec& control, RobotKind robot) {
   const Map s(v, {"law", "gain", "max_linear_velocity", "max_angular_velocity_deg", "max_joint_velocity_deg"});
   if (auto x = s.get("law")) {
-    control.law = x->choice<ControlLawKind>({{"pbvs", ControlLawKind::kPbvs}, {"ibvs", ControlLawKind::kIbvs}});
+    control.law = x->choice<ControlLawKind>(control_law_names());
     // IBVS features are image points of a camera that moves; a grasp's camera stands still.
     if (robot == RobotKind::kViper850Grasp && control.law == ControlLawKind::kIbvs)
       x->expected("pbvs (a viper850_grasp scenario servoes the gripper's pose gMo)");
@@ -301,6 +287,27 @@ std::string resolve_model_path(const std::string& reference, const std::string& 
   const std::vector<std::string> candidates = model_candidates(reference, scenario_dir, models_dir);
   if (std::optional<std::string> file = find_model(candidates)) return *file;
   throw ScenarioError("'" + reference + "': no such model (" + tried(candidates) + ")");
+}
+
+const std::vector<std::pair<std::string, RobotKind>>& robot_names() {
+  static const std::vector<std::pair<std::string, RobotKind>> names = {
+      {"free_flying", RobotKind::kFreeFlyingCamera},
+      {"viper850_eye_in_hand", RobotKind::kViper850EyeInHand},
+      {"viper850_eye_to_hand", RobotKind::kViper850EyeToHand},
+      {"viper850_grasp", RobotKind::kViper850Grasp}};
+  return names;
+}
+
+const std::vector<std::pair<std::string, ControlLawKind>>& control_law_names() {
+  static const std::vector<std::pair<std::string, ControlLawKind>> names = {{"pbvs", ControlLawKind::kPbvs},
+                                                                            {"ibvs", ControlLawKind::kIbvs}};
+  return names;
+}
+
+const std::vector<std::pair<std::string, TrackerKind>>& tracker_names() {
+  static const std::vector<std::pair<std::string, TrackerKind>> names = {
+      {"icgp", TrackerKind::kIcgp}, {"visp", TrackerKind::kVisp}, {"oracle", TrackerKind::kOracle}};
+  return names;
 }
 
 Scenario load_scenario(const std::string& path, const std::string& models_dir) try {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "icgp/base/intrinsics.h"
@@ -45,6 +46,19 @@ enum class TrackerKind {
   kVisp,    ///< vpMbGenericTracker
   kOracle,  ///< the ground-truth pose
 };
+
+/// The names scenario files give them (robot:, control.law:, tracker.type:), which
+/// `icgp servo --tracker` and the Python package use too, in declaration order.
+const std::vector<std::pair<std::string, RobotKind>>& robot_names();
+const std::vector<std::pair<std::string, ControlLawKind>>& control_law_names();
+const std::vector<std::pair<std::string, TrackerKind>>& tracker_names();
+/// The name of `kind` in its list above.
+template <typename Kind>
+std::string name_of(Kind kind, const std::vector<std::pair<std::string, Kind>>& names) {
+  for (const auto& [name, k] : names)
+    if (k == kind) return name;
+  return "?";
+}
 
 /// The tracked object. Its world placement follows from the robot's start and the initial
 /// camera-object pose (Scenario::initial_cMo), so scenarios state what the camera sees.
