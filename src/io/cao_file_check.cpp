@@ -109,29 +109,45 @@ class CaoFileReader {
     return true;
   }
 
-  /// The rest of the current line, without its line break, which is consumed. ViSP reads
-  /// it with getline/ignore, which throw at the end of the file, so the break must be there.
-  std::string rest_of_line(const std::string& record) {
+  /// The rest of a version, count or point line, which ViSP skips with ignore(256, '\n'):
+  /// that throws at the end of the file, and leaves what goes on past 255 characters to be
+  /// read as the next data.
+  void skip_rest_of_line(const std::string& record) {
     const std::size_t end = text_.find('\n', pos_);
     if (end == std::string::npos)
       fail_at(text_.size(), record, "the file ends without a line break after it",
               "a line break: ViSP's parser fails at the end of the file there");
     if (end - pos_ > CaoLimits::kMaxLineLength)
       fail_at(pos_, record, "the line goes on for " + std::to_string(end - pos_) + " characters after its numbers",
-              "at most " + std::to_string(CaoLimits::kMaxLineLength) + ": ViSP's parser reads no more of the line");
-    std::string rest = text_.substr(pos_, end - pos_);
+              "at most " + std::to_string(CaoLimits::kMaxLineLength) + ": ViSP's parser skips no more of the line");
     pos_ = end + 1;
-    return rest;
   }
 
-  /// The rest of the line when there is one; true when the file ended instead.
-  bool rest_of_line_or_end(const std::string& record) {
+  /// Skips the rest of a count line; true when the file ended instead.
+  bool skip_rest_of_line_or_end(const std::string& record) {
     if (text_.find('\n', pos_) == std::string::npos) {
       pos_ = text_.size();
       return true;
     }
-    rest_of_line(record);
+    skip_rest_of_line(record);
     return false;
+  }
+
+  /// The rest of a line, face, cylinder or circle record (its parameters), which ViSP 3.5
+  /// reads up to '\n', '\r' or "\r\n", of any length. A lone '\r' ends the record, so what
+  /// follows it on the same line is the next record: reading past it would check other
+  /// indices than the ones ViSP's parser uses, and it does not bound all of them. At the end
+  /// of the file the rest must not be empty (ViSP's reader then fails).
+  void skip_record_end(const std::string& record) {
+    const std::size_t end = text_.find_first_of("\r\n", pos_);
+    if (end == std::string::npos) {
+      if (pos_ == text_.size())
+        fail_at(text_.size(), record, "the file ends without a line break after it",
+                "a line break: ViSP's parser fails at the end of the file there");
+      pos_ = text_.size();
+      return;
+    }
+    pos_ = end + (text_.compare(end, 2, "\r\n") == 0 ? 2 : 1);
   }
 
   std::size_t count(const std::string& field, std::size_t min, std::size_t max) {
@@ -183,10 +199,17 @@ class CaoFileReader {
     return value > 1000 ? 0 : static_cast<int>(value);
   }
 
-  /// A whole line, as std::getline reads it (the line break must be there, as above).
+  /// A whole line, as std::getline reads it: up to '\n', which must be there (ViSP's stream
+  /// throws at the end of the file).
   std::string line(const std::string& record) {
     token_start_ = pos_;
-    return rest_of_line(record);
+    const std::size_t end = text_.find('\n', pos_);
+    if (end == std::string::npos)
+      fail_at(text_.size(), record, "the file ends without a line break after it",
+              "a line break: ViSP's parser fails at the end of the file there");
+    std::string whole = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    return whole;
   }
 
  private:
@@ -270,7 +293,7 @@ class CaoModelCheck {
 
     reader.skip_comment_lines();
     const int version = reader.version();
-    reader.rest_of_line("version");
+    reader.skip_rest_of_line("version");
     reader.skip_comment_lines();
 
     bool loads_files = false;
@@ -284,7 +307,7 @@ class CaoModelCheck {
     }
 
     const std::size_t points = reader.count("number of points", loads_files ? 0 : 1, CaoLimits::kMaxRecords);
-    reader.rest_of_line("number of points");
+    reader.skip_rest_of_line("number of points");
     std::vector<Eigen::Vector3d> xyz(points);
     for (std::size_t k = 0; k < points; ++k) {
       reader.skip_comment_lines();
@@ -295,19 +318,19 @@ class CaoModelCheck {
         reader.integer(name + " image i");
         reader.integer(name + " image j");
       }
-      reader.rest_of_line(name);
+      reader.skip_rest_of_line(name);
     }
     summary_.points += points;
 
     reader.skip_comment_lines();
     const std::size_t lines = reader.count("number of lines", 0, CaoLimits::kMaxRecords);
-    reader.rest_of_line("number of lines");
+    reader.skip_rest_of_line("number of lines");
     for (std::size_t k = 0; k < lines; ++k) {
       reader.skip_comment_lines();
       const std::string name = "line " + std::to_string(k);
       reader.index(name + " first point", points, "points");
       reader.index(name + " second point", points, "points");
-      reader.rest_of_line(name);
+      reader.skip_record_end(name);
     }
     summary_.lines += lines;
 
@@ -318,7 +341,7 @@ class CaoModelCheck {
     reader.skip_comment_lines();
     if (!reader.only_blank_or_comments_remain()) {
       const std::size_t cylinders = reader.count("number of cylinders", 0, CaoLimits::kMaxRecords);
-      const bool ended = reader.rest_of_line_or_end("number of cylinders");
+      const bool ended = reader.skip_rest_of_line_or_end("number of cylinders");
       for (std::size_t k = 0; k < cylinders; ++k) {
         reader.skip_comment_lines();
         const std::string name = "cylinder " + std::to_string(k);
@@ -328,13 +351,13 @@ class CaoModelCheck {
         if (xyz[a] == xyz[b])
           reader.fail(name + " axis", "points " + std::to_string(a) + " and " + std::to_string(b) + " coincide",
                       "two distinct points");
-        reader.rest_of_line(name);
+        reader.skip_record_end(name);
       }
       summary_.cylinders += cylinders;
       reader.skip_comment_lines();
       if (!ended && !reader.only_blank_or_comments_remain()) {
         const std::size_t circles = reader.count("number of circles", 0, CaoLimits::kMaxRecords);
-        reader.rest_of_line_or_end("number of circles");
+        reader.skip_rest_of_line_or_end("number of circles");
         for (std::size_t k = 0; k < circles; ++k) {
           reader.skip_comment_lines();
           const std::string name = "circle " + std::to_string(k);
@@ -347,7 +370,7 @@ class CaoModelCheck {
             reader.fail(name + " plane", "points " + std::to_string(c) + ", " + std::to_string(p) + " and " +
                                              std::to_string(q) + " are collinear",
                         "a centre and two points spanning the circle's plane");
-          reader.rest_of_line(name);
+          reader.skip_record_end(name);
         }
         summary_.circles += circles;
       }
@@ -359,14 +382,14 @@ class CaoModelCheck {
                    std::size_t min_refs, std::size_t max_refs, std::size_t corners_per_ref) {
     reader.skip_comment_lines();
     const std::size_t faces = reader.count("number of " + section, 0, CaoLimits::kMaxRecords);
-    reader.rest_of_line("number of " + section);
+    reader.skip_rest_of_line("number of " + section);
     const std::string singular = section.substr(0, 4) + section.substr(5);  // "face from lines"
     for (std::size_t k = 0; k < faces; ++k) {
       reader.skip_comment_lines();
       const std::string name = "face " + std::to_string(k) + " (" + singular + ")";
       const std::size_t n = reader.count(name + " number of " + of_what, min_refs, max_refs);
       for (std::size_t i = 0; i < n; ++i) reader.index(name + " " + of_what.substr(0, of_what.size() - 1) + " " + std::to_string(i), available, of_what);
-      reader.rest_of_line(name);
+      reader.skip_record_end(name);
       summary_.face_corners += n * corners_per_ref;
     }
     summary_.faces += faces;

@@ -3,6 +3,7 @@
 // and the project ship, counts what they hold, and refuses the inputs that crash or fool
 // ViSP's parser with the file, line, field and accepted range.
 #include <catch2/catch.hpp>
+#include <fstream>
 
 #include "icgp/io/cao_file_check.h"
 #include "icgp/visp/cao_mesh_loader.h"
@@ -93,6 +94,34 @@ TEST_CASE("cao check: refuses what crashes ViSP's parser, naming file, line, fie
   check(kSquarePoints + "#" + std::string(300, 'c') + "\n0\n0\n0\n", ":7: comment: 301 characters (expected at most 256");
   check(kSquarePoints + "0\n0\n1\n4 0 1 2 3\nrubbish\n", ":11: number of cylinders: 'rubbish' (expected 0 to 100000)");
   check(kSquarePoints + "0\n0\n1\n4 0 1", "face 0 (face from points) point 2: end of file");
+  // A '\r' ends a line record in ViSP's parser: "7 9" is line 1, which the face from lines
+  // would take its corners from, out of the points array (a crash the fuzzer found).
+  check(kSquarePoints + "2\n0 1\r7 9\n1\n1 1\n0\n", ":8: line 1 first point: 7 (expected an index of the points, 0 to 3)");
+}
+
+TEST_CASE("cao check: reads line ends as ViSP's parser does: '\\r' ends a record, not a count or a point") {
+  const TempDir dir("cao-check");
+  // Line 0 ends at the '\r'; the 0 after it is the number of faces from lines, as ViSP reads it.
+  const std::string lone_cr = dir.write("lone-cr.cao", kSquarePoints + "1\n0 1\r0\n1\n4 0 1 2 3\n");
+  const icgp::CaoFileSummary summary = icgp::check_cao_file(lone_cr);
+  CHECK(summary.lines == 1);
+  CHECK(summary.faces == 1);
+  CHECK(icgp::load_cao_mesh(lone_cr).triangle_count() == 2);
+
+  // A point's line and a count's line are skipped to the '\n': "9 9 9" is no point.
+  const std::string skipped = dir.write("skipped.cao", "V1\n4 \r 7\n0 0 0\r9 9 9\n0.1 0 0\n0.1 0.1 0\n0 0.1 0\n0\n0\n1\n4 0 1 2 3\n");
+  CHECK(icgp::check_cao_file(skipped).points == 4);
+  CHECK(icgp::load_cao_mesh(skipped).triangle_count() == 2);
+
+  // A file saved with Windows line ends reads as the original.
+  std::ifstream in(std::string(ICGP_TEST_DATA_DIR) + "/teabox-blender/teabox.cao", std::ios::binary);
+  std::string crlf;
+  for (char c; in.get(c);) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  const std::string windows = dir.write("teabox-crlf.cao", crlf);
+  const icgp::CaoFileSummary teabox = icgp::check_cao_file(windows);
+  CHECK(teabox.points == 8);
+  CHECK(teabox.faces == 6);
+  CHECK(icgp::load_cao_mesh(windows).triangle_count() == 12);
 }
 
 TEST_CASE("cao check: load() includes are checked as ViSP resolves them") {

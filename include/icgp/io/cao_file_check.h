@@ -13,7 +13,7 @@ struct CaoLimits {
   static constexpr std::size_t kMaxFaceCorners = 4096;    ///< corners of one face
   static constexpr std::size_t kMaxFileBytes = 64 << 20;  ///< one .cao file
   static constexpr std::size_t kMaxFilesLoaded = 256;     ///< files parsed, includes counted each time
-  static constexpr std::size_t kMaxLineLength = 255;      ///< after a record's numbers: ViSP reads 256 characters
+  static constexpr std::size_t kMaxLineLength = 255;      ///< after a count's or point's numbers: ViSP skips 256 characters
   static constexpr double kMaxCoordinate = 1e4;           ///< |x|, |y|, |z| and radii, metres
 };
 
