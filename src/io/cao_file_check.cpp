@@ -115,8 +115,7 @@ class CaoFileReader {
   void skip_rest_of_line(const std::string& record) {
     const std::size_t end = text_.find('\n', pos_);
     if (end == std::string::npos)
-      fail_at(text_.size(), record, "the file ends without a line break after it",
-              "a line break: ViSP's parser fails at the end of the file there");
+      fail_without_line_break(record);
     if (end - pos_ > CaoLimits::kMaxLineLength)
       fail_at(pos_, record, "the line goes on for " + std::to_string(end - pos_) + " characters after its numbers",
               "at most " + std::to_string(CaoLimits::kMaxLineLength) + ": ViSP's parser skips no more of the line");
@@ -142,8 +141,7 @@ class CaoFileReader {
     const std::size_t end = text_.find_first_of("\r\n", pos_);
     if (end == std::string::npos) {
       if (pos_ == text_.size())
-        fail_at(text_.size(), record, "the file ends without a line break after it",
-                "a line break: ViSP's parser fails at the end of the file there");
+        fail_without_line_break(record);
       pos_ = text_.size();
       return;
     }
@@ -205,14 +203,18 @@ class CaoFileReader {
     token_start_ = pos_;
     const std::size_t end = text_.find('\n', pos_);
     if (end == std::string::npos)
-      fail_at(text_.size(), record, "the file ends without a line break after it",
-              "a line break: ViSP's parser fails at the end of the file there");
+      fail_without_line_break(record);
     std::string whole = text_.substr(pos_, end - pos_);
     pos_ = end + 1;
     return whole;
   }
 
  private:
+  [[noreturn]] void fail_without_line_break(const std::string& record) const {
+    fail_at(text_.size(), record, "the file ends without a line break after it",
+            "a line break: ViSP's parser fails at the end of the file there");
+  }
+
   void skip_line() {
     const std::size_t end = text_.find('\n', pos_);
     pos_ = end == std::string::npos ? text_.size() : end + 1;
