@@ -86,6 +86,15 @@ def test_a_cluster_gives_the_sequential_results(sequential, client, batch_size):
                {k: v for k, v in b.as_dict().items() if k not in TIMING_KEYS}
 
 
+def test_local_workers_keep_a_trial_on_one_core_without_the_profiler(client):
+    import dask
+
+    environments = client.run(lambda: os.environ.get("OMP_NUM_THREADS"))
+    profilers = client.run(lambda: dask.config.get("distributed.worker.profile.enabled"))
+    assert len(environments) == 2 and set(environments.values()) == {"1"}
+    assert set(profilers.values()) == {False}
+
+
 def test_the_table_json_and_trials_are_the_programs(sequential, cli, tmp_path):
     run, cli_summary = cli
     assert without_timings(sequential.table) == without_timings(run.stdout.split("wrote ")[0])
