@@ -48,7 +48,7 @@ BATCHES_PER_WORKER = 8
 # Dask's statistical profiler samples each worker's task thread every 10 ms. A trial spends its
 # time in C++ with the GIL released, where the profile sees one Python frame and learns
 # nothing, while the sampling costs the trial: on two cores, 24 textured_pbvs trials on two
-# workers took 9.69 s a loop with it, 8.50 s without (same run). Workers of local_cluster run
+# workers took 9.69 s a loop with it, 8.50 s without (back to back). Workers of local_cluster run
 # without it; workers started with dask-worker get the same from
 # DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False.
 WORKER_CONFIG = {"distributed.worker.profile.enabled": False}
