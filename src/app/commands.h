@@ -33,6 +33,7 @@ void register_render_command(CLI::App& app);
 void register_bench_render_command(CLI::App& app);
 void register_make_sequence_command(CLI::App& app);
 void register_track_command(CLI::App& app);
+void register_detect_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_compare_command(CLI::App& app);
 void register_model_command(CLI::App& app);

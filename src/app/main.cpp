@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   icgp::app::register_bench_render_command(app);
   icgp::app::register_make_sequence_command(app);
   icgp::app::register_track_command(app);
+  icgp::app::register_detect_command(app);
   icgp::app::register_bench_command(app);
   icgp::app::register_compare_command(app);
   icgp::app::register_model_command(app);

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "icgp/detection/body_detector.h"
 #include "icgp/eval/joint_evaluation.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
@@ -20,6 +21,7 @@
 #include "icgp/tracker/tracker_builder.h"
 #include "icgp/visp/visp_camera_xml.h"
 #include "overlay_video.h"
+#include "sequence_model.h"
 #include "single_thread_scope.h"
 #include "timed_icg_tracker.h"
 
@@ -32,6 +34,7 @@ struct TrackOptions {
   std::string config;
   std::vector<std::string> modalities;
   std::string init_pose;
+  std::string init = "truth";  ///< truth | detect (--init-pose given: that file)
   std::string summary;
   std::string csv;
   std::string video;
@@ -40,19 +43,8 @@ struct TrackOptions {
   bool independent = false;
 };
 
-/// The model: --model, else the one the sequence names for its only object.
 std::string model_path(const TrackOptions& o, const Sequence& sequence) {
-  if (!o.model.empty()) return o.model;
-  if (sequence.objects().size() == 1 && !sequence.objects().front().mesh_path.empty())
-    return sequence.objects().front().mesh_path;
-  throw std::runtime_error("the sequence in " + o.sequence + " names no single model: give --model");
-}
-
-/// The body takes the name the sequence stores its ground truth under, so frames' truths
-/// are found; a sequence without objects falls back to the model's file name.
-std::string body_name(const Sequence& sequence, const std::string& model) {
-  if (sequence.objects().size() == 1) return sequence.objects().front().name;
-  return std::filesystem::path(model).stem().string();
+  return sequence_model_path(o.model, sequence, o.sequence);
 }
 
 std::optional<Pose> truth_of(const Frame& frame, const std::string& body) {
@@ -147,25 +139,28 @@ bool has_no_depth(const Frame& frame) {
 
 void run_single_body_track(const TrackOptions& o, const Sequence& sequence) {
   const std::string model = model_path(o, sequence);
-  const std::string body = body_name(sequence, model);
+  const std::string body = sequence_body_name(sequence, model);
   const Mesh mesh = load_any_mesh(model);
   const TrackerConfig config = tracking_config(o);
 
   const Frame first = sequence.load(0);
+  const bool detect = o.init == "detect";
   Pose initial_pose;
   if (!o.init_pose.empty()) {
     initial_pose = read_pose_matrix_file(o.init_pose);
   } else if (const Pose* truth = first.truth(body)) {
     initial_pose = *truth;
-  } else {
+  } else if (!detect) {
     throw std::runtime_error("the sequence in " + o.sequence + " has no ground truth for '" + body +
-                             "' to start from: give --init-pose");
+                             "' to start from: give --init-pose or --init detect");
   }
 
   std::cout << "sequence   " << o.sequence << " (" << sequence.layout() << ", " << sequence.size() << " frames)\n"
             << "model      " << model << " as body '" << body << "'\n";
   print_modalities(config);
-  std::cout << "start      " << (o.init_pose.empty() ? "first ground-truth pose" : o.init_pose) << "\n" << std::flush;
+  std::cout << "start      "
+            << (detect ? "detection (no pose given)" : o.init_pose.empty() ? "first ground-truth pose" : o.init_pose)
+            << "\n" << std::flush;
 
   TimedIcgTracker tracker(config, mesh, body);
   TrackingEvaluation evaluation(mesh);
@@ -175,22 +170,41 @@ void run_single_body_track(const TrackOptions& o, const Sequence& sequence) {
   if (!o.quiet)
     std::printf("\nframe      t mm    r deg  quality  tracked       ms  cue score/sigma (px; depth: m at 1 m)\n");
   const SingleThreadScope single_thread;
-  tracker.start(first, initial_pose);
-  int frames_without_depth = 0;
+  // Detection: frames until the body is found are reported lost at the identity pose.
+  bool started = !detect;
+  if (!detect) tracker.start(first, initial_pose);
+  int frames_without_depth = 0, frames_found_again = 0;
   for (int i = 0; i < sequence.size(); ++i) {
     const Frame frame = i == 0 ? first : sequence.load(i);
     if (has_no_depth(frame)) ++frames_without_depth;
     double ms = 0.0;
-    const BodyResult result = tracker.track(frame, &ms);
+    BodyResult result;
+    bool found_again = false;
+    if (!started) {
+      const auto begin = std::chrono::steady_clock::now();
+      const Detection detection = tracker.start_by_detection(frame);
+      started = detection.found;
+      if (started) {
+        result = tracker.track(frame);
+      } else {
+        result.body = body;
+        if (!o.quiet) std::cout << "frame " << frame.index << ": not found: " << detection.why_not << "\n";
+      }
+      ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    } else {
+      result = tracker.track(frame, &ms, &found_again);
+      frames_found_again += found_again;
+    }
     const std::optional<Pose> truth = truth_of(frame, body);
     const FrameEvaluation& e =
         evaluation.add(frame.index, result.reference_T_body, truth, result.tracked, ms, result.quality);
-    if (!o.quiet) std::cout << frame_line(e) << "  " << cue_columns(result) << "\n";
+    if (!o.quiet) std::cout << frame_line(e) << "  " << cue_columns(result) << (found_again ? "  found again" : "") << "\n";
     if (video) video->write(frame.colors.at(0), result.reference_T_body, truth ? &*truth : nullptr, caption(e));
   }
 
   const TrackingSummary summary = evaluation.summary();
   print_summary(summary);
+  if (frames_found_again > 0) std::cout << "recovery   found again after a loss in " << frames_found_again << " frames\n";
   warn_frames_without_depth(frames_without_depth, sequence, o);
   if (!o.summary.empty()) {
     summary.to_json().write(o.summary);
@@ -411,6 +425,11 @@ void register_track_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--init-pose", o->init_pose, "Initial cMo, 4x4 matrix file (default: the first ground-truth pose)")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--init", o->init,
+                  "How the tracker starts: truth (the first ground-truth pose, or --init-pose) or detect (found in "
+                  "the images alone; no truth or pose file is used, at the start or after a loss)")
+      ->check(CLI::IsMember({"truth", "detect"}))
+      ->excludes(cmd->get_option("--init-pose"));
   cmd->add_option("--summary", o->summary, "Write the summary as JSON (several bodies: one entry per body)");
   cmd->add_option("--csv", o->csv,
                   "Write per-frame errors, quality, time and pose as CSV (several bodies: one file per body, "

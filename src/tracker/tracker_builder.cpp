@@ -91,8 +91,7 @@ Mesh read_body_mesh(const BodyConfig& body, const MeshReader& read_mesh) {
 
 }  // namespace
 
-std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
-                                       const MeshReader& read_mesh) {
+std::vector<CameraCues> configured_cameras(const TrackerConfig& config) {
   // The cameras the parameters name: the colour cues' camera, which looks for occlusions
   // in the region cue's depth camera (the texture cue's when region is off), and the depth
   // cue's camera.
@@ -109,7 +108,12 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   camera(config.region.color_camera).region = true;
   camera(config.texture.color_camera).texture = true;
   camera(config.depth.depth_camera).depth = true;
-  return build_tracker(config, mesh, body_name, cameras, nullptr, read_mesh);
+  return cameras;
+}
+
+std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
+                                       const MeshReader& read_mesh) {
+  return build_tracker(config, mesh, body_name, configured_cameras(config), nullptr, read_mesh);
 }
 
 Mesh read_mesh_file(const std::string& path, double scale) {

@@ -143,6 +143,19 @@ const Fields<TrackerParams> kTrackerFields = {
     field("quality_threshold", &TrackerParams::quality_threshold, kFraction),
 };
 
+const Fields<DetectionParams> kDetectionFields = {
+    field("recovery", &DetectionParams::recovery, kBool),
+    field("global_search_interval", &DetectionParams::global_search_interval, int_range<1, 1000>()),
+    field("view_divides", &DetectionParams::view_divides, int_range<0, 3>()),
+    field("roll_step_deg", &DetectionParams::roll_step_deg,
+          Rule<double>{"a number from 5 to 180 (degrees)", [](const double& v) { return v >= 5.0 && v <= 180.0; }}),
+    field("min_distance", &DetectionParams::min_distance, kSphereRadius),
+    field("max_distance", &DetectionParams::max_distance, kSphereRadius),
+    field("template_points", &DetectionParams::template_points, int_range<8, 200>()),
+    field("hypotheses", &DetectionParams::hypotheses, int_range<1, 50>()),
+    field("accept_quality", &DetectionParams::accept_quality, kFraction),
+};
+
 const Fields<ViewpointModelParams> kModelFields = {
     field("n_divides", &ViewpointModelParams::n_divides,
           Rule<int>{"an integer from 0 to 6", [](const int& v) { return v >= 0 && v <= 6; }}),
@@ -281,6 +294,7 @@ const Fields<TrackerConfig> kConfigFields = {
                                          }}),
     {"bodies", [](const yaml::Value& v, TrackerConfig& c) { c.bodies = read_body_configs(v); },
      [](YAML::Emitter& out, const TrackerConfig& c) { write_body_configs(out, c.bodies); }},
+    section("detection", &TrackerConfig::detection, kDetectionFields),
     field("cache_dir", &TrackerConfig::cache_dir, yaml::kString),
 };
 

@@ -554,19 +554,25 @@ void vpMbIcgTracker::setReferenceCameraName(const std::string& referenceCameraNa
 
 // ------------------------------------------------------------------------ initialisation
 
+void vpMbIcgTracker::build_tracker() {
+  Impl& d = *impl_;
+  if (d.mesh.parts.empty())
+    throw vpTrackingException(vpTrackingException::initializationError,
+                              "vpMbIcgTracker::init: no model; call loadModel() before initialising");
+  if (d.tracker) return;
+  d.cues = d.rig.cues(d.config.modalities);
+  d.tracker = icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues, d.renderer,
+                                  [](const std::string& file, double scale) { return icgp::load_any_mesh(file, scale); });
+  d.recovery = std::make_unique<icgp::Recovery>(*d.tracker, d.config, Impl::kBody, d.cues, d.renderer);
+}
+
 void vpMbIcgTracker::init(const vpImage<unsigned char>&) {
   guarded("init", [&] {
     Impl& d = *impl_;
-    if (d.mesh.parts.empty())
-      throw vpTrackingException(vpTrackingException::initializationError,
-                                  "vpMbIcgTracker::init: no model; call loadModel() before initialising");
-    if (!d.tracker) {
-      d.cues = d.rig.cues(d.config.modalities);
-      d.tracker = icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues, d.renderer,
-                                      [](const std::string& file, double scale) { return icgp::load_any_mesh(file, scale); });
-    }
+    build_tracker();
     d.tracker->body(Impl::kBody).reference_T_body = icgp::to_pose(m_cMo);
     d.apply_body_settings();
+    d.recovery->reset();
     d.start_pending = true;
     d.quality = 0.0;
     d.hessian.reset();

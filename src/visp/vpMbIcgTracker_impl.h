@@ -12,6 +12,7 @@
 #include <vector>
 #include <visp3/core/vpTrackingException.h>
 
+#include "icgp/detection/recovery.h"
 #include "icgp/render/model_edges.h"
 #include "icgp/render/scene_renderer.h"
 #include "icgp/tracker/tracker_builder.h"
@@ -36,6 +37,9 @@ struct vpMbIcgTracker::Impl {
   /// Meshes what ViSP's parser calls the init* hooks with, while loadModel parses a .cao / .wrl.
   icgp::CaoMeshBuilder* cao_builder = nullptr;
   std::unique_ptr<icgp::Tracker> tracker;  ///< for the current mesh, config and rig, built by init()
+  /// Detection and recovery of `tracker`'s bodies, built with it.
+  std::unique_ptr<icgp::Recovery> recovery;
+  std::string detection_message = "no detection yet";
   std::vector<icgp::CameraCues> cues;      ///< which cues read which camera, as `tracker` was built
   bool start_pending = false;
 
@@ -98,8 +102,12 @@ struct vpMbIcgTracker::Impl {
   }
 
   /// The cues' tracker must be rebuilt (model, configuration or cameras' types changed).
-  void tracker_changed() { tracker.reset(); }
+  void tracker_changed() {
+    recovery.reset();
+    tracker.reset();
+  }
   void model_changed() {
+    recovery.reset();
     tracker.reset();
     edges.reset();
     renderer = std::make_shared<icgp::SceneRenderer>();  // the body's mesh is uploaded once

@@ -125,6 +125,11 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
   return reference_grey;
 }
 
+// initFromDetection (vpMbIcgTracker_detection.cpp) assembles its frames here too.
+template const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(
+    const std::map<std::string, const vpImage<unsigned char>*>&, const std::vector<DepthInput>&, const std::string&);
+template const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std::string, const vpImage<vpRGBa>*>&,
+                                                                      const std::vector<DepthInput>&, const std::string&);
 template void vpMbIcgTracker::track_frame(const std::map<std::string, const vpImage<unsigned char>*>&,
                                           const std::vector<DepthInput>&, const std::string&);
 template void vpMbIcgTracker::track_frame(const std::map<std::string, const vpImage<vpRGBa>*>&,
@@ -146,19 +151,24 @@ void vpMbIcgTracker::track_step(const vpImage<unsigned char>* grey, const std::s
       d.tracker->start(frame);
       d.start_pending = false;
     }
-    const std::vector<icgp::BodyResult> results = d.tracker->track(frame);
-    for (const icgp::BodyResult& r : results) d.body_results[r.body] = r;
-    const icgp::BodyResult& result = results.front();  // the object, added first
-    d.quality = result.quality;
+    std::vector<icgp::BodyResult> results = d.tracker->track(frame);
+    icgp::BodyResult& object = results.front();  // the object, added first
     // On the frame the cues start on, a cue may have nothing to measure yet (texture alone
     // has only made its keyframe): that is no evidence against the pose the program gave,
     // which testTracking() must not report lost.
-    const bool none_measured = std::all_of(result.modalities.begin(), result.modalities.end(),
+    const bool none_measured = std::all_of(object.modalities.begin(), object.modalities.end(),
                                            [](const icgp::ModalityQuality& q) { return q.abstained; });
-    if (starting && none_measured) d.quality = 1.0;
+    if (starting && none_measured) {
+      object.quality = 1.0;
+      object.tracked = true;
+    }
+    d.recovery->after_track(frame, results);
+    for (const icgp::BodyResult& r : results) d.body_results[r.body] = r;
+    d.quality = results.front().quality;
   }, Failure::kTracking);
   guarded(call, [&] {
-    m_cMo = icgp::to_homogeneous_matrix(body.reference_T_body);
+    // A lost object is where it was last trusted until it is found again.
+    m_cMo = icgp::to_homogeneous_matrix(d.body_results.at(Impl::kBody).reference_T_body);
     d.hessian = d.tracker->last_hessian(Impl::kBody);
     computeVVSInit();
     computeVVSInteractionMatrixAndResidu();
@@ -212,11 +222,9 @@ Eigen::Vector3f cloud_point(const std::vector<vpColVector>& cloud, unsigned int 
 
 }  // namespace
 
-template <typename Image>
-void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& images,
-                                       std::map<std::string, const std::vector<vpColVector>*>& clouds,
-                                       std::map<std::string, unsigned int>& widths,
-                                       std::map<std::string, unsigned int>& heights) {
+std::vector<vpMbIcgTracker::DepthInput> vpMbIcgTracker::cloud_depth_inputs(
+    const std::map<std::string, const std::vector<vpColVector>*>& clouds,
+    std::map<std::string, unsigned int>& widths, std::map<std::string, unsigned int>& heights) const {
   std::vector<DepthInput> depths;
   for (const auto& [name, cloud] : clouds) {
     const icgp::CameraRig::Camera& camera = impl_->rig.at(name, "track");
@@ -244,21 +252,22 @@ void vpMbIcgTracker::track_with_clouds(std::map<std::string, const Image*>& imag
         camera.parameters);
     depths.push_back(std::move(depth));
   }
-  track_frame(images, depths, "track");
+  return depths;
 }
 
 void vpMbIcgTracker::track(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
                            std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
                            std::map<std::string, unsigned int>& mapOfPointCloudWidths,
                            std::map<std::string, unsigned int>& mapOfPointCloudHeights) {
-  track_with_clouds(mapOfImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
+  track_frame(mapOfImages, cloud_depth_inputs(mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights), "track");
 }
 
 void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
                            std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
                            std::map<std::string, unsigned int>& mapOfPointCloudWidths,
                            std::map<std::string, unsigned int>& mapOfPointCloudHeights) {
-  track_with_clouds(mapOfColorImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
+  track_frame(mapOfColorImages, cloud_depth_inputs(mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights),
+              "track");
 }
 
 std::string vpMbIcgTracker::depth_camera_of_raw_depth() const {
@@ -270,27 +279,30 @@ std::string vpMbIcgTracker::depth_camera_of_raw_depth() const {
                                            "tracker type (DEPTH_DENSE_TRACKER or DEPTH_NORMAL_TRACKER)");
 }
 
-template <typename Image>
-void vpMbIcgTracker::track_with_raw_depth(const Image& I, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
+vpMbIcgTracker::DepthInput vpMbIcgTracker::raw_depth_input(const vpImage<uint16_t>& I_depth_raw, double depthScale,
+                                                           const std::string& call) const {
   if (!(depthScale > 0.0) || !std::isfinite(depthScale))
-    throw vpException(vpException::badValue,
-                      "vpMbIcgTracker::track: the depth scale must be positive (metres per raw unit), got " +
-                          std::to_string(depthScale));
+    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call +
+                                                 ": the depth scale must be positive (metres per raw unit), got " +
+                                                 std::to_string(depthScale));
   DepthInput depth{depth_camera_of_raw_depth(), I_depth_raw.getWidth(), I_depth_raw.getHeight()};
-  icgp::visp_detail::require_depth_size("track(I, I_depth_raw, depthScale)", depth);
+  icgp::visp_detail::require_depth_size(call, depth);
   depth.depth = [&I_depth_raw, scale = static_cast<float>(depthScale)](int row, int col) {
     return scale * I_depth_raw[static_cast<unsigned int>(row)][col];
   };
-  track_frame(std::map<std::string, const Image*>{{impl_->rig.reference(), &I}}, {depth},
-              "track(I, I_depth_raw, depthScale)");
+  return depth;
 }
 
 void vpMbIcgTracker::track(const vpImage<unsigned char>& I, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
-  track_with_raw_depth(I, I_depth_raw, depthScale);
+  const std::string call = "track(I, I_depth_raw, depthScale)";
+  track_frame(std::map<std::string, const vpImage<unsigned char>*>{{impl_->rig.reference(), &I}},
+              {raw_depth_input(I_depth_raw, depthScale, call)}, call);
 }
 
 void vpMbIcgTracker::track(const vpImage<vpRGBa>& I_color, const vpImage<uint16_t>& I_depth_raw, double depthScale) {
-  track_with_raw_depth(I_color, I_depth_raw, depthScale);
+  const std::string call = "track(I_color, I_depth_raw, depthScale)";
+  track_frame(std::map<std::string, const vpImage<vpRGBa>*>{{impl_->rig.reference(), &I_color}},
+              {raw_depth_input(I_depth_raw, depthScale, call)}, call);
 }
 
 void vpMbIcgTracker::testTracking() {
@@ -298,6 +310,10 @@ void vpMbIcgTracker::testTracking() {
   if (!tracker)
     throw vpTrackingException(vpTrackingException::initializationError, "vpMbIcgTracker::testTracking: not initialised");
   const double threshold = tracker->params().quality_threshold;
+  if (impl_->recovery->lost(Impl::kBody))
+    throw vpTrackingException(vpTrackingException::fatalError,
+                              "vpMbIcgTracker: tracking lost, and the object not found again since (quality " +
+                                  std::to_string(impl_->quality) + ")");
   if (impl_->quality < threshold)
     throw vpTrackingException(vpTrackingException::fatalError,
                               "vpMbIcgTracker: tracking lost (quality " + std::to_string(impl_->quality) +

@@ -10,7 +10,7 @@ endif()
 
 # Level of each module; a module may include only modules of a lower level.
 set(levels base 0 geometry 1 io 2 features 2 render 3 model 4 modality 5 optimizer 6 tracker 7
-           eval 8 visp 9 servo 10 app 11 python 11)
+           detection 8 eval 9 visp 10 servo 11 app 12 python 12)
 function(module_level module out)
   list(FIND levels ${module} index)
   if(index EQUAL -1)

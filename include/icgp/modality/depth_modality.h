@@ -39,6 +39,8 @@ class DepthModality : public Modality {
   ModalityQuality quality() const override { return quality_; }
 
   const DepthParams& params() const { return params_; }
+  /// The depth viewpoint model (the detector checks hypotheses against its surface points).
+  const ViewpointModel& model() const { return *model_; }
 
  private:
   struct Correspondence {

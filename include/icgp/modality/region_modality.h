@@ -53,6 +53,8 @@ class RegionModality : public Modality {
   ModalityQuality quality() const override { return quality_; }
 
   const RegionParams& params() const { return params_; }
+  /// The region viewpoint model (the detector's templates are its contour points).
+  const ViewpointModel& model() const { return *model_; }
 
  private:
   /// A model contour point projected at the current pose.

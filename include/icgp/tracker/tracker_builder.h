@@ -29,12 +29,17 @@ using MeshReader = std::function<Mesh(const std::string& path, double scale)>;
 /// The core's MeshReader: load_mesh (the formats assimp reads).
 Mesh read_mesh_file(const std::string& path, double scale);
 
+/// The cameras the configuration's cue parameters name (region.color_camera,
+/// texture.color_camera, depth.depth_camera) and the cues each one reads.
+std::vector<CameraCues> configured_cameras(const TrackerConfig& config);
+
 /// A tracker for the main body `body_name` and the configuration's other bodies
 /// (config.bodies, meshes read by `read_mesh`), each tracked one with the configured
 /// modalities. Viewpoint models come from the cache (config.cache_dir), generated with
 /// progress output on first use. Bodies start at the identity pose and links at joint
 /// values 0: set the free bodies' reference_T_body and the joint values, then start().
 /// Errors name the body and the field (in_tree_order, validate(Joint&)).
+/// Its cameras are configured_cameras(config).
 std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
                                        const MeshReader& read_mesh = read_mesh_file);
 /// The same for a rig of cameras: each camera gets the cues it names (those of

@@ -10,6 +10,7 @@
 #include "icgp/modality/modality_params.h"
 #include "icgp/model/viewpoint_model.h"
 #include "icgp/tracker/body_config.h"
+#include "icgp/tracker/detection_params.h"
 #include "icgp/tracker/tracker.h"
 
 namespace icgp {
@@ -36,6 +37,8 @@ struct TrackerConfig {
   /// main body or another as the root) and occluders. Each tracked one gets the cues of
   /// `modalities` with these parameters. Relative mesh paths in a file are relative to its folder.
   std::vector<BodyConfig> bodies;
+  /// Detection without a given pose and recovery after a loss (docs/detection.md).
+  DetectionParams detection;
   std::string cache_dir;  ///< empty: $ICGP_CACHE_DIR, else $XDG_CACHE_HOME/icgp, else ~/.cache/icgp
 };
 

@@ -228,6 +228,34 @@ class vpMbIcgTracker : public vpMbTracker {
                             const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses);
   virtual void initFromPose(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
                             const std::map<std::string, vpHomogeneousMatrix>& mapOfCameraPoses);
+  /// icgp's extension: finds the object in these images without a given pose
+  /// (docs/detection.md) and, when found, starts tracking there (cMo set, the cues started
+  /// on this frame; the next track() call follows on). Returns false, leaving cMo as it
+  /// was, when nothing is verified: the reason is then in getDetectionMessage(). The
+  /// forms mirror track(): the reference camera's grey or colour image, with a raw depth
+  /// image, or maps of images and organised clouds. Builds the viewpoint models if needed,
+  /// as initFromPose; throws as track() does for unknown cameras and bad depth.
+  bool initFromDetection(const vpImage<unsigned char>& I);
+  bool initFromDetection(const vpImage<vpRGBa>& I_color);
+  bool initFromDetection(const vpImage<unsigned char>& I, const vpImage<uint16_t>& I_depth_raw, double depthScale);
+  bool initFromDetection(const vpImage<vpRGBa>& I_color, const vpImage<uint16_t>& I_depth_raw, double depthScale);
+  bool initFromDetection(std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                         std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
+                         std::map<std::string, unsigned int>& mapOfPointCloudWidths,
+                         std::map<std::string, unsigned int>& mapOfPointCloudHeights);
+  bool initFromDetection(std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
+                         std::map<std::string, const std::vector<vpColVector>*>& mapOfPointClouds,
+                         std::map<std::string, unsigned int>& mapOfPointCloudWidths,
+                         std::map<std::string, unsigned int>& mapOfPointCloudHeights);
+  /// The last detection's outcome in a sentence: the quality it was verified with, or why
+  /// nothing was found.
+  std::string getDetectionMessage() const;
+  /// icgp's extension: after a loss, search for the object again in the following frames
+  /// (near its last trusted pose every frame, the whole image every few), and resume
+  /// tracking only on a verified pose; until then testTracking() reports it lost and
+  /// getPose() gives the last trusted pose. On by default (TrackerConfig detection.recovery).
+  void setRecovery(bool enable);
+  bool getRecovery() const;
   using vpMbTracker::initClick;
   /// Clicks in the reference camera's image (or another camera's, moved into the
   /// reference), as ViSP does; needs a display on that image.
@@ -566,12 +594,18 @@ class vpMbIcgTracker : public vpMbTracker {
   vpHomogeneousMatrix reference_pose(const std::string& camera, const vpHomogeneousMatrix& cMo,
                                      const std::string& call) const;
   void track_step(const vpImage<unsigned char>* grey, const std::string& call);
+  /// The depth inputs of ViSP's maps of organised clouds (checked: sizes, null clouds).
+  std::vector<DepthInput> cloud_depth_inputs(const std::map<std::string, const std::vector<vpColVector>*>& clouds,
+                                             std::map<std::string, unsigned int>& widths,
+                                             std::map<std::string, unsigned int>& heights) const;
+  /// The depth input of a raw depth image (metres = raw * depthScale) of the raw-depth camera.
+  DepthInput raw_depth_input(const vpImage<uint16_t>& I_depth_raw, double depthScale, const std::string& call) const;
+  /// initFromDetection: the frame assembled as track() does, then detected.
   template <typename Image>
-  void track_with_clouds(std::map<std::string, const Image*>& images,
-                         std::map<std::string, const std::vector<vpColVector>*>& clouds,
-                         std::map<std::string, unsigned int>& widths, std::map<std::string, unsigned int>& heights);
-  template <typename Image>
-  void track_with_raw_depth(const Image& I, const vpImage<uint16_t>& I_depth_raw, double depthScale);
+  bool detect_frame(const std::map<std::string, const Image*>& images, const std::vector<DepthInput>& depths,
+                    const std::string& call);
+  /// Builds the cues' tracker for the current model, configuration and rig, if needed.
+  void build_tracker();
   /// The camera a raw depth image belongs to: the reference camera if it has a depth type,
   /// else the first camera that has one.
   std::string depth_camera_of_raw_depth() const;

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "icgp/base/frame.h"
+#include "icgp/detection/shape_templates.h"
+#include "icgp/detection/template_matcher.h"
+#include "icgp/tracker/tracker.h"
+#include "icgp/tracker/tracker_builder.h"
+#include "icgp/tracker/tracker_config.h"
+
+namespace icgp {
+
+/// What a detection found in one frame.
+struct Detection {
+  bool found = false;
+  Pose reference_T_body;  ///< the verified pose, in the frame's reference camera
+  double quality = 0.0;   ///< the refining cues' quality at that pose
+  /// Further verified poses as good as the found one and clearly different from it: the
+  /// equivalent views of a symmetric object, not a failure.
+  std::vector<Pose> equivalents;
+  int candidates = 0;  ///< template matches above the score threshold, after suppression
+  int refined = 0;     ///< of those, hypotheses refined by the tracker's cues
+  std::string why_not;  ///< when not found: why, in a sentence
+};
+
+/// Finds one body in a frame without a given pose (docs/detection.md): gradient templates
+/// from its viewpoint models give scored pose candidates, depth (when measured) places and
+/// checks them, and the best few are refined by the body's own region and depth cues,
+/// coarse to fine, on the same frame. A pose is reported only when that refinement's
+/// quality reaches DetectionParams::accept_quality: "not found" rather than a confident
+/// wrong pose.
+class BodyDetector {
+ public:
+  /// The body `body_name` of `mesh` as `config` tracks it with `cameras` (the first camera
+  /// with the region cue is searched; a depth camera, when a camera has the depth cue,
+  /// places and checks). Its viewpoint models come from the same cache as the tracker's.
+  /// Throws std::invalid_argument naming the body when no camera has a colour image.
+  BodyDetector(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
+               const std::vector<CameraCues>& cameras, std::shared_ptr<SceneRenderer> renderer = nullptr);
+  ~BodyDetector();
+
+  /// Searches the whole image over the configured distances.
+  Detection detect(const Frame& frame);
+  /// Searches near `reference_T_body` (the last trusted pose of a body just lost): a
+  /// bounded window in the image, distance and rotation, and fewer hypotheses.
+  Detection search_near(const Frame& frame, const Pose& reference_T_body);
+
+  const std::string& body() const { return body_name_; }
+  const ShapeTemplates& templates() const { return *templates_; }
+
+ private:
+  Detection search(const Frame& frame, const SearchWindow& window, int hypotheses);
+  /// Moves a candidate along its ray so its surface points meet the measured depth; the
+  /// share of them that then agree, or a negative value without enough measurements.
+  double place_in_depth(const Frame& frame, PoseCandidate& candidate) const;
+
+  DetectionParams params_;
+  std::string body_name_;
+  std::string color_camera_, depth_camera_;
+  std::unique_ptr<Tracker> refiner_;
+  std::unique_ptr<ShapeTemplates> templates_;
+  std::unique_ptr<TemplateMatcher> matcher_;
+};
+
+}  // namespace icgp

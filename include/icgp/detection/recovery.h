@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "icgp/detection/body_detector.h"
+
+namespace icgp {
+
+/// Starts a tracker's bodies without a given pose and finds them again after a loss
+/// (DetectionParams, docs/detection.md). A body reported lost stays lost, whatever its cues
+/// say later, until a verified detection puts it back: first searched near its last trusted
+/// pose every frame, then over the whole image every `global_search_interval` frames. A
+/// body's detector is built the first time it is needed.
+class Recovery {
+ public:
+  /// `tracker`'s bodies as `config` configures them with `cameras`; `main_body` is the one
+  /// the configuration's multi-region meshes belong to.
+  Recovery(Tracker& tracker, TrackerConfig config, std::string main_body, std::vector<CameraCues> cameras,
+           std::shared_ptr<SceneRenderer> renderer = nullptr);
+  ~Recovery();
+
+  /// Detects `body` (empty: the main body) in `frame` without touching the tracker.
+  Detection detect(const Frame& frame, const std::string& body = "");
+  /// Detects `body` and, when found, puts it there and starts the tracker on `frame`.
+  Detection initialise(const Frame& frame, const std::string& body = "");
+  /// The tracker was (re)started from poses given by the caller: every body is trusted.
+  void reset();
+
+  /// After Tracker::track gave `results` for `frame`: remembers the poses of tracked
+  /// bodies; marks lost ones; with DetectionParams::recovery, searches for the lost ones
+  /// and, for each found, restarts the tracker there and tracks `frame` again, replacing
+  /// `results`. A body still lost is reported lost at its last trusted pose. Returns the
+  /// bodies found again in this frame.
+  std::vector<std::string> after_track(const Frame& frame, std::vector<BodyResult>& results);
+
+  /// Turns the search after a loss on or off (DetectionParams::recovery).
+  void set_recovery(bool on) { config_.detection.recovery = on; }
+
+  /// Whether `body` is lost (reported lost and not found again since).
+  bool lost(const std::string& body) const;
+
+ private:
+  struct BodyState {
+    std::optional<Pose> trusted;  ///< the last pose reported tracked
+    bool lost = false;
+    int frames_lost = 0;
+  };
+  BodyDetector& detector(const std::string& body);
+
+  Tracker& tracker_;
+  TrackerConfig config_;
+  std::string main_body_;
+  std::vector<CameraCues> cameras_;
+  std::shared_ptr<SceneRenderer> renderer_;
+  std::map<std::string, std::unique_ptr<BodyDetector>> detectors_;
+  std::map<std::string, BodyState> states_;
+};
+
+}  // namespace icgp

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "icgp/base/frame.h"
+#include "icgp/detection/orientation_responses.h"
+#include "icgp/detection/shape_templates.h"
+
+namespace icgp {
+
+/// A pose the templates suggest, before any refinement.
+struct PoseCandidate {
+  Pose camera_T_body;  ///< in the colour camera the templates were matched in
+  double score = 0.0;  ///< share of the template's contour points the image answers, [0, 1]
+  int template_index = 0;
+  double distance = 0.0;  ///< metres to the sphere centre
+};
+
+/// Where to look: the whole image over a range of distances, or near a pose (a body just
+/// lost), within a radius in the image, a distance ratio and a rotation.
+struct SearchWindow {
+  double min_distance = 0.25, max_distance = 1.5;
+  /// Near a pose: the pose, and how far from it to look.
+  std::optional<Pose> near;
+  double radius_px = 0.0;
+  double max_rotation = 0.0;  ///< radians
+};
+
+/// Gradient template matching (docs/detection.md): every template at every distance step
+/// over every grid position of the image level where its contour spans a few dozen pixels,
+/// scored by the share of its contour points whose orientation the image answers. Costs
+/// grow with the image area the smallest templates need and the number of templates.
+class TemplateMatcher {
+ public:
+  /// The step between searched distances: a template a step off in scale still matches
+  /// within the spread radius at the level it is matched on.
+  static constexpr double kDistanceStep = 1.15;
+  /// Candidates kept from one search, best first (before non-maximum suppression).
+  static constexpr int kMaxCandidates = 300;
+
+  explicit TemplateMatcher(const ShapeTemplates& templates) : templates_(templates) {}
+
+  /// The candidates of `color`'s image scoring at least `min_score`, best first, distinct
+  /// (no two at the same place, distance and rotation). `why_none` receives the reason
+  /// when no distance of the window could be searched (the object would be too small or
+  /// larger than the image).
+  std::vector<PoseCandidate> match(const ColorImage& color, const SearchWindow& window, double min_score,
+                                   std::string* why_none = nullptr);
+
+ private:
+  /// The image at pyramid level L (2^L times smaller) and its orientation responses,
+  /// computed on first use in a frame.
+  struct Level {
+    bool ready = false;
+    Intrinsics intrinsics;
+    OrientationResponses responses;
+  };
+  Level& level(const ColorImage& color, int L);
+  const cv::Mat& pyramid_image(const ColorImage& color, int L);
+
+  const ShapeTemplates& templates_;
+  static constexpr int kLevels = 4;
+  std::array<Level, kLevels> levels_;
+  cv::Mat pyramid_[kLevels];
+  std::vector<std::uint16_t> scores_;
+};
+
+}  // namespace icgp

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// `icgp detect`: detection alone on every frame of a sequence (no tracking, no pose
+// carried from frame to frame), each result against the frame's ground truth.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "commands.h"
+#include "icgp/detection/body_detector.h"
+#include "icgp/eval/metrics.h"
+#include "icgp/eval/sequence.h"
+#include "icgp/tracker/tracker_builder.h"
+#include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/visp_camera_xml.h"
+#include "sequence_model.h"
+#include "single_thread_scope.h"
+
+namespace icgp::app {
+namespace {
+
+struct DetectOptions {
+  std::string sequence;
+  std::string model;
+  std::string config;
+  int frames = 0;
+  double max_translation_mm = 5.0;
+  double max_rotation_deg = 5.0;
+  SequenceOptions sequence_options = visp_sequence_options();
+  bool quiet = false;
+};
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[static_cast<std::size_t>(std::min<double>(values.size() - 1, p * (values.size() - 1) + 0.5))];
+}
+
+void run_detect(const DetectOptions& o) {
+  const Sequence sequence = Sequence::open(o.sequence, o.sequence_options);
+  const std::string model = sequence_model_path(o.model, sequence, o.sequence);
+  const std::string body = sequence_body_name(sequence, model);
+  TrackerConfig config = sequence_tracker_config(o.config, o.sequence);
+  if (o.sequence_options.grey_without_depth)
+    config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), CueKind::kDepth),
+                            config.modalities.end());
+  const Mesh mesh = load_any_mesh(model);
+  BodyDetector detector(config, mesh, body, configured_cameras(config));
+  const int n = o.frames > 0 ? std::min(o.frames, sequence.size()) : sequence.size();
+  std::cout << "sequence   " << o.sequence << " (" << sequence.layout() << ", " << n << " frames)\n"
+            << "model      " << model << " as body '" << body << "'\n"
+            << "detector   " << detector.templates().templates().size() << " templates over "
+            << detector.templates().n_views() << " views\n";
+  if (!o.quiet) std::printf("\nframe  found     t mm    r deg  quality  candidates       ms\n");
+
+  const SingleThreadScope single_thread;
+  int correct = 0, wrong = 0, missed = 0, without_object = 0, false_positives = 0;
+  std::vector<double> ms;
+  for (int i = 0; i < n; ++i) {
+    const Frame frame = sequence.load(i);
+    const auto begin = std::chrono::steady_clock::now();
+    const Detection d = detector.detect(frame);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
+    const Pose* truth = frame.truth(body);
+    double t = -1.0, r = -1.0;
+    if (!truth) {
+      ++without_object;
+      false_positives += d.found;
+    } else if (!d.found) {
+      ++missed;
+    } else {
+      t = translation_error_mm(d.reference_T_body, *truth);
+      r = rotation_error_deg(d.reference_T_body, *truth);
+      (t <= o.max_translation_mm && r <= o.max_rotation_deg ? correct : wrong) += 1;
+    }
+    if (o.quiet) continue;
+    std::printf("%5d  %-5s %8.2f %8.2f  %7.3f  %10d %8.1f%s%s\n", frame.index, d.found ? "yes" : "no", t, r,
+                d.quality, d.candidates, ms.back(), d.found ? "" : "  ", d.found ? "" : d.why_not.c_str());
+  }
+  const int with_object = n - without_object;
+  std::printf("\nfound      %d of %d frames with the object within %.1f mm and %.1f deg (%.1f %%); %d wrong, %d not found\n",
+              correct, with_object, o.max_translation_mm, o.max_rotation_deg,
+              with_object > 0 ? 100.0 * correct / with_object : 0.0, wrong, missed);
+  if (without_object > 0)
+    std::printf("empty      %d of %d frames without the object returned a pose\n", false_positives, without_object);
+  std::printf("time       median %.1f ms, p90 %.1f ms\n", median(ms), percentile(ms, 0.9));
+}
+
+}  // namespace
+
+void register_detect_command(CLI::App& app) {
+  auto o = std::make_shared<DetectOptions>();
+  CLI::App* cmd = app.add_subcommand("detect", "Detect the object in every frame of a sequence, without tracking, "
+                                               "against the ground truth");
+  cmd->add_option("--sequence", o->sequence, "Sequence folder (any layout `icgp track` reads)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--model", o->model, "Mesh or ViSP .cao (default: the sequence's own model)")->check(CLI::ExistingFile);
+  cmd->add_option("--config", o->config, "Tracker configuration (YAML; its detection section applies)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--frames", o->frames, "Detect in the first N frames only (default: all)")->check(CLI::Range(1, 100000));
+  cmd->add_option("--max-translation-mm", o->max_translation_mm, "A detection within this translation error is right")
+      ->check(CLI::Range(0.0, 1e4));
+  cmd->add_option("--max-rotation-deg", o->max_rotation_deg, "... and within this rotation error")
+      ->check(CLI::Range(0.0, 180.0));
+  cmd->add_option("--color-intrinsics", o->sequence_options.color_intrinsics_file,
+                  "ViSP XML with the colour camera (for ViSP layouts whose files are ambiguous)")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--grey-without-depth", o->sequence_options.grey_without_depth,
+                "Detect in grey images without depth (colour converted to grey, depth left out)");
+  cmd->add_flag("--quiet", o->quiet, "Print only the summary");
+  cmd->callback([o] { run_detect(*o); });
+}
+
+}  // namespace icgp::app

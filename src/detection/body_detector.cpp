@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/detection/body_detector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "icgp/modality/depth_modality.h"
+#include "icgp/modality/region_modality.h"
+
+namespace icgp {
+namespace {
+
+/// Template matches below this share of answered contour points are not candidates.
+constexpr double kMinTemplateScore = 0.55;
+/// A candidate whose surface points mostly disagree with the measured depth is dropped
+/// before refinement (with enough measurements to say so).
+constexpr double kMinDepthAgreement = 0.3;
+/// Tracker frames run on the detection's frame to refine a hypothesis: the first starts at
+/// the region cue's coarsest scale, so three pull a candidate in from tens of pixels.
+constexpr int kRefinementRounds = 3;
+/// Near a lost pose: the image radius (in sphere radii, at least kNearMinRadiusPx), the
+/// distance ratio and rotation searched, and the hypotheses refined, so that a frame's
+/// search stays a few milliseconds.
+constexpr double kNearRadiusSpheres = 1.5;
+constexpr double kNearMinRadiusPx = 40.0;
+constexpr double kNearDistanceRatio = 1.3;
+constexpr double kNearRotation = 35.0 * 3.14159265358979 / 180.0;
+constexpr int kNearHypotheses = 2;
+/// Verified poses within this quality of the best and this rotation apart are equivalent.
+constexpr double kEquivalentQuality = 0.05;
+constexpr double kEquivalentRotation = 10.0 * 3.14159265358979 / 180.0;
+
+/// The refining tracker: the body alone, with its region cue and, where the rig has one,
+/// its depth cue; texture is left out, since its keyframe would be taken at the unrefined pose.
+TrackerConfig refinement_config(const TrackerConfig& config) {
+  TrackerConfig refine = config;
+  refine.modalities = {CueKind::kRegion};
+  if (has_cue(config.modalities, CueKind::kDepth)) refine.modalities.push_back(CueKind::kDepth);
+  refine.bodies.clear();
+  return refine;
+}
+
+std::vector<CameraCues> refinement_cameras(const std::vector<CameraCues>& cameras) {
+  std::vector<CameraCues> out = cameras;
+  for (CameraCues& c : out) c.texture = false;
+  return out;
+}
+
+}  // namespace
+
+BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
+                           const std::vector<CameraCues>& cameras, std::shared_ptr<SceneRenderer> renderer)
+    : params_(config.detection), body_name_(body_name) {
+  for (const CameraCues& c : cameras) {
+    if (c.region && color_camera_.empty()) color_camera_ = c.camera;
+    if (c.depth && depth_camera_.empty() && has_cue(config.modalities, CueKind::kDepth)) depth_camera_ = c.camera;
+  }
+  if (color_camera_.empty())
+    throw std::invalid_argument("detection of body '" + body_name +
+                                "': no camera has a colour or grey image (the region cue's camera), and the templates "
+                                "are matched in one");
+  if (!(params_.min_distance < params_.max_distance))
+    throw std::invalid_argument("detection of body '" + body_name + "': detection.min_distance (" +
+                                std::to_string(params_.min_distance) + " m) must be below detection.max_distance (" +
+                                std::to_string(params_.max_distance) + " m)");
+  refiner_ = build_tracker(refinement_config(config), mesh, body_name, refinement_cameras(cameras), std::move(renderer));
+  std::vector<const ViewpointModel*> region_models;
+  const ViewpointModel* depth_model = nullptr;
+  for (const Modality* m : refiner_->modalities(body_name)) {
+    if (const auto* region = dynamic_cast<const RegionModality*>(m)) region_models.push_back(&region->model());
+    if (const auto* depth = dynamic_cast<const DepthModality*>(m)) depth_model = &depth->model();
+  }
+  templates_ = std::make_unique<ShapeTemplates>(mesh, region_models, depth_model, params_.view_divides,
+                                                params_.roll_step_deg, params_.template_points);
+  matcher_ = std::make_unique<TemplateMatcher>(*templates_);
+}
+
+BodyDetector::~BodyDetector() = default;
+
+Detection BodyDetector::detect(const Frame& frame) {
+  SearchWindow window;
+  window.min_distance = params_.min_distance;
+  window.max_distance = params_.max_distance;
+  return search(frame, window, params_.hypotheses);
+}
+
+Detection BodyDetector::search_near(const Frame& frame, const Pose& reference_T_body) {
+  const ColorImage* color = frame.find_color(color_camera_);
+  SearchWindow window;
+  if (color) {
+    const Pose camera_T_body = color->camera_T_reference * reference_T_body;
+    const double distance = (camera_T_body * templates_->sphere().centre).norm();
+    window.near = camera_T_body;
+    window.min_distance = distance / kNearDistanceRatio;
+    window.max_distance = distance * kNearDistanceRatio;
+    window.radius_px = std::max(kNearMinRadiusPx, kNearRadiusSpheres * color->intrinsics.fu *
+                                                      templates_->sphere().radius / distance);
+    window.max_rotation = kNearRotation;
+  }
+  return search(frame, window, kNearHypotheses);
+}
+
+double BodyDetector::place_in_depth(const Frame& frame, PoseCandidate& candidate) const {
+  const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
+  const ColorImage* color = frame.find_color(color_camera_);
+  if (!depth || !depth->delivered() || !color) return -1.0;
+  const ShapeTemplates::View& view = templates_->view(templates_->templates()[candidate.template_index].view);
+  if (view.surface.empty()) return -1.0;
+  // Depth camera <- colour camera.
+  const Pose depth_T_color = depth->camera_T_reference * color->camera_T_reference.inverse();
+  const Eigen::Vector3d ray = (candidate.camera_T_body * templates_->sphere().centre).normalized();
+  auto differences = [&](const Pose& camera_T_body) {
+    std::vector<double> d;
+    const Pose depth_T_body = depth_T_color * camera_T_body;
+    for (const Eigen::Vector3f& p : view.surface) {
+      const Eigen::Vector3d X = depth_T_body * p.cast<double>();
+      if (X.z() <= 0.0) continue;
+      const Eigen::Vector2d uv = depth->intrinsics.project(X);
+      const int col = static_cast<int>(std::lround(uv.x())), row = static_cast<int>(std::lround(uv.y()));
+      if (col < 0 || row < 0 || col >= depth->depth.cols || row >= depth->depth.rows) continue;
+      const float z = depth->at(row, col);
+      if (z > 0.f) d.push_back(z - X.z());
+    }
+    return d;
+  };
+  std::vector<double> d = differences(candidate.camera_T_body);
+  if (d.size() < view.surface.size() / 4 || d.size() < 4) return -1.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  const double shift = d[d.size() / 2];
+  // Along the ray, the centre's depth changes by ray.z per metre.
+  const Pose moved(candidate.camera_T_body.rotation(), candidate.camera_T_body.translation() + shift / ray.z() * ray);
+  d = differences(moved);
+  const double tolerance = std::max(0.01, 0.1 * templates_->sphere().radius);
+  const double agreeing =
+      static_cast<double>(std::count_if(d.begin(), d.end(), [&](double x) { return std::abs(x) < tolerance; }));
+  candidate.camera_T_body = moved;
+  candidate.distance = (moved * templates_->sphere().centre).norm();
+  return agreeing / static_cast<double>(view.surface.size());
+}
+
+Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, int hypotheses) {
+  Detection detection;
+  const ColorImage* color = frame.find_color(color_camera_);
+  if (!color) {
+    detection.why_not = "the frame has no image from camera '" + color_camera_ + "' to search";
+    return detection;
+  }
+  std::vector<PoseCandidate> candidates = matcher_->match(*color, window, kMinTemplateScore, &detection.why_not);
+  detection.candidates = static_cast<int>(candidates.size());
+  // With depth: placed on the measured surface, checked against it, ranked by both.
+  std::vector<std::pair<double, PoseCandidate>> ranked;
+  for (PoseCandidate& c : candidates) {
+    const double agreement = place_in_depth(frame, c);
+    if (agreement >= 0.0 && agreement < kMinDepthAgreement) continue;
+    ranked.push_back({c.score + std::max(agreement, 0.0), c});
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (static_cast<int>(ranked.size()) > hypotheses) ranked.resize(hypotheses);
+
+  const Pose reference_T_camera = color->camera_T_reference.inverse();
+  std::vector<std::pair<double, Pose>> verified;
+  Body& body = refiner_->body(body_name_);
+  for (const auto& [rank, candidate] : ranked) {
+    body.reference_T_body = reference_T_camera * candidate.camera_T_body;
+    refiner_->start(frame);
+    BodyResult result;
+    for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
+    ++detection.refined;
+    if (result.quality >= params_.accept_quality) verified.push_back({result.quality, result.reference_T_body});
+  }
+  if (verified.empty()) {
+    if (detection.why_not.empty())
+      detection.why_not = detection.candidates == 0 ? "no template matched the image"
+                                                    : "no hypothesis reached quality " +
+                                                          std::to_string(params_.accept_quality) + " after refinement";
+    return detection;
+  }
+  std::stable_sort(verified.begin(), verified.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  detection.found = true;
+  detection.quality = verified.front().first;
+  detection.reference_T_body = verified.front().second;
+  for (std::size_t k = 1; k < verified.size(); ++k) {
+    if (verified[k].first < detection.quality - kEquivalentQuality) break;
+    const Pose& pose = verified[k].second;
+    const bool same_place = (pose.translation() - detection.reference_T_body.translation()).norm() <
+                            0.5 * templates_->sphere().radius;
+    const bool turned = rotation_angle_between(pose.rotation(), detection.reference_T_body.rotation()) > kEquivalentRotation;
+    const bool new_one = std::none_of(detection.equivalents.begin(), detection.equivalents.end(), [&](const Pose& e) {
+      return rotation_angle_between(pose.rotation(), e.rotation()) <= kEquivalentRotation;
+    });
+    if (same_place && turned && new_one) detection.equivalents.push_back(pose);
+  }
+  return detection;
+}
+
+}  // namespace icgp

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/detection/recovery.h"
+
+namespace icgp {
+
+Recovery::Recovery(Tracker& tracker, TrackerConfig config, std::string main_body, std::vector<CameraCues> cameras,
+                   std::shared_ptr<SceneRenderer> renderer)
+    : tracker_(tracker),
+      config_(std::move(config)),
+      main_body_(std::move(main_body)),
+      cameras_(std::move(cameras)),
+      renderer_(std::move(renderer)) {}
+
+Recovery::~Recovery() = default;
+
+BodyDetector& Recovery::detector(const std::string& body) {
+  auto it = detectors_.find(body);
+  if (it != detectors_.end()) return *it->second;
+  TrackerConfig config = config_;
+  // The configuration's region meshes are the main body's.
+  if (body != main_body_) config.regions.clear();
+  auto made = std::make_unique<BodyDetector>(config, tracker_.body(body).mesh, body, cameras_, renderer_);
+  return *detectors_.emplace(body, std::move(made)).first->second;
+}
+
+Detection Recovery::detect(const Frame& frame, const std::string& body) {
+  return detector(body.empty() ? main_body_ : body).detect(frame);
+}
+
+Detection Recovery::initialise(const Frame& frame, const std::string& body) {
+  const std::string name = body.empty() ? main_body_ : body;
+  Detection detection = detect(frame, name);
+  if (!detection.found) return detection;
+  tracker_.body(name).reference_T_body = detection.reference_T_body;
+  tracker_.start(frame);
+  states_[name] = BodyState{detection.reference_T_body, false, 0};
+  return detection;
+}
+
+void Recovery::reset() { states_.clear(); }
+
+bool Recovery::lost(const std::string& body) const {
+  const auto it = states_.find(body);
+  return it != states_.end() && it->second.lost;
+}
+
+std::vector<std::string> Recovery::after_track(const Frame& frame, std::vector<BodyResult>& results) {
+  std::vector<std::string> found;
+  for (const BodyResult& r : results) {
+    // A link's pose follows its parent's: it is found with its tree's root.
+    if (!tracker_.joint_values(r.body).empty()) continue;
+    BodyState& s = states_[r.body];
+    // Without recovery a body is lost on the frames its cues say so, no longer.
+    if ((!s.lost || !config_.detection.recovery) && r.tracked) {
+      s = BodyState{r.reference_T_body, false, 0};
+      continue;
+    }
+    if (!config_.detection.recovery) continue;
+    s.lost = true;
+    ++s.frames_lost;
+    BodyDetector& d = detector(r.body);
+    Detection detection;
+    if (s.trusted) detection = d.search_near(frame, *s.trusted);
+    if (!detection.found && (s.frames_lost - 1) % config_.detection.global_search_interval == 0)
+      detection = d.detect(frame);
+    if (!detection.found) continue;
+    tracker_.body(r.body).reference_T_body = detection.reference_T_body;
+    s = BodyState{detection.reference_T_body, false, 0};
+    found.push_back(r.body);
+  }
+  if (!found.empty()) {
+    tracker_.start(frame);
+    results = tracker_.track(frame);
+    for (const BodyResult& r : results)
+      if (r.tracked && !states_[r.body].lost) states_[r.body].trusted = r.reference_T_body;
+  }
+  // Lost bodies are reported where they were last trusted, not where their cues wandered.
+  for (BodyResult& r : results) {
+    const BodyState& s = states_[r.body];
+    if (!s.lost) continue;
+    r.tracked = false;
+    if (s.trusted) r.reference_T_body = *s.trusted;
+  }
+  return found;
+}
+
+}  // namespace icgp
