@@ -5,6 +5,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+#include <opencv2/imgproc.hpp>
+
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
 
@@ -25,11 +28,43 @@ constexpr int kRefinementRounds = 3;
 constexpr double kNearRadiusSpheres = 1.5;
 constexpr double kNearMinRadiusPx = 40.0;
 constexpr double kNearDistanceRatio = 1.3;
-constexpr double kNearRotation = 35.0 * 3.14159265358979 / 180.0;
+constexpr double kNearRotation = 35.0 * kPi / 180.0;
 constexpr int kNearHypotheses = 2;
+/// With depth, the share of contour points beyond which the measured surface must step
+/// back (or vanish): a body stands out of its surroundings, a picture of it does not.
+constexpr double kMinSilhouetteSupport = 0.4;
+/// Pixels outside the projected contour where that step is looked for.
+constexpr double kSilhouetteOffsetPx = 5.0;
 /// Verified poses within this quality of the best and this rotation apart are equivalent.
 constexpr double kEquivalentQuality = 0.05;
-constexpr double kEquivalentRotation = 10.0 * 3.14159265358979 / 180.0;
+constexpr double kEquivalentRotation = 10.0 * kPi / 180.0;
+
+/// Side of the focused render the appearance of a hypothesis is compared in.
+constexpr int kAppearanceRenderSize = 128;
+/// Verified poses this far below the best quality still compete on appearance: a pose of
+/// the right shape turned wrong fits the contour and the depth as well as the right one.
+constexpr double kAppearanceQualityMargin = 0.25;
+
+/// Whether the mesh tells its views apart beyond its shape: a texture, or parts of
+/// different colours.
+bool has_appearance(const Mesh& mesh) {
+  for (const MeshPart& part : mesh.parts)
+    if (!part.material.texture_bgr.empty() ||
+        !part.material.diffuse_rgb.isApprox(mesh.parts.front().material.diffuse_rgb, 1e-3f))
+      return true;
+  return false;
+}
+
+/// The turns that map a box, a cylinder or a cube onto itself: 180 degrees about each
+/// axis of the body frame and 90 degrees either way about each, about the sphere centre.
+/// From a verified pose they give the poses an object of such a shape could equally have.
+std::vector<Eigen::Matrix3d> symmetric_turns() {
+  std::vector<Eigen::Matrix3d> turns;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double angle : {kPi, kPi / 2.0, -kPi / 2.0})
+      turns.push_back(Eigen::AngleAxisd(angle, Eigen::Vector3d::Unit(axis)).toRotationMatrix());
+  return turns;
+}
 
 /// The refining tracker: the body alone, with its region cue and, where the rig has one,
 /// its depth cue; texture is left out, since its keyframe would be taken at the unrefined pose.
@@ -74,6 +109,7 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
   templates_ = std::make_unique<ShapeTemplates>(mesh, region_models, depth_model, params_.view_divides,
                                                 params_.roll_step_deg, params_.template_points);
   matcher_ = std::make_unique<TemplateMatcher>(*templates_);
+  appearance_ = has_appearance(mesh);
 }
 
 BodyDetector::~BodyDetector() = default;
@@ -99,6 +135,31 @@ Detection BodyDetector::search_near(const Frame& frame, const Pose& reference_T_
     window.max_rotation = kNearRotation;
   }
   return search(frame, window, kNearHypotheses);
+}
+
+double BodyDetector::silhouette_support(const Frame& frame, const Pose& reference_T_body) const {
+  const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
+  if (!depth || !depth->delivered()) return -1.0;
+  const Pose depth_T_body = depth->camera_T_reference * reference_T_body;
+  const ShapeTemplates::View& view = templates_->closest_view(depth_T_body);
+  const double margin = std::max(0.02, 0.2 * templates_->sphere().radius);
+  int stepping = 0, seen = 0;
+  for (const ShapeTemplates::ViewContourPoint& p : view.contour) {
+    const Eigen::Vector3d X = depth_T_body * p.position.cast<double>();
+    const Eigen::Vector3d N = depth_T_body.rotation() * p.normal.cast<double>();
+    if (X.z() <= 0.0) continue;
+    const Eigen::Vector2d uv = depth->intrinsics.project(X);
+    const Eigen::Vector2d beside = depth->intrinsics.project(Eigen::Vector3d(X + 1e-3 * N));
+    const Eigen::Vector2d outwards = (beside - uv).normalized();
+    if (!outwards.allFinite()) continue;
+    const Eigen::Vector2d out = uv + kSilhouetteOffsetPx * outwards;
+    const int col = static_cast<int>(std::lround(out.x())), row = static_cast<int>(std::lround(out.y()));
+    if (col < 0 || row < 0 || col >= depth->depth.cols || row >= depth->depth.rows) continue;
+    ++seen;
+    const float z = depth->at(row, col);
+    stepping += !(z > 0.f) || z > X.z() + margin;
+  }
+  return seen >= 4 ? static_cast<double>(stepping) / seen : -1.0;
 }
 
 double BodyDetector::place_in_depth(const Frame& frame, PoseCandidate& candidate) const {
@@ -139,6 +200,59 @@ double BodyDetector::place_in_depth(const Frame& frame, PoseCandidate& candidate
   return agreeing / static_cast<double>(view.surface.size());
 }
 
+BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& reference_T_body) {
+  refiner_->body(body_name_).reference_T_body = reference_T_body;
+  refiner_->start(frame);
+  BodyResult result;
+  for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
+  // Where depth is measured, a verified body also stands out of its surroundings there.
+  const double silhouette = silhouette_support(frame, result.reference_T_body);
+  const double quality = silhouette >= 0.0 && silhouette < kMinSilhouetteSupport ? 0.0 : result.quality;
+  return {result.reference_T_body, quality, 0.0};
+}
+
+double BodyDetector::appearance_agreement(const ColorImage& color, const Pose& reference_T_body) {
+  std::optional<RenderRequest> request =
+      focused_render_request(color.camera, color.intrinsics, color.camera_T_reference, reference_T_body,
+                             templates_->sphere(), kAppearanceRenderSize);
+  if (!request) return -1.0;
+  request->targets = kRenderDepth | kRenderColor;
+  Body& body = refiner_->body(body_name_);
+  body.reference_T_body = reference_T_body;
+  Renders renders;
+  refiner_->renderer().render({&body}, {*request}, renders);
+  const FocusedRender& render = renders.at(*request);
+  cv::Mat rendered_grey, image_grey;
+  cv::cvtColor(render.color, rendered_grey, cv::COLOR_BGR2GRAY);
+  if (color.image.channels() == 3)
+    cv::cvtColor(color.image, image_grey, cv::COLOR_BGR2GRAY);
+  else
+    image_grey = color.image;
+  // Zero-mean normalised cross-correlation over the body's pixels: blind to the gain and
+  // offset between the renderer's shading and the camera.
+  const Intrinsics& crop = render.intrinsics;
+  const Intrinsics& K = color.intrinsics;
+  double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+  int n = 0;
+  for (int y = 0; y < render.depth.rows; ++y)
+    for (int x = 0; x < render.depth.cols; ++x) {
+      if (!(render.depth.at<float>(y, x) > 0.f)) continue;
+      const int u = static_cast<int>(std::lround((x - crop.pu) / crop.fu * K.fu + K.pu));
+      const int v = static_cast<int>(std::lround((y - crop.pv) / crop.fv * K.fv + K.pv));
+      if (u < 0 || v < 0 || u >= image_grey.cols || v >= image_grey.rows) continue;
+      const double a = rendered_grey.at<std::uint8_t>(y, x), b = image_grey.at<std::uint8_t>(v, u);
+      sa += a;
+      sb += b;
+      saa += a * a;
+      sbb += b * b;
+      sab += a * b;
+      ++n;
+    }
+  if (n < 16) return -1.0;
+  const double cov = sab - sa * sb / n, va = saa - sa * sa / n, vb = sbb - sb * sb / n;
+  return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
+}
+
 Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, int hypotheses) {
   Detection detection;
   const ColorImage* color = frame.find_color(color_camera_);
@@ -150,24 +264,37 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   detection.candidates = static_cast<int>(candidates.size());
   // With depth: placed on the measured surface, checked against it, ranked by both.
   std::vector<std::pair<double, PoseCandidate>> ranked;
+  const Pose reference_T_camera = color->camera_T_reference.inverse();
   for (PoseCandidate& c : candidates) {
     const double agreement = place_in_depth(frame, c);
     if (agreement >= 0.0 && agreement < kMinDepthAgreement) continue;
-    ranked.push_back({c.score + std::max(agreement, 0.0), c});
+    const double silhouette = silhouette_support(frame, reference_T_camera * c.camera_T_body);
+    if (silhouette >= 0.0 && silhouette < kMinSilhouetteSupport) continue;
+    ranked.push_back({c.score + std::max(agreement, 0.0) + std::max(silhouette, 0.0), c});
   }
   std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   if (static_cast<int>(ranked.size()) > hypotheses) ranked.resize(hypotheses);
 
-  const Pose reference_T_camera = color->camera_T_reference.inverse();
-  std::vector<std::pair<double, Pose>> verified;
-  Body& body = refiner_->body(body_name_);
+  std::vector<Hypothesis> verified;
   for (const auto& [rank, candidate] : ranked) {
-    body.reference_T_body = reference_T_camera * candidate.camera_T_body;
-    refiner_->start(frame);
-    BodyResult result;
-    for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
+    const Hypothesis h = refine(frame, reference_T_camera * candidate.camera_T_body);
     ++detection.refined;
-    if (result.quality >= params_.accept_quality) verified.push_back({result.quality, result.reference_T_body});
+    if (h.quality >= params_.accept_quality) verified.push_back(h);
+  }
+  if (appearance_ && !verified.empty()) {
+    // The shape may not tell a box from the box turned about an axis: the appearance does.
+    const Hypothesis best = *std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
+      return a.quality < b.quality;
+    });
+    const Eigen::Vector3d c = templates_->sphere().centre;
+    for (const Eigen::Matrix3d& turn : symmetric_turns()) {
+      const Pose turned = best.reference_T_body * Pose(Eigen::Matrix3d::Identity(), c) * Pose(turn, Eigen::Vector3d::Zero()) *
+                          Pose(Eigen::Matrix3d::Identity(), -c);
+      const Hypothesis h = refine(frame, turned);
+      ++detection.refined;
+      if (h.quality >= params_.accept_quality) verified.push_back(h);
+    }
+    for (Hypothesis& h : verified) h.appearance = appearance_agreement(*color, h.reference_T_body);
   }
   if (verified.empty()) {
     if (detection.why_not.empty())
@@ -176,15 +303,27 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
                                                           std::to_string(params_.accept_quality) + " after refinement";
     return detection;
   }
-  std::stable_sort(verified.begin(), verified.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::stable_sort(verified.begin(), verified.end(),
+                   [](const Hypothesis& a, const Hypothesis& b) { return a.quality > b.quality; });
+  if (appearance_) {
+    // Among the poses that fit nearly as well as the best, the one that looks like the image.
+    const double floor = verified.front().quality - kAppearanceQualityMargin;
+    std::stable_partition(verified.begin(), verified.end(), [&](const Hypothesis& h) { return h.quality >= floor; });
+    const auto contenders = std::count_if(verified.begin(), verified.end(), [&](const Hypothesis& h) { return h.quality >= floor; });
+    std::stable_sort(verified.begin(), verified.begin() + contenders,
+                     [](const Hypothesis& a, const Hypothesis& b) { return a.appearance > b.appearance; });
+  }
   detection.found = true;
-  detection.quality = verified.front().first;
-  detection.reference_T_body = verified.front().second;
+  detection.quality = verified.front().quality;
+  detection.reference_T_body = verified.front().reference_T_body;
   for (std::size_t k = 1; k < verified.size(); ++k) {
-    if (verified[k].first < detection.quality - kEquivalentQuality) break;
-    const Pose& pose = verified[k].second;
-    const bool same_place = (pose.translation() - detection.reference_T_body.translation()).norm() <
-                            0.5 * templates_->sphere().radius;
+    const Hypothesis& h = verified[k];
+    if (h.quality < detection.quality - kEquivalentQuality) continue;
+    // With appearance, only a pose that looks as alike is equivalent.
+    if (appearance_ && h.appearance < verified.front().appearance - kEquivalentQuality) continue;
+    const Pose& pose = h.reference_T_body;
+    const bool same_place = (pose * templates_->sphere().centre - detection.reference_T_body * templates_->sphere().centre)
+                                .norm() < 0.5 * templates_->sphere().radius;
     const bool turned = rotation_angle_between(pose.rotation(), detection.reference_T_body.rotation()) > kEquivalentRotation;
     const bool new_one = std::none_of(detection.equivalents.begin(), detection.equivalents.end(), [&](const Pose& e) {
       return rotation_angle_between(pose.rotation(), e.rotation()) <= kEquivalentRotation;

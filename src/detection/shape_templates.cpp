@@ -2,6 +2,7 @@
 #include "icgp/detection/shape_templates.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -23,9 +24,7 @@ Eigen::Matrix3d view_rotation(const Eigen::Vector3d& direction) {
   return look_at<double>(direction, Eigen::Vector3d::Zero(), up).rotation();
 }
 
-struct BodyContourPoint {
-  Eigen::Vector3f position, normal;
-};
+using BodyContourPoint = ShapeTemplates::ViewContourPoint;
 
 /// The contour points of every region model in the view closest to `direction`, picked
 /// in their (random) order so that no two lie closer than an even spread of `count` points
@@ -72,6 +71,7 @@ ShapeTemplates::ShapeTemplates(const Mesh& mesh, const std::vector<const Viewpoi
     const std::vector<BodyContourPoint> contour = spread_contour(region_models, direction, points);
     if (static_cast<int>(contour.size()) < kMinContourPoints) continue;
     const int index = static_cast<int>(views_.size());
+    view.contour = contour;
     views_.push_back(std::move(view));
     const Eigen::Matrix3d R_view = view_rotation(direction.cast<double>());
     for (int k = 0; k < n_rolls; ++k) {
@@ -88,6 +88,14 @@ ShapeTemplates::ShapeTemplates(const Mesh& mesh, const std::vector<const Viewpoi
     }
   }
   if (templates_.empty()) throw std::invalid_argument("detection: the region model has no usable contour in any view");
+}
+
+const ShapeTemplates::View& ShapeTemplates::closest_view(const Pose& camera_T_body) const {
+  // The camera's position seen from the sphere centre, in the body frame.
+  const Eigen::Vector3d towards_camera = -(camera_T_body.rotation().transpose() * camera_T_body.translation()) - sphere_.centre;
+  const Eigen::Vector3f d = towards_camera.normalized().cast<float>();
+  return *std::max_element(views_.begin(), views_.end(),
+                           [&](const View& a, const View& b) { return a.direction.dot(d) < b.direction.dot(d); });
 }
 
 Pose ShapeTemplates::pose(const Template& t, const Eigen::Vector3d& ray, double distance) const {

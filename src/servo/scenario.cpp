@@ -207,7 +207,7 @@ void read_camera(const Value& v, CameraSpec& camera) {
 }
 
 void read_tracker(const Value& v, TrackerSpec& tracker, const fs::path& scenario_dir) {
-  const Map s(v, {"type", "modalities", "config", "visp_configuration"});
+  const Map s(v, {"type", "modalities", "config", "visp_configuration", "init"});
   if (auto x = s.get("type"))
     tracker.kind = x->choice<TrackerKind>(tracker_names());
   if (auto x = s.get("modalities"))
@@ -221,6 +221,8 @@ void read_tracker(const Value& v, TrackerSpec& tracker, const fs::path& scenario
     for (const std::string& name : names) options.emplace_back(name, name);
     tracker.visp_configuration = x->choice(options);
   }
+  if (auto x = s.get("init"))
+    tracker.init_by_detection = x->choice<bool>({{"detect", true}, {"truth", false}});
 }
 
 void read_gain(const Value& v, GainSpec& gain) {

@@ -177,8 +177,10 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   vpHomogeneousMatrix previous_wMc = robot->world_T_camera();
   vpHomogeneousMatrix trusted_cMo;  ///< the last pose the tracker did not report lost
   std::optional<vpHomogeneousMatrix> trusted_cMg;  ///< the same for the gripper (grasp)
-  {
-    // The tracker starts at the true poses, as after a detection.
+  // Detection: the tracker finds the object in the frames of the loop itself, the robot
+  // holding still until it does. Otherwise it starts at the true poses (for comparison).
+  bool started = !(scenario.tracker.init_by_detection && estimator->detects());
+  if (started) {
     const RgbdCapture& first =
         simulator.capture(0.0, previous_wMc, previous_wMc, robot->world_T_held_object(), robot->world_T_gripper());
     trusted_cMo = first.cMo_true;
@@ -203,14 +205,23 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     const auto t1 = Clock::now();
     previous_wMc = wMc;
     step.dropped = capture.dropped;
-    if (!capture.dropped) {
+    if (!capture.dropped && !started) {
+      const std::optional<PoseEstimate> found = estimator->detect(capture, kinematic_cMg());
+      started = found.has_value();
+      estimate = found ? *found : PoseEstimate{estimate.cMo, true, 0.0, std::nullopt};
+      if (!estimate.cMg) estimate.cMg = kinematic_cMg();
+      if (started) {
+        trusted_cMo = estimate.cMo;
+        trusted_cMg = estimate.cMg;
+      }
+    } else if (!capture.dropped) {
       estimate = estimator->track(capture);
       if (!estimate.cMg) estimate.cMg = kinematic_cMg();
-      if (estimate.lost) {
+      if (estimate.lost && !estimator->recovers()) {
         // The robot stops, so the poses last trusted still hold for a static object: restart
         // the tracker there for the next frame rather than let it wander while lost.
         estimator->start(capture, trusted_cMo, trusted_cMg);
-      } else {
+      } else if (!estimate.lost) {
         trusted_cMo = estimate.cMo;
         trusted_cMg = estimate.cMg;
       }

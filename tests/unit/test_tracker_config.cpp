@@ -176,6 +176,16 @@ bodies:
     mesh: /models/hand.obj
     scale: 1
     role: occluder
+detection:
+  recovery: true
+  global_search_interval: 3
+  view_divides: 1
+  roll_step_deg: 15.0
+  min_distance: 0.3
+  max_distance: 1.2
+  template_points: 64
+  hypotheses: 9
+  accept_quality: 0.7
 cache_dir: /tmp/icgp cache
 )";
 
@@ -377,7 +387,7 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
   };
   const Case cases[] = {
       {"regoin: {}", "regoin: unknown key (valid keys: preset, tracker, modalities, region_model, depth_model, region, depth, "
-                     "texture, regions, bodies, cache_dir)"},
+                     "texture, regions, bodies, detection, cache_dir)"},
       {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
       {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
       {"- tracker\n- region\n", "expected a map with the keys preset, tracker, modalities,"},

@@ -53,10 +53,25 @@ class BodyDetector {
   const ShapeTemplates& templates() const { return *templates_; }
 
  private:
+  /// A refined hypothesis: its pose, the refining cues' quality there and, for a mesh with
+  /// a texture or colours, how well its render agrees with the image.
+  struct Hypothesis {
+    Pose reference_T_body;
+    double quality = 0.0;
+    double appearance = 0.0;
+  };
   Detection search(const Frame& frame, const SearchWindow& window, int hypotheses);
+  /// Tracker frames on `frame` from `reference_T_body`, coarse to fine.
+  Hypothesis refine(const Frame& frame, const Pose& reference_T_body);
+  /// Zero-mean normalised cross-correlation in [-1, 1] of the body's render (its texture
+  /// and colours) with the image over the body's pixels; -1 when it is not in view.
+  double appearance_agreement(const ColorImage& color, const Pose& reference_T_body);
   /// Moves a candidate along its ray so its surface points meet the measured depth; the
   /// share of them that then agree, or a negative value without enough measurements.
   double place_in_depth(const Frame& frame, PoseCandidate& candidate) const;
+  /// The share of the body's contour points at `reference_T_body` beyond which the
+  /// measured depth steps back or vanishes; -1 without depth there.
+  double silhouette_support(const Frame& frame, const Pose& reference_T_body) const;
 
   DetectionParams params_;
   std::string body_name_;
@@ -64,6 +79,7 @@ class BodyDetector {
   std::unique_ptr<Tracker> refiner_;
   std::unique_ptr<ShapeTemplates> templates_;
   std::unique_ptr<TemplateMatcher> matcher_;
+  bool appearance_ = false;  ///< the mesh has a texture or colours to compare
 };
 
 }  // namespace icgp

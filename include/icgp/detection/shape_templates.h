@@ -27,9 +27,14 @@ class ShapeTemplates {
     Eigen::Matrix3d camera_R_body;
     std::vector<ContourPoint> contour;
   };
+  /// A contour point of a view in the body frame, with its outward normal.
+  struct ViewContourPoint {
+    Eigen::Vector3f position, normal;
+  };
   struct View {
-    Eigen::Vector3f direction;                  ///< body frame, sphere centre -> camera
-    std::vector<Eigen::Vector3f> surface;       ///< depth model points, body frame
+    Eigen::Vector3f direction;              ///< body frame, sphere centre -> camera
+    std::vector<Eigen::Vector3f> surface;   ///< depth model points, body frame
+    std::vector<ViewContourPoint> contour;  ///< the template points, body frame
   };
 
   /// `region_models`: every region model of the body (one for the whole body, or one per
@@ -43,6 +48,8 @@ class ShapeTemplates {
   const Sphere& sphere() const { return sphere_; }
   const std::vector<Template>& templates() const { return templates_; }
   const View& view(int v) const { return views_[v]; }
+  /// The view closest to how a camera at camera_T_body sees the body.
+  const View& closest_view(const Pose& camera_T_body) const;
   int n_views() const { return static_cast<int>(views_.size()); }
   double roll_step() const { return roll_step_; }  ///< radians
 

@@ -31,6 +31,17 @@ class PoseEstimator {
   virtual void start(const RgbdCapture& first, const vpHomogeneousMatrix& cMo,
                      const std::optional<vpHomogeneousMatrix>& cMg) = 0;
   virtual PoseEstimate track(const RgbdCapture& capture) = 0;
+  /// Finds the object in `capture` without a given pose and starts tracking there (in a
+  /// grasp, the gripper at `cMg`, which the arm's kinematics give); nothing when no pose is
+  /// verified or the tracker cannot detect.
+  virtual std::optional<PoseEstimate> detect(const RgbdCapture&, const std::optional<vpHomogeneousMatrix>&) {
+    return std::nullopt;
+  }
+  /// Whether the tracker can detect (detect() may find something).
+  virtual bool detects() const { return false; }
+  /// Whether the tracker searches for the object itself after a loss; otherwise the loop
+  /// restarts it at the last trusted pose.
+  virtual bool recovers() const { return false; }
   virtual std::string name() const = 0;  ///< e.g. "icgp (region + depth)"
 };
 

@@ -9,8 +9,9 @@ namespace icgp {
 /// when their quality verifies it.
 struct DetectionParams {
   /// Search again when a body is reported lost: near the last trusted pose every frame,
-  /// over the whole image every `global_search_interval` frames.
-  bool recovery = true;
+  /// over the whole image every `global_search_interval` frames. Off by default until the
+  /// detector's rates reach the targets of docs/detection.md.
+  bool recovery = false;
   int global_search_interval = 5;
   /// Template views: the directions of an icosphere of this many subdivisions
   /// (2: 162 views, about 15 degrees apart), each at in-plane rotations `roll_step_deg` apart.
