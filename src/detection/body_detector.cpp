@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -16,12 +17,15 @@ namespace {
 
 /// Template matches below this share of answered contour points are not candidates.
 constexpr double kMinTemplateScore = 0.55;
+/// Distinct candidates ranked (template score and depth support) per hypothesis refined.
+constexpr int kCandidatesRanked = 4;
 /// A candidate whose surface points mostly disagree with the measured depth is dropped
 /// before refinement (with enough measurements to say so).
 constexpr double kMinDepthAgreement = 0.3;
 /// Tracker frames run on the detection's frame to refine a hypothesis: the first starts at
 /// the region cue's coarsest scale, so three pull a candidate in from tens of pixels.
 constexpr int kRefinementRounds = 3;
+constexpr int kRefinementStages = 2;
 /// Near a lost pose: the image radius (in sphere radii, at least kNearMinRadiusPx), the
 /// distance ratio and rotation searched, and the hypotheses refined, so that a frame's
 /// search stays a few milliseconds.
@@ -202,9 +206,13 @@ double BodyDetector::place_in_depth(const Frame& frame, PoseCandidate& candidate
 
 BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& reference_T_body) {
   refiner_->body(body_name_).reference_T_body = reference_T_body;
-  refiner_->start(frame);
   BodyResult result;
-  for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
+  // The colour statistics are learnt where the cues start: a second start at the refined
+  // pose learns them again from the body's own pixels.
+  for (int stage = 0; stage < kRefinementStages; ++stage) {
+    refiner_->start(frame);
+    for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
+  }
   // Where depth is measured, a verified body also stands out of its surroundings there.
   const double silhouette = silhouette_support(frame, result.reference_T_body);
   const double quality = silhouette >= 0.0 && silhouette < kMinSilhouetteSupport ? 0.0 : result.quality;
@@ -260,23 +268,31 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     detection.why_not = "the frame has no image from camera '" + color_camera_ + "' to search";
     return detection;
   }
-  std::vector<PoseCandidate> candidates = matcher_->match(*color, window, kMinTemplateScore, &detection.why_not);
-  detection.candidates = static_cast<int>(candidates.size());
-  // With depth: placed on the measured surface, checked against it, ranked by both.
-  std::vector<std::pair<double, PoseCandidate>> ranked;
+  // With depth: each match placed on the measured surface and checked against it before
+  // suppression, so that matches of the background do not crowd out the body's.
   const Pose reference_T_camera = color->camera_T_reference.inverse();
-  for (PoseCandidate& c : candidates) {
+  const CandidateCheck in_depth = [&](PoseCandidate& c) {
     const double agreement = place_in_depth(frame, c);
-    if (agreement >= 0.0 && agreement < kMinDepthAgreement) continue;
+    if (agreement >= 0.0 && agreement < kMinDepthAgreement) return false;
     const double silhouette = silhouette_support(frame, reference_T_camera * c.camera_T_body);
-    if (silhouette >= 0.0 && silhouette < kMinSilhouetteSupport) continue;
-    ranked.push_back({c.score + std::max(agreement, 0.0) + std::max(silhouette, 0.0), c});
-  }
-  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  if (static_cast<int>(ranked.size()) > hypotheses) ranked.resize(hypotheses);
+    if (silhouette >= 0.0 && silhouette < kMinSilhouetteSupport) return false;
+    c.support = std::max(agreement, 0.0) + std::max(silhouette, 0.0);
+    return true;
+  };
+  const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
+  std::optional<RayDepth> ray_depth;
+  SearchWindow gated = window;
+  if (depth && depth->delivered()) gated.depth = &ray_depth.emplace(*depth, *color);
+  std::vector<PoseCandidate> candidates =
+      matcher_->match(*color, gated, kMinTemplateScore, kCandidatesRanked * hypotheses, in_depth, &detection.why_not);
+  detection.candidates = static_cast<int>(candidates.size());
+  std::stable_sort(candidates.begin(), candidates.end(), [](const PoseCandidate& a, const PoseCandidate& b) {
+    return a.score + a.support > b.score + b.support;
+  });
+  if (static_cast<int>(candidates.size()) > hypotheses) candidates.resize(hypotheses);
 
   std::vector<Hypothesis> verified;
-  for (const auto& [rank, candidate] : ranked) {
+  for (const PoseCandidate& candidate : candidates) {
     const Hypothesis h = refine(frame, reference_T_camera * candidate.camera_T_body);
     ++detection.refined;
     if (h.quality >= params_.accept_quality) verified.push_back(h);

@@ -82,7 +82,7 @@ ShapeTemplates::ShapeTemplates(const Mesh& mesh, const std::vector<const Viewpoi
       for (const BodyContourPoint& p : contour) {
         const Eigen::Vector3f n = R * p.normal;
         if (n.head<2>().norm() < 0.3f) continue;  // a normal along the ray has no image orientation
-        t.contour.push_back({R * (p.position - centre), OrientationResponses::bin_of(n.x(), n.y())});
+        t.contour.push_back({R * (p.position - centre), n.head<2>().normalized(), OrientationResponses::bin_of(n.x(), n.y())});
       }
       if (static_cast<int>(t.contour.size()) >= kMinContourPoints) templates_.push_back(std::move(t));
     }

@@ -15,6 +15,13 @@ namespace {
 constexpr double kMaxTemplateRadius = 36.0;
 /// Below this radius at full resolution a contour has too few distinct pixels to match.
 constexpr double kMinTemplateRadius = 10.0;
+/// With depth, a template position is scored only where the surface just outside its
+/// contour (this many full-resolution pixels out) steps back behind the surface at its
+/// centre, at this many of its probes: a body stands out of what is behind it, a picture
+/// of one (a painted rectangle on a wall) does not.
+constexpr double kProbeOffsetPx = 8.0;
+constexpr int kProbes = 12;
+constexpr double kMinProbesOutside = 0.4;
 
 int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
@@ -26,14 +33,20 @@ struct PlacedTemplate {
     bool operator==(const Point& o) const { return dx == o.dx && dy == o.dy && bin == o.bin; }
   };
   std::vector<Point> points;
+  /// Pixels (of the level) just outside the contour, relative to the centre.
+  std::vector<Eigen::Vector2d> probes;
   int min_x = 0, max_x = 0, min_y = 0, max_y = 0;
 
-  void place(const ShapeTemplates::Template& t, const Intrinsics& K, double distance) {
+  void place(const ShapeTemplates::Template& t, const Intrinsics& K, double distance, double probe_offset) {
     points.clear();
-    for (const ShapeTemplates::ContourPoint& p : t.contour) {
+    probes.clear();
+    const std::size_t probe_step = std::max<std::size_t>(1, t.contour.size() / kProbes);
+    for (std::size_t k = 0; k < t.contour.size(); ++k) {
+      const ShapeTemplates::ContourPoint& p = t.contour[k];
       const double z = distance + p.position.z();
-      points.push_back({static_cast<int>(std::lround(K.fu * p.position.x() / z)),
-                        static_cast<int>(std::lround(K.fv * p.position.y() / z)), p.bin});
+      const Eigen::Vector2d at(K.fu * p.position.x() / z, K.fv * p.position.y() / z);
+      points.push_back({static_cast<int>(std::lround(at.x())), static_cast<int>(std::lround(at.y())), p.bin});
+      if (k % probe_step == 0) probes.push_back(at + probe_offset * p.image_normal.cast<double>());
     }
     std::sort(points.begin(), points.end());
     points.erase(std::unique(points.begin(), points.end()), points.end());
@@ -47,6 +60,26 @@ struct PlacedTemplate {
     }
   }
 };
+
+/// Whether the measured depth agrees with a template placed at level pixel (x, y) of a
+/// level `scale` times smaller, at `distance`: the surface at its centre lies between its
+/// centre's distance and one radius nearer (within a distance step), and beyond enough of
+/// its contour the surface steps back or vanishes. True where nothing is measured.
+bool stands_out(const RayDepth& depth, const PlacedTemplate& placed, int x, int y, int scale, double distance,
+                double radius) {
+  const auto full = [scale](double level_px) { return (level_px + 0.5) * scale - 0.5; };
+  const float z = depth.nearest(full(x), full(y));
+  if (!(z > 0.f)) return true;
+  const double slack = (TemplateMatcher::kDistanceStep - 1.0) * distance;
+  if (z > distance + slack || z < distance - radius - slack) return false;
+  const double step_back = std::max(0.02, 0.3 * radius);
+  int outside = 0;
+  for (const Eigen::Vector2d& probe : placed.probes) {
+    const float behind = depth.nearest(full(x + probe.x()), full(y + probe.y()), 0);
+    outside += !(behind > 0.f) || behind > z + step_back;
+  }
+  return outside >= kMinProbesOutside * static_cast<double>(placed.probes.size());
+}
 
 struct RawMatch {
   float score;
@@ -93,7 +126,8 @@ TemplateMatcher::Level& TemplateMatcher::level(const ColorImage& color, int L) {
 }
 
 std::vector<PoseCandidate> TemplateMatcher::match(const ColorImage& color, const SearchWindow& window,
-                                                  double min_score, std::string* why_none) {
+                                                  double min_score, int limit, const CandidateCheck& check,
+                                                  std::string* why_none) {
   for (Level& l : levels_) l.ready = false;
   for (cv::Mat& image : pyramid_) image.release();
   const Intrinsics& K = color.intrinsics;
@@ -141,7 +175,7 @@ std::vector<PoseCandidate> TemplateMatcher::match(const ColorImage& color, const
     for (std::size_t index = 0; index < all.size(); ++index) {
       const ShapeTemplates::Template& t = all[index];
       if (near_R && rotation_angle_between(*near_R, t.camera_R_body) > window.max_rotation) continue;
-      placed.place(t, lv.intrinsics, distance);
+      placed.place(t, lv.intrinsics, distance, kProbeOffsetPx / (1 << L));
       std::fill(scores_.begin(), scores_.end(), 0);
       for (const PlacedTemplate::Point& p : placed.points) {
         const int qx = floor_div(p.dx, S), qy = floor_div(p.dy, S);
@@ -168,10 +202,11 @@ std::vector<PoseCandidate> TemplateMatcher::match(const ColorImage& color, const
           if ((i > 0 && scores_[k - 1] > s) || (i + 1 < cols && scores_[k + 1] > s) ||
               (j > 0 && scores_[k - cols] > s) || (j + 1 < rows && scores_[k + cols] > s))
             continue;
+          if (window.depth && !stands_out(*window.depth, placed, i * S, j * S, 1 << L, distance, radius)) continue;
           const float score = s * normaliser;
-          if (static_cast<int>(best.size()) == kMaxCandidates && score <= best.top().score) continue;
+          if (static_cast<int>(best.size()) == kMaxMatches && score <= best.top().score) continue;
           best.push({score, static_cast<int>(index), L, i * S, j * S, distance});
-          if (static_cast<int>(best.size()) > kMaxCandidates) best.pop();
+          if (static_cast<int>(best.size()) > kMaxMatches) best.pop();
         }
     }
   }
@@ -194,9 +229,11 @@ std::vector<PoseCandidate> TemplateMatcher::match(const ColorImage& color, const
   std::vector<PoseCandidate> candidates;
   std::vector<Eigen::Vector2d> centres_px;
   for (const RawMatch& m : raw) {
+    if (static_cast<int>(candidates.size()) >= limit) break;
     const Intrinsics& KL = levels_[m.level].intrinsics;
     const ShapeTemplates::Template& t = all[m.template_index];
     PoseCandidate c{templates_.pose(t, ray_through(KL, m.x, m.y), m.distance), m.score, m.template_index, m.distance};
+    if (check && !check(c)) continue;
     const Eigen::Vector2d centre_px = K.project(Eigen::Vector3d(c.camera_T_body * templates_.sphere().centre));
     // Non-maximum suppression: the same place, distance and rotation is one candidate.
     bool distinct = true;

@@ -19,8 +19,9 @@ class ShapeTemplates {
  public:
   /// A contour point relative to the sphere centre, rotated into the template camera.
   struct ContourPoint {
-    Eigen::Vector3f position;  ///< camera_R_body (X - centre)
-    int bin;                   ///< orientation bin of its projected normal (OrientationResponses)
+    Eigen::Vector3f position;      ///< camera_R_body (X - centre)
+    Eigen::Vector2f image_normal;  ///< its outward normal in the image, unit
+    int bin;                       ///< orientation bin of that normal (OrientationResponses)
   };
   struct Template {
     int view = 0;

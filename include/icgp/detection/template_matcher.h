@@ -2,12 +2,14 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "icgp/base/frame.h"
 #include "icgp/detection/orientation_responses.h"
+#include "icgp/detection/ray_depth.h"
 #include "icgp/detection/shape_templates.h"
 
 namespace icgp {
@@ -18,7 +20,13 @@ struct PoseCandidate {
   double score = 0.0;  ///< share of the template's contour points the image answers, [0, 1]
   int template_index = 0;
   double distance = 0.0;  ///< metres to the sphere centre
+  /// What a CandidateCheck found for it (the detector: depth agreement), for ranking.
+  double support = 0.0;
 };
+
+/// Checks a candidate before suppression, and may move it (the detector places it in the
+/// measured depth): false drops it.
+using CandidateCheck = std::function<bool(PoseCandidate&)>;
 
 /// Where to look: the whole image over a range of distances, or near a pose (a body just
 /// lost), within a radius in the image, a distance ratio and a rotation.
@@ -28,6 +36,10 @@ struct SearchWindow {
   std::optional<Pose> near;
   double radius_px = 0.0;
   double max_rotation = 0.0;  ///< radians
+  /// The measured depth along the camera's rays, when there is one: a template is not
+  /// scored where the surface is not at its distance (the body's front lies between its
+  /// centre's distance and one radius nearer, within a distance step).
+  const RayDepth* depth = nullptr;
 };
 
 /// Gradient template matching (docs/detection.md): every template at every distance step
@@ -39,17 +51,19 @@ class TemplateMatcher {
   /// The step between searched distances: a template a step off in scale still matches
   /// within the spread radius at the level it is matched on.
   static constexpr double kDistanceStep = 1.15;
-  /// Candidates kept from one search, best first (before non-maximum suppression).
-  static constexpr int kMaxCandidates = 300;
+  /// Template matches kept from one search, best first, before they are checked and
+  /// suppressed: enough that a cluttered background's many good matches (a painted
+  /// rectangle answers a box's template fully) leave room for the object's.
+  static constexpr int kMaxMatches = 3000;
 
   explicit TemplateMatcher(const ShapeTemplates& templates) : templates_(templates) {}
 
-  /// The candidates of `color`'s image scoring at least `min_score`, best first, distinct
-  /// (no two at the same place, distance and rotation). `why_none` receives the reason
-  /// when no distance of the window could be searched (the object would be too small or
-  /// larger than the image).
-  std::vector<PoseCandidate> match(const ColorImage& color, const SearchWindow& window, double min_score,
-                                   std::string* why_none = nullptr);
+  /// At most `limit` candidates of `color`'s image scoring at least `min_score` that pass
+  /// `check` (when given), best first, distinct (no two at the same place, distance and
+  /// rotation). `why_none` receives the reason when no distance of the window could be
+  /// searched (the object would be too small or larger than the image).
+  std::vector<PoseCandidate> match(const ColorImage& color, const SearchWindow& window, double min_score, int limit,
+                                   const CandidateCheck& check = nullptr, std::string* why_none = nullptr);
 
  private:
   /// The image at pyramid level L (2^L times smaller) and its orientation responses,
