@@ -42,11 +42,7 @@ TEST_CASE("orientation responses: a vertical step edge answers orientation 0 nea
   CHECK(responses.linear(4, 0, 2)[k] == 0);
 }
 
-// Hidden ([.]) while the detector is a work in progress: on this frame (a depth camera 2.5 cm
-// beside the colour camera) every candidate is dropped before refinement, as in the
-// default servo scenario (docs/detection.md). Run with: test_detection "[detection]"
-TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm and 5 degrees, not in a blank one",
-          "[.][detection]") {
+TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm and 5 degrees, not in a blank one") {
   const test::TempDir cache("icgp-detection-cache");
   TrackerConfig config = load_tracker_config(ICGP_TEST_DATA_DIR "/../configs/coarse_models.yaml");
   config.cache_dir = cache.path().string();
