@@ -39,6 +39,8 @@ constexpr int kNearHypotheses = 2;
 constexpr double kMinSilhouetteSupport = 0.4;
 /// Pixels outside the projected contour where that step is looked for.
 constexpr double kSilhouetteOffsetPx = 5.0;
+/// A refined hypothesis of this quality ends the refinement of further candidates.
+constexpr double kConfidentQuality = 0.85;
 /// Verified poses within this quality of the best and this rotation apart are equivalent.
 constexpr double kEquivalentQuality = 0.05;
 constexpr double kEquivalentRotation = 10.0 * kPi / 180.0;
@@ -89,7 +91,8 @@ std::vector<CameraCues> refinement_cameras(const std::vector<CameraCues>& camera
 }  // namespace
 
 BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
-                           const std::vector<CameraCues>& cameras, std::shared_ptr<SceneRenderer> renderer)
+                           const std::vector<CameraCues>& cameras, std::shared_ptr<SceneRenderer> renderer,
+                           std::vector<Body> others)
     : params_(config.detection), body_name_(body_name) {
   for (const CameraCues& c : cameras) {
     if (c.region && color_camera_.empty()) color_camera_ = c.camera;
@@ -104,6 +107,7 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
                                 std::to_string(params_.min_distance) + " m) must be below detection.max_distance (" +
                                 std::to_string(params_.max_distance) + " m)");
   refiner_ = build_tracker(refinement_config(config), mesh, body_name, refinement_cameras(cameras), std::move(renderer));
+  for (Body& other : others) refiner_->add_occluder(std::move(other));
   std::vector<const ViewpointModel*> region_models;
   const ViewpointModel* depth_model = nullptr;
   for (const Modality* m : refiner_->modalities(body_name)) {
@@ -118,14 +122,14 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
 
 BodyDetector::~BodyDetector() = default;
 
-Detection BodyDetector::detect(const Frame& frame) {
+Detection BodyDetector::detect(const Frame& frame, const OtherPoses& others) {
   SearchWindow window;
   window.min_distance = params_.min_distance;
   window.max_distance = params_.max_distance;
-  return search(frame, window, params_.hypotheses);
+  return search(frame, window, params_.hypotheses, others);
 }
 
-Detection BodyDetector::search_near(const Frame& frame, const Pose& reference_T_body) {
+Detection BodyDetector::search_near(const Frame& frame, const Pose& reference_T_body, const OtherPoses& others) {
   const ColorImage* color = frame.find_color(color_camera_);
   SearchWindow window;
   if (color) {
@@ -138,7 +142,7 @@ Detection BodyDetector::search_near(const Frame& frame, const Pose& reference_T_
                                                       templates_->sphere().radius / distance);
     window.max_rotation = kNearRotation;
   }
-  return search(frame, window, kNearHypotheses);
+  return search(frame, window, kNearHypotheses, others);
 }
 
 double BodyDetector::silhouette_support(const Frame& frame, const Pose& reference_T_body) const {
@@ -209,9 +213,14 @@ BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& re
   BodyResult result;
   // The colour statistics are learnt where the cues start: a second start at the refined
   // pose learns them again from the body's own pixels.
-  for (int stage = 0; stage < kRefinementStages; ++stage) {
-    refiner_->start(frame);
-    for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
+  try {
+    for (int stage = 0; stage < kRefinementStages; ++stage) {
+      refiner_->start(frame);
+      for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
+    }
+  } catch (const std::runtime_error&) {
+    // A cue that cannot start at this pose (a colour region out of view): not verified.
+    return {reference_T_body, 0.0, 0.0};
   }
   // Where depth is measured, a verified body also stands out of its surroundings there.
   const double silhouette = silhouette_support(frame, result.reference_T_body);
@@ -224,12 +233,15 @@ double BodyDetector::appearance_agreement(const ColorImage& color, const Pose& r
       focused_render_request(color.camera, color.intrinsics, color.camera_T_reference, reference_T_body,
                              templates_->sphere(), kAppearanceRenderSize);
   if (!request) return -1.0;
-  request->targets = kRenderDepth | kRenderColor;
+  request->targets = kRenderDepth | kRenderColor | kRenderIds;
   Body& body = refiner_->body(body_name_);
   body.reference_T_body = reference_T_body;
+  std::vector<const Body*> shown{&body};
+  for (const Body* other : refiner_->occluders()) shown.push_back(other);
   Renders renders;
-  refiner_->renderer().render({&body}, {*request}, renders);
+  refiner_->renderer().render(shown, {*request}, renders);
   const FocusedRender& render = renders.at(*request);
+  const std::uint8_t id = renders.id(body_name_);
   cv::Mat rendered_grey, image_grey;
   cv::cvtColor(render.color, rendered_grey, cv::COLOR_BGR2GRAY);
   if (color.image.channels() == 3)
@@ -244,7 +256,7 @@ double BodyDetector::appearance_agreement(const ColorImage& color, const Pose& r
   int n = 0;
   for (int y = 0; y < render.depth.rows; ++y)
     for (int x = 0; x < render.depth.cols; ++x) {
-      if (!(render.depth.at<float>(y, x) > 0.f)) continue;
+      if (render.ids.at<std::uint8_t>(y, x) != id) continue;  // background, or another body in front
       const int u = static_cast<int>(std::lround((x - crop.pu) / crop.fu * K.fu + K.pu));
       const int v = static_cast<int>(std::lround((y - crop.pv) / crop.fv * K.fv + K.pv));
       if (u < 0 || v < 0 || u >= image_grey.cols || v >= image_grey.rows) continue;
@@ -261,7 +273,12 @@ double BodyDetector::appearance_agreement(const ColorImage& color, const Pose& r
   return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
 }
 
-Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, int hypotheses) {
+Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, int hypotheses,
+                               const OtherPoses& others) {
+  for (Body* occluder : refiner_->occluders()) {
+    const auto it = others.find(occluder->name);
+    if (it != others.end()) occluder->reference_T_body = it->second;
+  }
   Detection detection;
   const ColorImage* color = frame.find_color(color_camera_);
   if (!color) {
@@ -296,6 +313,9 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     const Hypothesis h = refine(frame, reference_T_camera * candidate.camera_T_body);
     ++detection.refined;
     if (h.quality >= params_.accept_quality) verified.push_back(h);
+    // A fit this good leaves the other candidates nothing to win but a symmetric twin,
+    // which the turns below find.
+    if (h.quality >= kConfidentQuality) break;
   }
   if (appearance_ && !verified.empty()) {
     // The shape may not tell a box from the box turned about an axis: the appearance does.

@@ -19,12 +19,26 @@ BodyDetector& Recovery::detector(const std::string& body) {
   TrackerConfig config = config_;
   // The configuration's region meshes are the main body's.
   if (body != main_body_) config.regions.clear();
-  auto made = std::make_unique<BodyDetector>(config, tracker_.body(body).mesh, body, cameras_, renderer_);
+  // Every other body may stand in front of this one: the refinement renders them.
+  std::vector<Body> others;
+  for (Body* other : tracker_.bodies())
+    if (other->name != body) others.push_back({other->name, other->mesh, other->reference_T_body});
+  for (Body* occluder : tracker_.occluders()) others.push_back({occluder->name, occluder->mesh, occluder->reference_T_body});
+  auto made = std::make_unique<BodyDetector>(config, tracker_.body(body).mesh, body, cameras_, renderer_, std::move(others));
   return *detectors_.emplace(body, std::move(made)).first->second;
 }
 
+BodyDetector::OtherPoses Recovery::other_poses(const std::string& body) {
+  BodyDetector::OtherPoses poses;
+  for (Body* other : tracker_.bodies())
+    if (other->name != body) poses[other->name] = other->reference_T_body;
+  for (Body* occluder : tracker_.occluders()) poses[occluder->name] = occluder->reference_T_body;
+  return poses;
+}
+
 Detection Recovery::detect(const Frame& frame, const std::string& body) {
-  return detector(body.empty() ? main_body_ : body).detect(frame);
+  const std::string name = body.empty() ? main_body_ : body;
+  return detector(name).detect(frame, other_poses(name));
 }
 
 Detection Recovery::initialise(const Frame& frame, const std::string& body) {
@@ -60,9 +74,10 @@ std::vector<std::string> Recovery::after_track(const Frame& frame, std::vector<B
     ++s.frames_lost;
     BodyDetector& d = detector(r.body);
     Detection detection;
-    if (s.trusted) detection = d.search_near(frame, *s.trusted);
+    const BodyDetector::OtherPoses others = other_poses(r.body);
+    if (s.trusted) detection = d.search_near(frame, *s.trusted, others);
     if (!detection.found && (s.frames_lost - 1) % config_.detection.global_search_interval == 0)
-      detection = d.detect(frame);
+      detection = d.detect(frame, others);
     if (!detection.found) continue;
     tracker_.body(r.body).reference_T_body = detection.reference_T_body;
     s = BodyState{detection.reference_T_body, false, 0};

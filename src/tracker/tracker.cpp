@@ -87,6 +87,13 @@ std::vector<Body*> Tracker::bodies() {
   return out;
 }
 
+std::vector<Body*> Tracker::occluders() {
+  std::vector<Body*> out;
+  for (auto& s : states_)
+    if (s->occluder) out.push_back(s->body.get());
+  return out;
+}
+
 const std::vector<double>& Tracker::joint_values(const std::string& name) const { return state(name).joint_values; }
 
 void Tracker::set_joint_values(const std::string& name, std::vector<double> values) {

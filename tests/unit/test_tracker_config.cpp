@@ -177,7 +177,7 @@ bodies:
     scale: 1
     role: occluder
 detection:
-  recovery: true
+  recovery: false
   global_search_interval: 3
   view_divides: 1
   roll_step_deg: 15.0

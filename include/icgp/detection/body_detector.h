@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,16 +39,23 @@ class BodyDetector {
   /// The body `body_name` of `mesh` as `config` tracks it with `cameras` (the first camera
   /// with the region cue is searched; a depth camera, when a camera has the depth cue,
   /// places and checks). Its viewpoint models come from the same cache as the tracker's.
-  /// Throws std::invalid_argument naming the body when no camera has a colour image.
+  /// `others`: the bodies that may stand in front of it (the tracker's other bodies and
+  /// occluders), whose poses each search is given. Throws std::invalid_argument naming the
+  /// body when no camera has a colour image.
   BodyDetector(const TrackerConfig& config, const Mesh& mesh, const std::string& body_name,
-               const std::vector<CameraCues>& cameras, std::shared_ptr<SceneRenderer> renderer = nullptr);
+               const std::vector<CameraCues>& cameras, std::shared_ptr<SceneRenderer> renderer = nullptr,
+               std::vector<Body> others = {});
   ~BodyDetector();
 
+  /// Where the `others` are in the frame (reference_T_body by name; those not named stay
+  /// where they were last put), so that refinement and appearance leave out what they hide.
+  using OtherPoses = std::map<std::string, Pose>;
+
   /// Searches the whole image over the configured distances.
-  Detection detect(const Frame& frame);
+  Detection detect(const Frame& frame, const OtherPoses& others = {});
   /// Searches near `reference_T_body` (the last trusted pose of a body just lost): a
   /// bounded window in the image, distance and rotation, and fewer hypotheses.
-  Detection search_near(const Frame& frame, const Pose& reference_T_body);
+  Detection search_near(const Frame& frame, const Pose& reference_T_body, const OtherPoses& others = {});
 
   const std::string& body() const { return body_name_; }
   const ShapeTemplates& templates() const { return *templates_; }
@@ -60,7 +68,7 @@ class BodyDetector {
     double quality = 0.0;
     double appearance = 0.0;
   };
-  Detection search(const Frame& frame, const SearchWindow& window, int hypotheses);
+  Detection search(const Frame& frame, const SearchWindow& window, int hypotheses, const OtherPoses& others);
   /// Tracker frames on `frame` from `reference_T_body`, coarse to fine.
   Hypothesis refine(const Frame& frame, const Pose& reference_T_body);
   /// Zero-mean normalised cross-correlation in [-1, 1] of the body's render (its texture

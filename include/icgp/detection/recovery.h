@@ -51,6 +51,8 @@ class Recovery {
     int frames_lost = 0;
   };
   BodyDetector& detector(const std::string& body);
+  /// Where the tracker's other bodies and occluders are now.
+  BodyDetector::OtherPoses other_poses(const std::string& body);
 
   Tracker& tracker_;
   TrackerConfig config_;

@@ -128,10 +128,10 @@ struct TrackerSpec {
   /// visp: one of icgp::visp_reference_configurations() ("edge + KLT + dense depth", ...).
   std::string visp_configuration = "edge + KLT + dense depth";
   /// icgp: how the tracker gets its first pose (YAML `init`): found in the images
-  /// ("detect": no true pose enters the loop after the scene is made), or the true pose
-  /// ("truth", the default until the detector reaches the targets of docs/detection.md).
-  /// ViSP's tracker and the oracle always start from the truth.
-  bool init_by_detection = false;
+  /// ("detect", the default: no true pose enters the loop after the scene is made), or the
+  /// true pose ("truth", for comparison). ViSP's tracker and the oracle always start from
+  /// the truth.
+  bool init_by_detection = true;
 };
 
 /// vpAdaptiveGain(at_zero, at_infinity, slope_at_zero); a constant gain when at_zero ==

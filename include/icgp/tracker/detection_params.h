@@ -9,9 +9,8 @@ namespace icgp {
 /// when their quality verifies it.
 struct DetectionParams {
   /// Search again when a body is reported lost: near the last trusted pose every frame,
-  /// over the whole image every `global_search_interval` frames. Off by default until the
-  /// detector's rates reach the targets of docs/detection.md.
-  bool recovery = false;
+  /// over the whole image every `global_search_interval` frames.
+  bool recovery = true;
   int global_search_interval = 5;
   /// Template views: the directions of an icosphere of this many subdivisions
   /// (2: 162 views, about 15 degrees apart), each at in-plane rotations `roll_step_deg` apart.
@@ -22,9 +21,9 @@ struct DetectionParams {
   double max_distance = 1.5;
   /// Template points per view (contour points of the region models).
   int template_points = 40;
-  /// Best template matches refined by the tracker's cues; the one with the highest quality
-  /// is accepted when that quality reaches `accept_quality`.
-  int hypotheses = 6;
+  /// Best template matches refined by the tracker's cues, in rank order until one fits
+  /// confidently; the best is accepted when its quality reaches `accept_quality`.
+  int hypotheses = 20;
   double accept_quality = 0.6;
 };
 

@@ -72,6 +72,8 @@ class Tracker {
   const TrackerParams& params() const { return params_; }
   /// The tracked bodies and links, in the order they were added (occluders are not).
   std::vector<Body*> bodies();
+  /// The occluders, in the order they were added.
+  std::vector<Body*> occluders();
   Body& body(const std::string& name);
 
   /// The joint values of link `body` (empty for a free body).

@@ -253,8 +253,8 @@ class vpMbIcgTracker : public vpMbTracker {
   /// icgp's extension: after a loss, search for the object again in the following frames
   /// (near its last trusted pose every frame, the whole image every few), and resume
   /// tracking only on a verified pose; until then testTracking() reports it lost and
-  /// getPose() gives the last trusted pose. Off by default while the detector falls short of
-  /// its targets (TrackerConfig detection.recovery, docs/detection.md).
+  /// getPose() gives the last trusted pose. On by default (TrackerConfig detection.recovery,
+  /// docs/detection.md).
   void setRecovery(bool enable);
   bool getRecovery() const;
   using vpMbTracker::initClick;
