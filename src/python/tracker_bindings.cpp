@@ -17,6 +17,7 @@
 #include "icgp/eval/sequence.h"
 #include "icgp/io/joint_yaml.h"
 #include "icgp/optimizer/covariance.h"
+#include "icgp/detection/recovery.h"
 #include "icgp/tracker/tracker_builder.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "numpy_conversions.h"
@@ -174,6 +175,42 @@ class PythonTracker {
   TrackOutcome track(const py::array& color, const std::optional<py::array>& depth, const py::handle& K_color,
                      const py::handle& K_depth, const py::handle& depth_T_color, const std::string& order,
                      double depth_scale) {
+    return track_frame(frame_of(color, depth, K_color, K_depth, depth_T_color, order, depth_scale));
+  }
+
+  /// Finds the main body in these images without a given pose; when found, the tracker
+  /// starts there (the next track() follows on).
+  py::dict detect(const py::array& color, const std::optional<py::array>& depth, const py::handle& K_color,
+                  const py::handle& K_depth, const py::handle& depth_T_color, const std::string& order,
+                  double depth_scale) {
+    const Frame frame = frame_of(color, depth, K_color, K_depth, depth_T_color, order, depth_scale);
+    Tracker& tracker = built();
+    for (const auto& [name, pose] : pending_poses_) tracker.body(name).reference_T_body = pose;
+    Detection detection;
+    {
+      py::gil_scoped_release release;
+      detection = recovery_->initialise(frame);
+    }
+    py::dict out;
+    out["found"] = detection.found;
+    out["pose"] = detection.found ? py::object(matrix(detection.reference_T_body)) : py::object(py::none());
+    out["quality"] = detection.quality;
+    py::list equivalents;
+    for (const Pose& e : detection.equivalents) equivalents.append(matrix(e));
+    out["equivalents"] = equivalents;
+    out["why_not"] = detection.why_not;
+    if (detection.found) {
+      has_initial_pose_ = true;
+      needs_start_ = false;  // started on this frame
+      started_once_ = false;
+    }
+    return out;
+  }
+
+ private:
+  Frame frame_of(const py::array& color, const std::optional<py::array>& depth, const py::handle& K_color,
+                 const py::handle& K_depth, const py::handle& depth_T_color, const std::string& order,
+                 double depth_scale) {
     Frame frame;
     ColorImage c;
     c.camera = config_.region.color_camera;
@@ -192,9 +229,10 @@ class PythonTracker {
       throw py::value_error("K_depth and depth_T_color describe a depth image: give depth too");
     }
     frame.index = frames_;
-    return track_frame(frame);
+    return frame;
   }
 
+ public:
   TrackOutcome track_frame(const Frame& frame) {
     if (!has_initial_pose_)
       throw std::invalid_argument("track: no initial pose: call set_pose(pose) first (the object in the colour camera, "
@@ -205,9 +243,13 @@ class PythonTracker {
     double ms = 0.0;
     {
       py::gil_scoped_release release;
-      if (needs_start_) tracker.start(frame);
+      if (needs_start_) {
+        tracker.start(frame);
+        recovery_->reset();
+      }
       const auto begin = std::chrono::steady_clock::now();
       results = tracker.track(frame);
+      recovery_->after_track(frame, results);
       ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
     }
     needs_start_ = false;
@@ -256,6 +298,7 @@ class PythonTracker {
       cue_names_.emplace(body->name, std::move(names));
     }
     tracker_ = std::move(tracker);
+    recovery_ = std::make_unique<Recovery>(*tracker_, config_, body_, configured_cameras(config_));
     needs_start_ = true;
     return *tracker_;
   }
@@ -275,6 +318,7 @@ class PythonTracker {
   std::string body_;
   Mesh mesh_;
   std::unique_ptr<Tracker> tracker_;
+  std::unique_ptr<Recovery> recovery_;  ///< detection and recovery, built with tracker_
   std::map<std::string, Pose> pending_poses_;  ///< set before the tracker was built
   std::map<std::string, std::shared_ptr<const CueNames>> cue_names_;  ///< per tracked body
   bool has_initial_pose_ = false;  ///< set_pose was called for the main body
@@ -301,7 +345,8 @@ generated on the first track(). Poses are 4x4 NumPy arrays: the object in the co
 camera's frame (ViSP's cMo), metres.
 
     tracker = icgp.Tracker("box.obj")
-    tracker.set_pose(cMo)                  # where the object starts
+    tracker.set_pose(cMo)                  # where the object starts, or:
+    tracker.detect(color, depth, K, K_depth, depth_T_color)   # found in the images
     for color, depth in frames:
         r = tracker.track(color, depth, K, K_depth, depth_T_color)
         print(r.pose, r.quality, r.tracked, r.cues)
@@ -368,6 +413,13 @@ void register_tracker(py::module_& m) {
            "K_depth        3x3 of the depth image (default: K_color).\n"
            "depth_T_color  4x4 colour camera -> depth camera (ViSP's depth_M_color; default: identity).\n\n"
            "C-contiguous uint8 BGR and float32 arrays are read in place, without a copy.")
+      .def("detect", &PythonTracker::detect, py::arg("color"), py::arg("depth") = py::none(), py::arg("K_color"),
+           py::arg("K_depth") = py::none(), py::arg("depth_T_color") = py::none(), py::kw_only(),
+           py::arg("color_order") = "bgr", py::arg("depth_scale") = 0.001,
+           "Finds the object in these images without a given pose (docs/detection.md), the arguments as "
+           "track()'s. Returns a dict: found (bool), pose (4x4 cMo, or None), quality, equivalents (poses a "
+           "symmetric model cannot tell apart from it), why_not (the reason when not found). When found, the "
+           "tracker starts there and the next track() follows on.")
       .def("track_frame", &PythonTracker::track_frame, py::arg("frame"),
            "Tracks a Frame read by icgp.Sequence (every camera it has) and returns a TrackResult.")
       .def("covariance", &PythonTracker::covariance, py::arg("body") = py::none(),
