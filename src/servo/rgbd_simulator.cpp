@@ -170,7 +170,11 @@ vpHomogeneousMatrix RgbdSimulator::world_T_object(double time) const {
   const ObjectSpec& o = impl_->scenario.object;
   const double moving = std::clamp(time - o.motion_start, 0.0, o.motion_duration);
   const Eigen::Vector3d shift = moving * o.linear_velocity;
-  return vpHomogeneousMatrix(shift.x(), shift.y(), shift.z(), 0, 0, 0) * impl_->world_T_object_start;
+  const vpHomogeneousMatrix moved = vpHomogeneousMatrix(shift.x(), shift.y(), shift.z(), 0, 0, 0) * impl_->world_T_object_start;
+  if (o.removed_for <= 0.0 || time < o.removed_at) return moved;
+  // Out of the scene: a kilometre away, beyond every view and depth range.
+  if (time < o.removed_at + o.removed_for) return vpHomogeneousMatrix(0, 0, 1000.0, 0, 0, 0) * moved;
+  return moved * to_homogeneous_matrix(o.put_back);
 }
 
 RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& previous_wMc,

@@ -143,7 +143,7 @@ std::optional<GraspSpec> read_grasp(const Map& s, const Value& document, RobotKi
 }
 
 void read_object(const Value& v, ObjectSpec& object, const std::string& scenario_dir, const std::string& models_dir) {
-  const Map s(v, {"model", "regions", "motion"});
+  const Map s(v, {"model", "regions", "motion", "removed"});
   object.model = model_file(s.required("model"), scenario_dir, models_dir);
   if (auto x = s.get("regions"))
     for (const Value& region : x->elements("a list of region meshes"))
@@ -153,6 +153,12 @@ void read_object(const Value& v, ObjectSpec& object, const std::string& scenario
     if (auto y = motion.get("velocity")) object.linear_velocity = numbers<3>(*y, kObjectVelocity);
     if (auto y = motion.get("start")) object.motion_start = y->number_in(kSimulatedTime);
     if (auto y = motion.get("duration")) object.motion_duration = y->number_in(kSimulatedTime);
+  }
+  if (auto x = s.get("removed")) {
+    const Map removed(*x, {"at", "for", "back"});
+    object.removed_at = removed.required("at").number_in(kSimulatedTime);
+    object.removed_for = removed.required("for").number_in(kSimulatedTime);
+    if (auto y = removed.get("back")) object.put_back = pose(*y);
   }
 }
 

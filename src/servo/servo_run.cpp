@@ -173,7 +173,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   result.seed = options.seed;
 
   const double dt = 1.0 / scenario.camera.rate_hz;
-  const double motion_end = scenario.object.motion_start + scenario.object.motion_duration;
+  const double motion_end = scenario.object.settled_time();
   vpHomogeneousMatrix previous_wMc = robot->world_T_camera();
   vpHomogeneousMatrix trusted_cMo;  ///< the last pose the tracker did not report lost
   std::optional<vpHomogeneousMatrix> trusted_cMg;  ///< the same for the gripper (grasp)

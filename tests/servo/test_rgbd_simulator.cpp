@@ -150,6 +150,25 @@ TEST_CASE("rgbd simulator: a moving target follows its velocity during its motio
   CHECK(shift(5.0) == Approx(0.10));
 }
 
+TEST_CASE("rgbd simulator: an object taken away is out of every view, then back where it was put") {
+  Scenario s = facing_box(0.4);
+  s.object.removed_at = 1.0;
+  s.object.removed_for = 1.5;
+  s.object.put_back = icgp::Pose::from_rotation_vector(Eigen::Vector3d(0, 0.2, 0), Eigen::Vector3d(0.03, 0, 0.02));
+  Rig rig(s);
+  const vpHomogeneousMatrix start = rig.simulator->world_T_object(0.0);
+  CHECK(rig.simulator->world_T_object(0.99) == start);
+  const RgbdCapture& away = rig.capture(1.5);
+  CHECK(away.cMo_true[2][3] > 100.0);
+  // Nothing of it in the depth image: a kilometre is beyond every depth range.
+  for (unsigned i = 0; i < away.depth_raw.getHeight(); i += 8)
+    for (unsigned j = 0; j < away.depth_raw.getWidth(); j += 8) CHECK(away.depth_raw[i][j] * away.depth_scale < 100.0);
+  const vpHomogeneousMatrix back = rig.simulator->world_T_object(2.6);
+  const vpHomogeneousMatrix expected = start * icgp::to_homogeneous_matrix(s.object.put_back);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) CHECK(back[r][c] == Approx(expected[r][c]).margin(1e-12));
+}
+
 TEST_CASE("rgbd simulator: the scenario's lighting shades the object") {
   Scenario front = facing_box(0.4);
   Scenario ambient_only = front;

@@ -182,6 +182,8 @@ TEST_CASE("keys left out of a scenario take their defaults") {
   CHECK(s.tracker.kind == icgp::servo::TrackerKind::kIcgp);
   CHECK((s.tracker.modalities.empty() && s.tracker.config.empty()));
   CHECK(s.tracker.visp_configuration == "edge + KLT + dense depth");
+  CHECK(s.tracker.init_by_detection);  // no true pose enters the loop unless asked for
+  CHECK(s.object.removed_for == 0.0);
   CHECK(s.control.law == icgp::servo::ControlLawKind::kPbvs);
   CHECK((s.control.gain.at_zero == 0.8 && s.control.gain.at_infinity == 0.8));  // a number: constant gain
   CHECK_FALSE(s.control.gain.adaptive());
@@ -200,6 +202,23 @@ TEST_CASE("keys left out of a scenario take their defaults") {
   CHECK((t.camera.depth.width == 100 && t.camera.depth.fu == 90 && t.camera.depth.pu == 49.5));
   REQUIRE(t.occluder);
   CHECK(t.occluder->size.isApprox(Eigen::Vector3d(0.03, 0.3, 0.03)));
+}
+
+TEST_CASE("a scenario sets how the tracker starts and when the object is taken away") {
+  TempDir dir("icgp-scenario");
+  const Scenario s = load_scenario(
+      dir.write("removed.yaml", "object:\n  model: textured_box\n"
+                                "  removed: {at: 1.0, for: 1.5, back: {t: [0.03, 0, 0.025], r_deg: [0, 15, 0]}}\n"
+                                "start: {t: [0, 0, 0.5], r_deg: [180, 0, 0]}\ndesired: {t: [0, 0, 0.35], r_deg: [180, 0, 0]}\n"
+                                "tracker: {type: icgp, init: truth}\n"),
+      ICGP_MODELS_DIR);
+  CHECK_FALSE(s.tracker.init_by_detection);
+  CHECK((s.object.removed_at == 1.0 && s.object.removed_for == 1.5));
+  CHECK(s.object.put_back.translation().isApprox(Eigen::Vector3d(0.03, 0, 0.025)));
+  CHECK(s.object.settled_time() == 2.5);
+  const std::string bad = dir.write("bad.yaml", kMinimal + "tracker: {init: guess}\n");
+  CHECK_THROWS_WITH(load_scenario(bad, ICGP_MODELS_DIR),
+                    Contains(bad + ": tracker.init: expected one of detect, truth"));
 }
 
 TEST_CASE("model references resolve to a folder of models/ or a file next to the scenario") {

@@ -389,11 +389,27 @@ TEST_CASE("vpMbIcgTracker::testTracking tells a tracked box from a lost one") {
   CHECK(tracker.getTrackingQuality() > 0.5);
 
   // 12 cm to the side the box is not there: the colour statistics and depth disagree.
-  tracker.setPose(v.color, vpHomogeneousMatrix(0.12, 0.0, 0.0, 0.0, 0.0, 0.0) * tracker.getPose());
+  // Without recovery the verdict stands as the cues give it.
+  tracker.setRecovery(false);
+  const vpHomogeneousMatrix aside = vpHomogeneousMatrix(0.12, 0.0, 0.0, 0.0, 0.0, 0.0) * tracker.getPose();
+  tracker.setPose(v.color, aside);
   const VispFrame next = to_visp(frames[1]);
   tracker.track(next.color, next.depth_raw, 1e-4);
   CHECK(tracker.getTrackingQuality() < 0.5);
   CHECK_THROWS_AS(tracker.testTracking(), vpTrackingException);
+
+  // With recovery (the default) the same frame finds the box again, verified.
+  tracker.setRecovery(true);
+  tracker.setPose(v.color, aside);
+  tracker.track(next.color, next.depth_raw, 1e-4);
+  CHECK_NOTHROW(tracker.testTracking());
+  CHECK(tracker.getTrackingQuality() > 0.5);
+  // The teabox .cao is a plain box: found at the truth or at its 180-degree twin, whose
+  // centre is the same point.
+  const vpHomogeneousMatrix found = tracker.getPose(), truth = to_homogeneous_matrix(*frames[1].truth());
+  const vpColVector centre{0.0, 0.0, 0.084094, 1.0};  // the middle of the .cao's eight corners
+  CHECK((found.getTranslationVector() - aside.getTranslationVector()).frobeniusNorm() > 0.05);
+  CHECK((found * centre - truth * centre).frobeniusNorm() < 0.005);
 }
 
 TEST_CASE("vpMbIcgTracker::loadModel adds parts to one rigid object") {

@@ -74,6 +74,14 @@ struct ObjectSpec {
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
   double motion_start = 0.0;
   double motion_duration = 0.0;
+  /// Taken out of the scene at `removed_at` seconds for `removed_for` seconds, then put
+  /// back moved by `put_back` (object_T_new, about the object's own origin; YAML
+  /// `removed: {at, for, back: {t, r_deg}}`). Zero `removed_for`: never.
+  double removed_at = 0.0;
+  double removed_for = 0.0;
+  Pose put_back;
+  /// When the object stops changing: the end of its motion and of its removal.
+  double settled_time() const { return std::max(motion_start + motion_duration, removed_at + removed_for); }
 };
 
 /// A box that crosses the scene at constant velocity (a passing occluder).
