@@ -177,6 +177,11 @@ vpHomogeneousMatrix RgbdSimulator::world_T_object(double time) const {
   return moved * to_homogeneous_matrix(o.put_back);
 }
 
+bool RgbdSimulator::object_present(double time) const {
+  const ObjectSpec& o = impl_->scenario.object;
+  return o.removed_for <= 0.0 || time < o.removed_at || time >= o.removed_at + o.removed_for;
+}
+
 RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& previous_wMc,
                                     const std::optional<vpHomogeneousMatrix>& held_object,
                                     const std::optional<vpHomogeneousMatrix>& gripper) {

@@ -273,11 +273,12 @@ TrialsSummary summarise(const std::vector<ServoResult>& results, const StopSpec&
     if (r.safety_stops > 0 && r.recovered) ++s.recovered;
     // The tracker error over every step of every run (so longer runs weigh more).
     for (const ServoStep& step : r.steps) {
+      track_ms.push_back(step.track_ms);
+      if (std::isnan(step.track_t)) continue;  // the object out of the scene: no truth to compare
       sum_track_t += step.track_t;
       sum_track_r += step.track_r;
       s.max_track_t = std::max(s.max_track_t, step.track_t);
       s.max_track_r = std::max(s.max_track_r, step.track_r);
-      track_ms.push_back(step.track_ms);
       ++steps;
     }
   }

@@ -120,14 +120,17 @@ vpMatrix robot_jacobian(const SimulatedRobot& robot) {
 void summarise_tracking(ServoResult& result) {
   std::vector<double> ms;
   double sum_t = 0.0, sum_r = 0.0;
+  int n_present = 0;
   for (const ServoStep& s : result.steps) {
+    if (std::isnan(s.track_t)) continue;  // the object out of the scene: no truth to compare
+    ++n_present;
     sum_t += s.track_t;
     sum_r += s.track_r;
     result.max_track_t = std::max(result.max_track_t, s.track_t);
     result.max_track_r = std::max(result.max_track_r, s.track_r);
     if (!s.dropped) ms.push_back(s.track_ms);
   }
-  const double n = static_cast<double>(std::max<std::size_t>(1, result.steps.size()));
+  const double n = static_cast<double>(std::max(1, n_present));
   result.mean_track_t = sum_t / n;
   result.mean_track_r = sum_r / n;
   result.median_track_ms = ms.empty() ? 0.0 : median(ms);
@@ -257,6 +260,8 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     step.servo_r = servo.rotation;
     step.track_t = tracking.translation;
     step.track_r = tracking.rotation;
+    if (!simulator.object_present(step.time))
+      step.servo_t = step.servo_r = step.track_t = step.track_r = std::numeric_limits<double>::quiet_NaN();
     step.render_ms = ms_between(t0, t1);
     step.track_ms = step.dropped ? 0.0 : estimate.track_ms;
     step.control_ms = ms_between(t2, t3);

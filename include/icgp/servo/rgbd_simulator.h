@@ -43,6 +43,8 @@ class RgbdSimulator {
   /// The object's pose in the world at `time` (moving targets follow ObjectSpec's motion).
   /// Eye-to-hand scenarios give the held pose through `held_object` of capture() instead.
   vpHomogeneousMatrix world_T_object(double time) const;
+  /// False while the object is out of the scene (ObjectSpec::removed_for).
+  bool object_present(double time) const;
 
   /// What the sensor sees at `time` with the colour camera at wMc. `previous_wMc` is where
   /// it was at the last capture (motion blur); `held_object`: the object's world pose when a

@@ -23,7 +23,9 @@ struct ServoStep {
   vpHomogeneousMatrix cMo_true;       ///< ground truth at the capture
   vpHomogeneousMatrix cMo_estimated;  ///< what the tracker said
   double servo_t = 0.0, servo_r = 0.0;  ///< true servoed pose to the desired pose
-  double track_t = 0.0, track_r = 0.0;  ///< estimated servoed pose to the true one
+  /// Estimated servoed pose to the true one; NaN while the object is out of the scene
+  /// (ObjectSpec::removed_for), as the servo error: there is no true pose then.
+  double track_t = 0.0, track_r = 0.0;
   vpColVector velocity;               ///< applied: camera twist (v, ω) or joint velocities
   /// |s - s*| of the scenario's control law (vpServo); NaN when a control law given in code
   /// (ServoRunOptions::control_law) computed the velocity, as it has no features s; 0 at a
