@@ -17,6 +17,14 @@ namespace {
 
 /// Template matches below this share of answered contour points are not candidates.
 constexpr double kMinTemplateScore = 0.55;
+/// The whole image is searched with views and rolls this many times coarser, then the
+/// fine templates near each coarse match: within this image radius (sphere radii, at
+/// least kFineMinRadiusPx), a distance step and this rotation (the coarse views' spacing).
+constexpr int kCoarseViewDivides = 1;
+constexpr double kCoarseRollFactor = 1.5;
+constexpr double kFineRadiusSpheres = 0.3;
+constexpr double kFineMinRadiusPx = 8.0;
+constexpr double kFineRotation = 30.0 * kPi / 180.0;
 /// Distinct candidates ranked (template score and depth support) per hypothesis refined.
 constexpr int kCandidatesRanked = 4;
 /// A candidate whose surface points mostly disagree with the measured depth is dropped
@@ -60,6 +68,9 @@ bool has_appearance(const Mesh& mesh) {
       return true;
   return false;
 }
+
+/// A turned pose is refined only when it looks this much more like the image (NCC).
+constexpr double kAppearanceGain = 0.1;
 
 /// The turns that map a box, a cylinder or a cube onto itself: 180 degrees about each
 /// axis of the body frame and 90 degrees either way about each, about the sphere centre.
@@ -117,6 +128,10 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
   templates_ = std::make_unique<ShapeTemplates>(mesh, region_models, depth_model, params_.view_divides,
                                                 params_.roll_step_deg, params_.template_points);
   matcher_ = std::make_unique<TemplateMatcher>(*templates_);
+  coarse_templates_ = std::make_unique<ShapeTemplates>(
+      mesh, region_models, depth_model, std::min(params_.view_divides, kCoarseViewDivides),
+      params_.roll_step_deg * kCoarseRollFactor, params_.template_points);
+  coarse_matcher_ = std::make_unique<TemplateMatcher>(*coarse_templates_);
   appearance_ = has_appearance(mesh);
 }
 
@@ -174,7 +189,7 @@ double BodyDetector::place_in_depth(const Frame& frame, PoseCandidate& candidate
   const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
   const ColorImage* color = frame.find_color(color_camera_);
   if (!depth || !depth->delivered() || !color) return -1.0;
-  const ShapeTemplates::View& view = templates_->view(templates_->templates()[candidate.template_index].view);
+  const ShapeTemplates::View& view = templates_->closest_view(candidate.camera_T_body);
   if (view.surface.empty()) return -1.0;
   // Depth camera <- colour camera.
   const Pose depth_T_color = depth->camera_T_reference * color->camera_T_reference.inverse();
@@ -300,13 +315,34 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   std::optional<RayDepth> ray_depth;
   SearchWindow gated = window;
   if (depth && depth->delivered()) gated.depth = &ray_depth.emplace(*depth, *color);
-  std::vector<PoseCandidate> candidates =
-      matcher_->match(*color, gated, kMinTemplateScore, kCandidatesRanked * hypotheses, in_depth, &detection.why_not);
+  OrientationPyramid pyramid(*color);
+  const auto best_ranked = [&](std::vector<PoseCandidate> found) {
+    std::stable_sort(found.begin(), found.end(), [](const PoseCandidate& a, const PoseCandidate& b) {
+      return a.score + a.support > b.score + b.support;
+    });
+    if (static_cast<int>(found.size()) > hypotheses) found.resize(hypotheses);
+    return found;
+  };
+  const bool whole_image = !window.near;
+  TemplateMatcher& first = whole_image ? *coarse_matcher_ : *matcher_;
+  std::vector<PoseCandidate> candidates = best_ranked(
+      first.match(pyramid, gated, kMinTemplateScore, kCandidatesRanked * hypotheses, in_depth, &detection.why_not));
   detection.candidates = static_cast<int>(candidates.size());
-  std::stable_sort(candidates.begin(), candidates.end(), [](const PoseCandidate& a, const PoseCandidate& b) {
-    return a.score + a.support > b.score + b.support;
-  });
-  if (static_cast<int>(candidates.size()) > hypotheses) candidates.resize(hypotheses);
+  if (whole_image) {
+    // Coarse views first, then the fine templates near each of their best matches.
+    for (PoseCandidate& c : candidates) {
+      SearchWindow near = gated;
+      near.near = c.camera_T_body;
+      near.min_distance = c.distance / TemplateMatcher::kDistanceStep;
+      near.max_distance = c.distance * TemplateMatcher::kDistanceStep;
+      near.radius_px = std::max(kFineMinRadiusPx, kFineRadiusSpheres * color->intrinsics.fu *
+                                                      templates_->sphere().radius / c.distance);
+      near.max_rotation = kFineRotation;
+      const std::vector<PoseCandidate> fine = matcher_->match(pyramid, near, kMinTemplateScore, 1, in_depth);
+      if (!fine.empty() && fine.front().score >= c.score) c = fine.front();
+    }
+    candidates = best_ranked(std::move(candidates));
+  }
 
   std::vector<Hypothesis> verified;
   for (const PoseCandidate& candidate : candidates) {
@@ -319,18 +355,31 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   }
   if (appearance_ && !verified.empty()) {
     // The shape may not tell a box from the box turned about an axis: the appearance does.
+    // A turn that maps the shape onto itself needs no refinement to be compared, so only
+    // the turn that looks most like the image is refined.
+    for (Hypothesis& h : verified) h.appearance = appearance_agreement(*color, h.reference_T_body);
     const Hypothesis best = *std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
       return a.quality < b.quality;
     });
     const Eigen::Vector3d c = templates_->sphere().centre;
+    std::optional<Pose> look_alike;
+    double look_alike_appearance = best.appearance + kAppearanceGain;
     for (const Eigen::Matrix3d& turn : symmetric_turns()) {
       const Pose turned = best.reference_T_body * Pose(Eigen::Matrix3d::Identity(), c) * Pose(turn, Eigen::Vector3d::Zero()) *
                           Pose(Eigen::Matrix3d::Identity(), -c);
-      const Hypothesis h = refine(frame, turned);
-      ++detection.refined;
-      if (h.quality >= params_.accept_quality) verified.push_back(h);
+      const double appearance = appearance_agreement(*color, turned);
+      if (appearance <= look_alike_appearance) continue;
+      look_alike = turned;
+      look_alike_appearance = appearance;
     }
-    for (Hypothesis& h : verified) h.appearance = appearance_agreement(*color, h.reference_T_body);
+    if (look_alike) {
+      Hypothesis h = refine(frame, *look_alike);
+      ++detection.refined;
+      if (h.quality >= params_.accept_quality) {
+        h.appearance = appearance_agreement(*color, h.reference_T_body);
+        verified.push_back(h);
+      }
+    }
   }
   if (verified.empty()) {
     if (detection.why_not.empty())

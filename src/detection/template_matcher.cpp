@@ -103,34 +103,32 @@ Eigen::Matrix3d centred_rotation(const Pose& camera_T_body, const Eigen::Vector3
 
 }  // namespace
 
-const cv::Mat& TemplateMatcher::pyramid_image(const ColorImage& color, int L) {
-  if (pyramid_[L].empty()) {
+const cv::Mat& OrientationPyramid::image(int L) {
+  if (images_[L].empty()) {
     if (L == 0) {
-      pyramid_[0] = color.image;
+      images_[0] = color_.image;
     } else {
-      const cv::Mat& above = pyramid_image(color, L - 1);
-      cv::resize(above, pyramid_[L], cv::Size(above.cols / 2, above.rows / 2), 0, 0, cv::INTER_AREA);
+      const cv::Mat& above = image(L - 1);
+      cv::resize(above, images_[L], cv::Size(above.cols / 2, above.rows / 2), 0, 0, cv::INTER_AREA);
     }
   }
-  return pyramid_[L];
+  return images_[L];
 }
 
-TemplateMatcher::Level& TemplateMatcher::level(const ColorImage& color, int L) {
-  Level& level = levels_[L];
-  if (level.ready) return level;
-  const cv::Mat& image = pyramid_image(color, L);
-  level.intrinsics = color.intrinsics.scaled(image.cols, image.rows);
-  level.responses.compute(image);
-  level.ready = true;
+const OrientationPyramid::Level& OrientationPyramid::level(int L) {
+  if (levels_[L]) return *levels_[L];
+  const cv::Mat& level_image = image(L);
+  Level& level = levels_[L].emplace();
+  level.intrinsics = color_.intrinsics.scaled(level_image.cols, level_image.rows);
+  level.responses.compute(level_image);
   return level;
 }
 
-std::vector<PoseCandidate> TemplateMatcher::match(const ColorImage& color, const SearchWindow& window,
+std::vector<PoseCandidate> TemplateMatcher::match(OrientationPyramid& pyramid, const SearchWindow& window,
                                                   double min_score, int limit, const CandidateCheck& check,
                                                   std::string* why_none) {
-  for (Level& l : levels_) l.ready = false;
-  for (cv::Mat& image : pyramid_) image.release();
-  const Intrinsics& K = color.intrinsics;
+  constexpr int kLevels = OrientationPyramid::kLevels;
+  const Intrinsics& K = pyramid.color().intrinsics;
   const double radius = templates_.sphere().radius;
   const std::vector<ShapeTemplates::Template>& all = templates_.templates();
 
@@ -154,7 +152,7 @@ std::vector<PoseCandidate> TemplateMatcher::match(const ColorImage& color, const
     int L = 0;
     while (L + 1 < kLevels && radius_px / (1 << L) > kMaxTemplateRadius) ++L;
     ++searched;
-    Level& lv = level(color, L);
+    const OrientationPyramid::Level& lv = pyramid.level(L);
     const OrientationResponses& responses = lv.responses;
     constexpr int S = OrientationResponses::kStride;
     const int cols = responses.grid_cols(), rows = responses.grid_rows(), size = responses.grid_size();
@@ -230,7 +228,7 @@ std::vector<PoseCandidate> TemplateMatcher::match(const ColorImage& color, const
   std::vector<Eigen::Vector2d> centres_px;
   for (const RawMatch& m : raw) {
     if (static_cast<int>(candidates.size()) >= limit) break;
-    const Intrinsics& KL = levels_[m.level].intrinsics;
+    const Intrinsics& KL = pyramid.level(m.level).intrinsics;
     const ShapeTemplates::Template& t = all[m.template_index];
     PoseCandidate c{templates_.pose(t, ray_through(KL, m.x, m.y), m.distance), m.score, m.template_index, m.distance};
     if (check && !check(c)) continue;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Detection without a given pose (docs/detection.md): the orientation quantisation against
 // analytic directions and a step edge, the textured box found in a rendered RGB-D frame
-// against its ground truth, and nothing found in a frame without it.
+// against its ground truth, and nothing found in frames without it (the clutter alone, blank).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -68,6 +68,21 @@ TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm an
               found.candidates, found.refined);
   CHECK(t < 5.0);
   CHECK(r < 5.0);
+
+  // The same clutter of coloured squares without the box (a 1 mm speck in its place): a
+  // painted square is no box, since nothing stands out of the plane.
+  MeshPart speck;
+  speck.vertices = {{0.f, 0.f, 0.f}, {0.001f, 0.f, 0.f}, {0.f, 0.001f, 0.f}};
+  speck.triangles = {{0, 1, 2}};
+  Mesh nothing;
+  nothing.source = "speck";
+  nothing.parts.push_back(speck);
+  test::SceneRenderer clutter(nothing, color_k, color_k, depth_T_color);
+  for (const double z : {0.35, 0.45, 0.6}) {
+    const Detection none = detector.detect(clutter.render(Pose(truth.rotation(), Eigen::Vector3d(0.0, 0.0, z))));
+    INFO("clutter plane " << z + 0.3 << " m away");
+    CHECK_FALSE(none.found);
+  }
 
   Frame blank = frame;
   for (ColorImage& c : blank.colors) c.image = cv::Mat(c.image.size(), c.image.type(), cv::Scalar::all(0));

@@ -85,8 +85,11 @@ class BodyDetector {
   std::string body_name_;
   std::string color_camera_, depth_camera_;
   std::unique_ptr<Tracker> refiner_;
-  std::unique_ptr<ShapeTemplates> templates_;
+  std::unique_ptr<ShapeTemplates> templates_;  ///< the configured views and rolls
   std::unique_ptr<TemplateMatcher> matcher_;
+  /// Coarser views and rolls for the first pass over the whole image.
+  std::unique_ptr<ShapeTemplates> coarse_templates_;
+  std::unique_ptr<TemplateMatcher> coarse_matcher_;
   bool appearance_ = false;  ///< the mesh has a texture or colours to compare
 };
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,29 @@ struct SearchWindow {
   const RayDepth* depth = nullptr;
 };
 
+/// One image's orientation responses at pyramid levels 0..kLevels-1 (2^L times smaller),
+/// each computed the first time a search asks for it, so that several searches of one
+/// frame (coarse views, then fine ones near their matches) share them.
+class OrientationPyramid {
+ public:
+  static constexpr int kLevels = 4;
+  struct Level {
+    Intrinsics intrinsics;
+    OrientationResponses responses;
+  };
+
+  explicit OrientationPyramid(const ColorImage& color) : color_(color) {}
+  const ColorImage& color() const { return color_; }
+  const Level& level(int L);
+
+ private:
+  const cv::Mat& image(int L);
+
+  const ColorImage& color_;
+  std::array<std::optional<Level>, kLevels> levels_;
+  std::array<cv::Mat, kLevels> images_;
+};
+
 /// Gradient template matching (docs/detection.md): every template at every distance step
 /// over every grid position of the image level where its contour spans a few dozen pixels,
 /// scored by the share of its contour points whose orientation the image answers. Costs
@@ -58,28 +82,17 @@ class TemplateMatcher {
 
   explicit TemplateMatcher(const ShapeTemplates& templates) : templates_(templates) {}
 
-  /// At most `limit` candidates of `color`'s image scoring at least `min_score` that pass
-  /// `check` (when given), best first, distinct (no two at the same place, distance and
-  /// rotation). `why_none` receives the reason when no distance of the window could be
+  /// At most `limit` candidates of the pyramid's image scoring at least `min_score` that
+  /// pass `check` (when given), best first, distinct (no two at the same place, distance
+  /// and rotation). `why_none` receives the reason when no distance of the window could be
   /// searched (the object would be too small or larger than the image).
-  std::vector<PoseCandidate> match(const ColorImage& color, const SearchWindow& window, double min_score, int limit,
+  std::vector<PoseCandidate> match(OrientationPyramid& pyramid, const SearchWindow& window, double min_score, int limit,
                                    const CandidateCheck& check = nullptr, std::string* why_none = nullptr);
 
- private:
-  /// The image at pyramid level L (2^L times smaller) and its orientation responses,
-  /// computed on first use in a frame.
-  struct Level {
-    bool ready = false;
-    Intrinsics intrinsics;
-    OrientationResponses responses;
-  };
-  Level& level(const ColorImage& color, int L);
-  const cv::Mat& pyramid_image(const ColorImage& color, int L);
+  const ShapeTemplates& templates() const { return templates_; }
 
+ private:
   const ShapeTemplates& templates_;
-  static constexpr int kLevels = 4;
-  std::array<Level, kLevels> levels_;
-  cv::Mat pyramid_[kLevels];
   std::vector<std::uint16_t> scores_;
 };
 
