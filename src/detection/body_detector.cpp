@@ -69,6 +69,9 @@ bool has_appearance(const Mesh& mesh) {
   return false;
 }
 
+/// Without depth, a body with appearance is verified only when its render correlates at
+/// least this much with the image (NCC).
+constexpr double kMinAppearance = 0.3;
 /// A turned pose is refined only when it looks this much more like the image (NCC).
 constexpr double kAppearanceGain = 0.1;
 
@@ -303,7 +306,10 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   // With depth: each match placed on the measured surface and checked against it before
   // suppression, so that matches of the background do not crowd out the body's.
   const Pose reference_T_camera = color->camera_T_reference.inverse();
+  const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
+  const bool has_depth = depth && depth->delivered();
   const CandidateCheck in_depth = [&](PoseCandidate& c) {
+    if (!has_depth) return true;
     const double agreement = place_in_depth(frame, c);
     if (agreement >= 0.0 && agreement < kMinDepthAgreement) return false;
     const double silhouette = silhouette_support(frame, reference_T_camera * c.camera_T_body);
@@ -311,10 +317,9 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     c.support = std::max(agreement, 0.0) + std::max(silhouette, 0.0);
     return true;
   };
-  const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
   std::optional<RayDepth> ray_depth;
   SearchWindow gated = window;
-  if (depth && depth->delivered()) gated.depth = &ray_depth.emplace(*depth, *color);
+  if (has_depth) gated.depth = &ray_depth.emplace(*depth, *color);
   OrientationPyramid pyramid(*color);
   const auto best_ranked = [&](std::vector<PoseCandidate> found) {
     std::stable_sort(found.begin(), found.end(), [](const PoseCandidate& a, const PoseCandidate& b) {
@@ -379,6 +384,26 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
         h.appearance = appearance_agreement(*color, h.reference_T_body);
         verified.push_back(h);
       }
+    }
+    // Without depth only the appearance tells a textured body from a picture of its shape
+    // (a painted rectangle for a box).
+    if (!has_depth)
+      verified.erase(std::remove_if(verified.begin(), verified.end(),
+                                    [](const Hypothesis& h) { return h.appearance < kMinAppearance; }),
+                     verified.end());
+  } else if (!verified.empty()) {
+    // Without appearance, a turn that is no symmetry of the shape shows in the fit of its
+    // contour and depth (a mug's handle): every turn is refined and the best fit wins; the
+    // turns that fit as well are the equivalent poses of a symmetric shape.
+    const Hypothesis best = *std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
+      return a.quality < b.quality;
+    });
+    const Eigen::Vector3d c = templates_->sphere().centre;
+    for (const Eigen::Matrix3d& turn : symmetric_turns()) {
+      const Hypothesis h = refine(frame, best.reference_T_body * Pose(Eigen::Matrix3d::Identity(), c) *
+                                             Pose(turn, Eigen::Vector3d::Zero()) * Pose(Eigen::Matrix3d::Identity(), -c));
+      ++detection.refined;
+      if (h.quality >= params_.accept_quality) verified.push_back(h);
     }
   }
   if (verified.empty()) {
