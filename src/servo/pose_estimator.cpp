@@ -96,8 +96,7 @@ class IcgpEstimator : public PoseEstimator {
     return estimate;
   }
 
-  std::optional<PoseEstimate> detect(const RgbdCapture& capture,
-                                     const std::optional<vpHomogeneousMatrix>& cMg) override {
+  PoseEstimate detect(const RgbdCapture& capture, const std::optional<vpHomogeneousMatrix>& cMg) override {
     if (gripper_) {
       if (!cMg) throw std::logic_error("icgp tracker: a grasp detects with the gripper's pose");
       gripper_->start(*cMg);
@@ -106,7 +105,8 @@ class IcgpEstimator : public PoseEstimator {
     const auto begin = Clock::now();
     const bool found = tracker_.initFromDetection(capture.color, capture.depth_raw, capture.depth_scale);
     estimate.track_ms = ms_since(begin);
-    if (!found) return std::nullopt;
+    estimate.lost = !found;
+    if (!found) return estimate;
     tracker_.getPose(estimate.cMo);
     if (gripper_) estimate.cMg = cMg;
     return estimate;

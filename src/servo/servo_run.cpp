@@ -209,9 +209,8 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     previous_wMc = wMc;
     step.dropped = capture.dropped;
     if (!capture.dropped && !started) {
-      const std::optional<PoseEstimate> found = estimator->detect(capture, kinematic_cMg());
-      started = found.has_value();
-      estimate = found ? *found : PoseEstimate{estimate.cMo, true, 0.0, std::nullopt};
+      estimate = estimator->detect(capture, kinematic_cMg());
+      started = !estimate.lost;
       if (!estimate.cMg) estimate.cMg = kinematic_cMg();
       if (started) {
         trusted_cMo = estimate.cMo;
@@ -260,8 +259,10 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     step.servo_r = servo.rotation;
     step.track_t = tracking.translation;
     step.track_r = tracking.rotation;
-    if (!simulator.object_present(step.time))
-      step.servo_t = step.servo_r = step.track_t = step.track_r = std::numeric_limits<double>::quiet_NaN();
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    if (!simulator.object_present(step.time)) step.servo_t = step.servo_r = kNaN;
+    // No truth to compare with while the object is away, no estimate before it is found.
+    if (!simulator.object_present(step.time) || !started) step.track_t = step.track_r = kNaN;
     step.render_ms = ms_between(t0, t1);
     step.track_ms = step.dropped ? 0.0 : estimate.track_ms;
     step.control_ms = ms_between(t2, t3);

@@ -32,10 +32,12 @@ class PoseEstimator {
                      const std::optional<vpHomogeneousMatrix>& cMg) = 0;
   virtual PoseEstimate track(const RgbdCapture& capture) = 0;
   /// Finds the object in `capture` without a given pose and starts tracking there (in a
-  /// grasp, the gripper at `cMg`, which the arm's kinematics give); nothing when no pose is
-  /// verified or the tracker cannot detect.
-  virtual std::optional<PoseEstimate> detect(const RgbdCapture&, const std::optional<vpHomogeneousMatrix>&) {
-    return std::nullopt;
+  /// grasp, the gripper at `cMg`, which the arm's kinematics give); `lost` when no pose is
+  /// verified (or the tracker cannot detect), with the time the search took.
+  virtual PoseEstimate detect(const RgbdCapture&, const std::optional<vpHomogeneousMatrix>&) {
+    PoseEstimate none;
+    none.lost = true;
+    return none;
   }
   /// Whether the tracker can detect (detect() may find something).
   virtual bool detects() const { return false; }

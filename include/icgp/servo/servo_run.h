@@ -24,7 +24,7 @@ struct ServoStep {
   vpHomogeneousMatrix cMo_estimated;  ///< what the tracker said
   double servo_t = 0.0, servo_r = 0.0;  ///< true servoed pose to the desired pose
   /// Estimated servoed pose to the true one; NaN while the object is out of the scene
-  /// (ObjectSpec::removed_for), as the servo error: there is no true pose then.
+  /// (ObjectSpec::removed_for), as the servo error, and before the tracker first found it.
   double track_t = 0.0, track_r = 0.0;
   vpColVector velocity;               ///< applied: camera twist (v, ω) or joint velocities
   /// |s - s*| of the scenario's control law (vpServo); NaN when a control law given in code
