@@ -14,6 +14,7 @@
 #include "single_thread_scope.h"
 #include "bench_runner.h"
 #include "timing_rounds.h"
+#include "detect_bench.h"
 #include "sweep.h"
 
 namespace icgp::app {
@@ -31,6 +32,7 @@ struct BenchOptions {
   bool ablation = false;
   bool sweep = false;
   SweepOptions sweep_options;
+  bool detect = false;
   SequenceOptions sequence_options = visp_sequence_options();
 };
 
@@ -138,6 +140,11 @@ void register_bench_command(CLI::App& app) {
                     "Instead: icgp's defaults, the reference parameters (icg_reference) and ViSP over 4 models x "
                     "3 depth sensors x 3 image conditions plus grey cells without depth, rendered with ground truth");
   sweep->excludes("--ablation");
+  CLI::Option* detect =
+      cmd->add_flag("--detect", o->detect,
+                    "Instead: detection alone (no pose given) on rendered frames of 4 models at 0.3-1.0 m, with exact, "
+                    "RealSense- and Kinect-class depth and grey without depth (docs/detection.md)");
+  detect->excludes("--ablation")->excludes(sweep);
   rounds->excludes(sweep)->excludes("--ablation");
   cmd->add_option("--out", o->sweep_options.out, "--sweep: folder of the cached sequences, ViSP models and plot script")
       ->capture_default_str()
@@ -153,7 +160,12 @@ void register_bench_command(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->needs(sweep);
   cmd->callback([o] {
-    if (o->sweep) {
+    if (o->detect) {
+      DetectBenchOptions detect_options;
+      detect_options.summary = o->summary;
+      if (o->frames > 0) detect_options.frames = o->frames;
+      run_detect_bench(detect_options);
+    } else if (o->sweep) {
       SweepOptions sweep_options = o->sweep_options;
       sweep_options.summary = o->summary;
       if (o->frames > 0) sweep_options.frames = o->frames;

@@ -356,7 +356,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     if (h.quality >= params_.accept_quality) verified.push_back(h);
     // A fit this good leaves the other candidates nothing to win but a symmetric twin,
     // which the turns below find.
-    if (h.quality >= kConfidentQuality) break;
+    if (appearance_ && h.quality >= kConfidentQuality) break;
   }
   if (appearance_ && !verified.empty()) {
     // The shape may not tell a box from the box turned about an axis: the appearance does.

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// `icgp bench --detect`: detection alone over rendered frames of the sweep's objects at
+// many poses and distances, with each depth sensor class and grey without depth.
+#pragma once
+
+#include <string>
+
+namespace icgp::app {
+
+struct DetectBenchOptions {
+  std::string out = "out/detect-bench";  ///< rendered sequences (cached)
+  std::string summary;                   ///< JSON rows; empty: none
+  int frames = 12;                       ///< frames per cell (object x sensor x distance)
+};
+
+/// Renders (or reuses) every cell's sequence, detects the object in each frame with icgp's
+/// defaults, prints one row per object and sensor and writes the summary.
+void run_detect_bench(const DetectBenchOptions& options);
+
+}  // namespace icgp::app
