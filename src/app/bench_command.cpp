@@ -125,7 +125,7 @@ void register_bench_command(CLI::App& app) {
                   "folder's icgp.yaml is not read)")->check(CLI::ExistingFile);
   cmd->add_flag("--blender-principal-point", o->sequence_options.blender_principal_point, kBlenderPrincipalPointHelp);
   cmd->add_option("--summary", o->summary, "Write the table as JSON: {\"rows\": [...]}");
-  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all; --sweep: frames per cell, default 60)")->check(integer_in(1, kMaxFramesWritten));
+  cmd->add_option("--frames", o->frames, "Use only the first N frames (default: all; --sweep: frames per cell, default 60; --detect: frames per cell, default 12)")->check(integer_in(1, kMaxFramesWritten));
   cmd->add_flag("--ablation", o->ablation,
                  "Instead: ICG+ with each descriptor and without each cue (the paper's Tables III/IV) on "
                  "teabox-blender and rendered ambiguous-geometry sequences");
