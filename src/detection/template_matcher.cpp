@@ -181,8 +181,8 @@ std::vector<PoseCandidate> TemplateMatcher::match(OrientationPyramid& pyramid, c
         const int shift = qy * cols + qx;
         const int k0 = std::max(0, -shift), k1 = std::min(size, size - shift);
         std::uint16_t* out = scores_.data();
-        const std::uint8_t* in = source + shift;
-        for (int k = k0; k < k1; ++k) out[k] = static_cast<std::uint16_t>(out[k] + in[k]);
+        // Indexing from the run's start, so that no pointer is formed outside the array.
+        for (int k = k0; k < k1; ++k) out[k] = static_cast<std::uint16_t>(out[k] + source[k + shift]);
       }
       const float normaliser = 1.f / (OrientationResponses::kMaxResponse * static_cast<float>(placed.points.size()));
       // Positions where the whole template lies in the image.
