@@ -45,6 +45,7 @@ Posef DepthModality::depth_T_body() const { return depth_T_reference_ * body().r
 
 void DepthModality::start(const Frame&, const Renders&) {
   frames_since_start_ = 0;
+  view_selector_.reset();  // a start owes nothing to the views of earlier frames
   noise_.reset();
   occlusions_.reset();
   hidden_by_bodies_.reset();

@@ -151,6 +151,7 @@ void RegionModality::count_line_pixels(const Frame& frame) {
 
 void RegionModality::start(const Frame& frame, const Renders&) {
   frames_since_start_ = 0;
+  view_selector_.reset();  // a start owes nothing to the views of earlier frames
   noise_.reset();
   occlusions_.reset();
   ruled_out_.reset();
