@@ -35,8 +35,8 @@ constexpr double kMinDepthAgreement = 0.3;
 constexpr int kRefinementRounds = 3;
 constexpr int kRefinementStages = 2;
 /// Near a lost pose: the image radius (in sphere radii, at least kNearMinRadiusPx), the
-/// distance ratio and rotation searched, and the hypotheses refined, so that a frame's
-/// search stays a few milliseconds.
+/// distance ratio and rotation searched, and the hypotheses refined: a small part of a
+/// whole-image search, which is left to every few frames (DetectionParams).
 constexpr double kNearRadiusSpheres = 1.5;
 constexpr double kNearMinRadiusPx = 40.0;
 constexpr double kNearDistanceRatio = 1.3;
@@ -47,7 +47,9 @@ constexpr int kNearHypotheses = 2;
 constexpr double kMinSilhouetteSupport = 0.4;
 /// Pixels outside the projected contour where that step is looked for.
 constexpr double kSilhouetteOffsetPx = 5.0;
-/// A refined hypothesis of this quality ends the refinement of further candidates.
+/// For a body with appearance, a refined hypothesis of this quality ends the refinement of
+/// further candidates (the turns compared by appearance find its symmetric twin); a plain
+/// shape refines them all, since a small part (a mug's handle) tells them apart.
 constexpr double kConfidentQuality = 0.85;
 /// Verified poses within this quality of the best and this rotation apart are equivalent.
 constexpr double kEquivalentQuality = 0.05;
