@@ -127,12 +127,6 @@ Tally detect_cell(const std::string& folder, const BenchObject& object, const Se
   return t;
 }
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::min<double>(v.size() - 1, p * (v.size() - 1) + 0.5))];
-}
-
 }  // namespace
 
 void run_detect_bench(const DetectBenchOptions& options) {

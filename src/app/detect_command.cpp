@@ -30,12 +30,6 @@ struct DetectOptions {
   bool quiet = false;
 };
 
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<std::size_t>(std::min<double>(values.size() - 1, p * (values.size() - 1) + 0.5))];
-}
-
 void run_detect(const DetectOptions& o) {
   const Sequence sequence = Sequence::open(o.sequence, o.sequence_options);
   const std::string model = sequence_model_path(o.model, sequence, o.sequence);

@@ -140,6 +140,13 @@ double median(std::vector<double> values) {
   return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + half));
 }
 
+double percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return kNaN;
+  std::sort(values.begin(), values.end());
+  const double rank = std::clamp(fraction, 0.0, 1.0) * static_cast<double>(values.size() - 1);
+  return values[static_cast<std::size_t>(std::lround(rank))];
+}
+
 /// Exact nearest-neighbour distances in a fixed 3D point set: an implicit k-d tree, the
 /// median of each index range at its middle, split along the range's widest axis.
 class ModelPointErrors::KdTree {

@@ -144,6 +144,15 @@ TEST_CASE("median of odd and even counts") {
   CHECK(std::isnan(median({})));
 }
 
+TEST_CASE("percentile: nearest rank of the sorted values") {
+  const std::vector<double> ten{10, 9, 8, 7, 6, 5, 4, 3, 2, 1};
+  CHECK(percentile(ten, 0.9) == 9.0);  // rank 0.9 * 9 = 8.1 -> the 9th smallest
+  CHECK(percentile(ten, 0.0) == 1.0);
+  CHECK(percentile(ten, 1.0) == 10.0);
+  CHECK(percentile({5.0}, 0.9) == 5.0);
+  CHECK(std::isnan(percentile({}, 0.5)));
+}
+
 TEST_CASE("tracking evaluation sums up a run and writes its summary and CSV") {
   TrackingEvaluation evaluation(test::make_box(0.1f, 0.1f, 0.1f));
   const Pose off(kTruth.rotation(), kTruth.translation() + Eigen::Vector3d(0.0, 0.002, 0.0));

@@ -32,6 +32,9 @@ double opt_auc_score(const std::vector<double>& errors, double diameter);
 
 /// Median of the values (mean of the two middle ones for an even count); NaN for none.
 double median(std::vector<double> values);
+/// The value at `fraction` (0..1) of the sorted values, nearest rank (0.9: the p90); NaN
+/// for none.
+double percentile(std::vector<double> values, double fraction);
 
 /// Points spread uniformly over a mesh's surface, plus its vertices, for ADD and ADD-S.
 ///
