@@ -16,6 +16,7 @@
 #include "icgp/render/sensor_effects.h"
 #include "icgp/tracker/tracker_builder.h"
 #include "icgp/visp/cao_mesh_loader.h"
+#include "sweep.h"
 
 namespace icgp::app {
 namespace {
@@ -25,11 +26,6 @@ namespace fs = std::filesystem;
 /// A detection within this of the truth is right; a pose whose ADD-S is within it, an
 /// equivalent one of a symmetric model.
 constexpr double kRightMm = 5.0, kRightDeg = 5.0;
-
-struct BenchObject {
-  std::string name, mesh;
-  std::vector<std::string> regions;  ///< multi-region objects track (and detect) by colour region
-};
 
 struct Sensor {
   std::string name;
@@ -50,16 +46,6 @@ struct Tally {
   }
 };
 
-std::vector<BenchObject> bench_objects() {
-  const std::string m = models_dir();
-  return {{"textured_box", m + "/textured_box/textured_box.obj", {}},
-          {"two_region", m + "/two_region/object.obj", {m + "/two_region/region_body.obj", m + "/two_region/region_lid.obj"}},
-          {"labelled_can",
-           m + "/labelled_can/object.obj",
-           {m + "/labelled_can/region_label.obj", m + "/labelled_can/region_caps.obj"}},
-          {"textureless_mug", m + "/textureless_mug/textureless_mug.obj", {}}};
-}
-
 std::vector<Sensor> sensors() {
   return {{"exact", SensorNoise{}, false},
           {"realsense", SensorNoise::realsense_class(), false},
@@ -72,7 +58,7 @@ const std::vector<double> kDistances = {0.4, 0.65, 0.9};
 
 /// The cell's sequence: fast, wide orbits (so that the frames show the object from many
 /// sides) in front of the clutter plane, rendered once under `root`.
-std::string sequence_folder(const fs::path& root, const BenchObject& object, const Sensor& sensor, double distance,
+std::string sequence_folder(const fs::path& root, const SweepModel& object, const Sensor& sensor, double distance,
                             int frames) {
   char name[128];
   std::snprintf(name, sizeof name, "%s-%s-%.2f-%d", object.name.c_str(), sensor.grey ? "exact" : sensor.name.c_str(),
@@ -94,13 +80,13 @@ std::string sequence_folder(const fs::path& root, const BenchObject& object, con
   fs::remove_all(partial);
   std::cerr << "bench --detect: rendering " << dir.filename().string() << "\n";
   SequenceWriter writer(o);
-  writer.add_object(object.name, load_any_mesh(object.mesh), Pose(), object.mesh);
+  writer.add_object(object.name, load_any_mesh(object.mesh_path), Pose(), object.mesh_path);
   writer.write(partial.string());
   fs::rename(partial, dir);
   return dir.string();
 }
 
-Tally detect_cell(const std::string& folder, const BenchObject& object, const Sensor& sensor, BodyDetector& detector,
+Tally detect_cell(const std::string& folder, const SweepModel& object, const Sensor& sensor, BodyDetector& detector,
                   const ModelPointErrors& surface) {
   SequenceOptions options;
   options.grey_without_depth = sensor.grey;
@@ -132,7 +118,7 @@ Tally detect_cell(const std::string& folder, const BenchObject& object, const Se
 void run_detect_bench(const DetectBenchOptions& options) {
   const fs::path root(options.out);
   fs::create_directories(root);
-  const std::vector<BenchObject> objects = bench_objects();
+  const std::vector<SweepModel> objects = sweep_models();
   const std::vector<Sensor> sensor_list = sensors();
   std::printf("%-16s %-15s %6s %7s %10s %6s %9s %10s %9s\n", "object", "sensor", "frames", "right", "equivalent",
               "wrong", "not found", "median ms", "p90 ms");
@@ -140,8 +126,8 @@ void run_detect_bench(const DetectBenchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   int cells_done = 0;
   const int cells = static_cast<int>(objects.size() * sensor_list.size());
-  for (const BenchObject& object : objects) {
-    const Mesh mesh = load_any_mesh(object.mesh);
+  for (const SweepModel& object : objects) {
+    const Mesh mesh = load_any_mesh(object.mesh_path);
     const ModelPointErrors surface(mesh);
     for (const Sensor& sensor : sensor_list) {
       TrackerConfig config;  // icgp's defaults

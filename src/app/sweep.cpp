@@ -43,12 +43,6 @@ const std::string kIcgpRegionDepth = "icgp defaults, region + depth";
 const std::string kIcgReference = "icg_reference";
 const std::string kVispRgbd = "ViSP edge + KLT + dense depth";
 
-struct SweepModel {
-  std::string name;
-  std::string mesh_path;
-  std::vector<std::string> regions;  ///< colour-region meshes (multi-region tracking); empty: one region
-};
-
 struct DepthCondition {
   std::string name;
   SensorNoise noise;
@@ -86,16 +80,6 @@ struct SceneSettings {
   std::uint64_t seed = 7;
   double speed = 2.5;  ///< brisk hand-held motion, so that motion blur is visible
 };
-
-std::vector<SweepModel> sweep_models() {
-  const std::string m = models_dir();
-  return {{"textured_box", m + "/textured_box/textured_box.obj", {}},
-          {"two_region", m + "/two_region/object.obj", {m + "/two_region/region_body.obj", m + "/two_region/region_lid.obj"}},
-          {"labelled_can",
-           m + "/labelled_can/object.obj",
-           {m + "/labelled_can/region_label.obj", m + "/labelled_can/region_caps.obj"}},
-          {"textureless_mug", m + "/textureless_mug/textureless_mug.obj", {}}};
-}
 
 std::vector<DepthCondition> depth_conditions() {
   return {{"exact", SensorNoise{}}, {"realsense", SensorNoise::realsense_class()}, {"kinect", SensorNoise::kinect_class()}};
@@ -419,6 +403,16 @@ void plot_sweep(const std::vector<SweepRow>& rows, const fs::path& script, const
 }
 
 }  // namespace
+
+std::vector<SweepModel> sweep_models() {
+  const std::string m = models_dir();
+  return {{"textured_box", m + "/textured_box/textured_box.obj", {}},
+          {"two_region", m + "/two_region/object.obj", {m + "/two_region/region_body.obj", m + "/two_region/region_lid.obj"}},
+          {"labelled_can",
+           m + "/labelled_can/object.obj",
+           {m + "/labelled_can/region_label.obj", m + "/labelled_can/region_caps.obj"}},
+          {"textureless_mug", m + "/textureless_mug/textureless_mug.obj", {}}};
+}
 
 void run_sweep(const SweepOptions& options) {
   if (options.frames < 2) throw std::invalid_argument("sweep: --frames must be at least 2, got " + std::to_string(options.frames));

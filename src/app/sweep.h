@@ -4,8 +4,20 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace icgp::app {
+
+/// One of the sweep's objects: its mesh and, for multi-region tracking, its colour regions.
+struct SweepModel {
+  std::string name;
+  std::string mesh_path;
+  std::vector<std::string> regions;  ///< colour-region meshes (multi-region tracking); empty: one region
+};
+
+/// The sweep's four objects (textured box, two-colour box, labelled can, textureless mug),
+/// which `bench --detect` uses too.
+std::vector<SweepModel> sweep_models();
 
 struct SweepOptions {
   std::string out = "out/sweep";              ///< rendered sequences (cached), ViSP models, plot script

@@ -70,13 +70,11 @@ ShapeTemplates::ShapeTemplates(const Mesh& mesh, const std::vector<const Viewpoi
     }
     const std::vector<BodyContourPoint> contour = spread_contour(region_models, direction, points);
     if (static_cast<int>(contour.size()) < kMinContourPoints) continue;
-    const int index = static_cast<int>(views_.size());
     view.contour = contour;
     views_.push_back(std::move(view));
     const Eigen::Matrix3d R_view = view_rotation(direction.cast<double>());
     for (int k = 0; k < n_rolls; ++k) {
       Template t;
-      t.view = index;
       t.camera_R_body = Eigen::AngleAxisd(k * roll_step_, Eigen::Vector3d::UnitZ()).toRotationMatrix() * R_view;
       const Eigen::Matrix3f R = t.camera_R_body.cast<float>();
       for (const BodyContourPoint& p : contour) {

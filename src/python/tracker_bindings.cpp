@@ -184,8 +184,7 @@ class PythonTracker {
                   const py::handle& K_depth, const py::handle& depth_T_color, const std::string& order,
                   double depth_scale) {
     const Frame frame = frame_of(color, depth, K_color, K_depth, depth_T_color, order, depth_scale);
-    Tracker& tracker = built();
-    for (const auto& [name, pose] : pending_poses_) tracker.body(name).reference_T_body = pose;
+    built();  // with the poses set so far (other bodies, occluders)
     Detection detection;
     {
       py::gil_scoped_release release;

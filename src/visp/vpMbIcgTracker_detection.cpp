@@ -18,10 +18,7 @@ bool vpMbIcgTracker::detect_frame(const std::map<std::string, const Image*>& ima
     d.apply_body_settings();
   });
   guarded(call, [&] { assemble_frame(images, depths, call); });
-  struct EndDepthReads {
-    icgp::FrameAssembler& assembler;
-    ~EndDepthReads() { assembler.end_depth_reads(); }
-  } end_depth_reads{d.assembler};
+  const icgp::visp_detail::EndDepthReads end_depth_reads{d.assembler};
   return guarded(call, [&] {
     const icgp::Detection detection = d.recovery->initialise(d.assembler.frame());
     if (!detection.found) {

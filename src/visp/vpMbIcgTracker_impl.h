@@ -116,6 +116,13 @@ struct vpMbIcgTracker::Impl {
 
 namespace icgp::visp_detail {
 
+/// Ends the frame's depth reads when it goes out of scope: the depth readers refer to the
+/// caller's clouds, which are only known valid during the call that gave them.
+struct EndDepthReads {
+  FrameAssembler& assembler;
+  ~EndDepthReads() { assembler.end_depth_reads(); }
+};
+
 /// One camera's depth in a frame: its size (0 x 0: none this frame) and where a pixel's
 /// depth, or its 3D point, comes from.
 struct DepthInput {

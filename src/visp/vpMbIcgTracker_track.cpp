@@ -139,11 +139,7 @@ void vpMbIcgTracker::track_step(const vpImage<unsigned char>* grey, const std::s
   Impl& d = *impl_;
   const icgp::Frame& frame = d.assembler.frame();
   icgp::Body& body = d.tracker->body(Impl::kBody);
-  // The depth readers refer to the caller's clouds, which are only known valid during this call.
-  struct EndDepthReads {
-    icgp::FrameAssembler& assembler;
-    ~EndDepthReads() { assembler.end_depth_reads(); }
-  } end_depth_reads{d.assembler};
+  const icgp::visp_detail::EndDepthReads end_depth_reads{d.assembler};
   guarded(call, [&] {
     const bool starting = d.start_pending;
     if (starting) {

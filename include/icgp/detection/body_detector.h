@@ -57,7 +57,6 @@ class BodyDetector {
   /// bounded window in the image, distance and rotation, and fewer hypotheses.
   Detection search_near(const Frame& frame, const Pose& reference_T_body, const OtherPoses& others = {});
 
-  const std::string& body() const { return body_name_; }
   const ShapeTemplates& templates() const { return *templates_; }
 
  private:

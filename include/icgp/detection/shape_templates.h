@@ -24,7 +24,6 @@ class ShapeTemplates {
     int bin;                       ///< orientation bin of that normal (OrientationResponses)
   };
   struct Template {
-    int view = 0;
     Eigen::Matrix3d camera_R_body;
     std::vector<ContourPoint> contour;
   };
@@ -48,7 +47,6 @@ class ShapeTemplates {
 
   const Sphere& sphere() const { return sphere_; }
   const std::vector<Template>& templates() const { return templates_; }
-  const View& view(int v) const { return views_[v]; }
   /// The view closest to how a camera at camera_T_body sees the body.
   const View& closest_view(const Pose& camera_T_body) const;
   int n_views() const { return static_cast<int>(views_.size()); }

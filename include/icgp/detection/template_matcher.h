@@ -89,7 +89,6 @@ class TemplateMatcher {
   std::vector<PoseCandidate> match(OrientationPyramid& pyramid, const SearchWindow& window, double min_score, int limit,
                                    const CandidateCheck& check = nullptr, std::string* why_none = nullptr);
 
-  const ShapeTemplates& templates() const { return templates_; }
 
  private:
   const ShapeTemplates& templates_;
