@@ -88,6 +88,21 @@ void check_mesh(const Mesh& mesh) {
   if (!((hi - lo).maxCoeff() > 0.f)) refuse("has all its vertices at one point (expected a surface with an extent)");
 }
 
+Mesh box_mesh(const Eigen::Vector3d& size, const Eigen::Vector3f& diffuse_rgb) {
+  const Eigen::Vector3f h = (0.5 * size).cast<float>();
+  MeshPart part;
+  for (int i = 0; i < 8; ++i)
+    part.vertices.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
+  // Two counter-clockwise triangles per face, seen from outside.
+  part.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                    {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  part.material.diffuse_rgb = diffuse_rgb;
+  Mesh mesh;
+  mesh.source = "box";
+  mesh.parts.push_back(std::move(part));
+  return mesh;
+}
+
 Sphere bounding_sphere(const Mesh& mesh) {
   Eigen::Vector3f lo, hi;
   mesh.bounds(lo, hi);

@@ -71,6 +71,11 @@ bool has_appearance(const Mesh& mesh) {
   return false;
 }
 
+bool has_texture(const Mesh& mesh) {
+  return std::any_of(mesh.parts.begin(), mesh.parts.end(),
+                     [](const MeshPart& part) { return !part.material.texture_bgr.empty(); });
+}
+
 /// Without depth, a body with appearance is verified only when its render correlates at
 /// least this much with the image (NCC).
 constexpr double kMinAppearance = 0.3;
@@ -138,6 +143,11 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
       params_.roll_step_deg * kCoarseRollFactor, params_.template_points);
   coarse_matcher_ = std::make_unique<TemplateMatcher>(*coarse_templates_);
   appearance_ = has_appearance(mesh);
+  if (has_texture(mesh)) {
+    auto keypoints =
+        std::make_unique<KeypointModel>(render_training_views(refiner_->renderer(), refiner_->body(body_name)));
+    if (!keypoints->empty()) keypoints_ = std::move(keypoints);
+  }
 }
 
 BodyDetector::~BodyDetector() = default;
@@ -293,6 +303,58 @@ double BodyDetector::appearance_agreement(const ColorImage& color, const Pose& r
   return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
 }
 
+std::vector<PoseCandidate> BodyDetector::template_candidates(const Frame& frame, const ColorImage& color,
+                                                             const SearchWindow& window, int hypotheses,
+                                                             Detection& detection) {
+  // With depth: each match placed on the measured surface and checked against it before
+  // suppression, so that matches of the background do not crowd out the body's.
+  const Pose reference_T_camera = color.camera_T_reference.inverse();
+  const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
+  const bool has_depth = depth && depth->delivered();
+  const CandidateCheck in_depth = [&](PoseCandidate& c) {
+    if (!has_depth) return true;
+    const double agreement = place_in_depth(frame, c);
+    if (agreement >= 0.0 && agreement < kMinDepthAgreement) return false;
+    const double silhouette = silhouette_support(frame, reference_T_camera * c.camera_T_body);
+    if (silhouette >= 0.0 && silhouette < kMinSilhouetteSupport) return false;
+    c.support = std::max(agreement, 0.0) + std::max(silhouette, 0.0);
+    return true;
+  };
+  std::optional<RayDepth> ray_depth;
+  SearchWindow gated = window;
+  if (has_depth) gated.depth = &ray_depth.emplace(*depth, color);
+  OrientationPyramid pyramid(color);
+  const auto best_ranked = [&](std::vector<PoseCandidate> found) {
+    std::stable_sort(found.begin(), found.end(), [](const PoseCandidate& a, const PoseCandidate& b) {
+      return a.score + a.support > b.score + b.support;
+    });
+    if (static_cast<int>(found.size()) > hypotheses) found.resize(hypotheses);
+    return found;
+  };
+  const bool whole_image = !window.near;
+  TemplateMatcher& first = whole_image ? *coarse_matcher_ : *matcher_;
+  std::vector<PoseCandidate> candidates = best_ranked(
+      first.match(pyramid, gated, kMinTemplateScore, kCandidatesRanked * hypotheses, in_depth, &detection.why_not));
+  detection.candidates += static_cast<int>(candidates.size());
+  if (whole_image) {
+    // Coarse views first, then the fine templates near each of their best matches.
+    for (PoseCandidate& c : candidates) {
+      SearchWindow near = gated;
+      near.near = c.camera_T_body;
+      near.min_distance = c.distance / TemplateMatcher::kDistanceStep;
+      near.max_distance = c.distance * TemplateMatcher::kDistanceStep;
+      near.radius_px = std::max(kFineMinRadiusPx, kFineRadiusSpheres * color.intrinsics.fu *
+                                                      templates_->sphere().radius / c.distance);
+      near.max_rotation = kFineRotation;
+      const std::vector<PoseCandidate> fine = matcher_->match(pyramid, near, kMinTemplateScore, 1, in_depth);
+      if (!fine.empty() && fine.front().score >= c.score) c = fine.front();
+    }
+    candidates = best_ranked(std::move(candidates));
+  }
+
+  return candidates;
+}
+
 Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, int hypotheses,
                                const OtherPoses& others) {
   for (Body* occluder : refiner_->occluders()) {
@@ -305,8 +367,6 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     detection.why_not = "the frame has no image from camera '" + color_camera_ + "' to search";
     return detection;
   }
-  // With depth: each match placed on the measured surface and checked against it before
-  // suppression, so that matches of the background do not crowd out the body's.
   const Pose reference_T_camera = color->camera_T_reference.inverse();
   const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
   const bool has_depth = depth && depth->delivered();
@@ -317,56 +377,34 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
                         "model with its texture)";
     return detection;
   }
-  const CandidateCheck in_depth = [&](PoseCandidate& c) {
-    if (!has_depth) return true;
-    const double agreement = place_in_depth(frame, c);
-    if (agreement >= 0.0 && agreement < kMinDepthAgreement) return false;
-    const double silhouette = silhouette_support(frame, reference_T_camera * c.camera_T_body);
-    if (silhouette >= 0.0 && silhouette < kMinSilhouetteSupport) return false;
-    c.support = std::max(agreement, 0.0) + std::max(silhouette, 0.0);
-    return true;
-  };
-  std::optional<RayDepth> ray_depth;
-  SearchWindow gated = window;
-  if (has_depth) gated.depth = &ray_depth.emplace(*depth, *color);
-  OrientationPyramid pyramid(*color);
-  const auto best_ranked = [&](std::vector<PoseCandidate> found) {
-    std::stable_sort(found.begin(), found.end(), [](const PoseCandidate& a, const PoseCandidate& b) {
-      return a.score + a.support > b.score + b.support;
-    });
-    if (static_cast<int>(found.size()) > hypotheses) found.resize(hypotheses);
-    return found;
-  };
-  const bool whole_image = !window.near;
-  TemplateMatcher& first = whole_image ? *coarse_matcher_ : *matcher_;
-  std::vector<PoseCandidate> candidates = best_ranked(
-      first.match(pyramid, gated, kMinTemplateScore, kCandidatesRanked * hypotheses, in_depth, &detection.why_not));
-  detection.candidates = static_cast<int>(candidates.size());
-  if (whole_image) {
-    // Coarse views first, then the fine templates near each of their best matches.
-    for (PoseCandidate& c : candidates) {
-      SearchWindow near = gated;
-      near.near = c.camera_T_body;
-      near.min_distance = c.distance / TemplateMatcher::kDistanceStep;
-      near.max_distance = c.distance * TemplateMatcher::kDistanceStep;
-      near.radius_px = std::max(kFineMinRadiusPx, kFineRadiusSpheres * color->intrinsics.fu *
-                                                      templates_->sphere().radius / c.distance);
-      near.max_rotation = kFineRotation;
-      const std::vector<PoseCandidate> fine = matcher_->match(pyramid, near, kMinTemplateScore, 1, in_depth);
-      if (!fine.empty() && fine.front().score >= c.score) c = fine.front();
-    }
-    candidates = best_ranked(std::move(candidates));
-  }
-
   std::vector<Hypothesis> verified;
-  for (const PoseCandidate& candidate : candidates) {
-    const Hypothesis h = refine(frame, reference_T_camera * candidate.camera_T_body);
+  // Refines a start, keeps it when verified, and says whether it fits so well that the
+  // other candidates have nothing to win but a symmetric twin (which the turns below find).
+  const auto refined_confidently = [&](const Pose& reference_T_body, bool from_texture = false) {
+    Hypothesis h = refine(frame, reference_T_body);
     ++detection.refined;
+    // Without depth the contour of a body in clutter pulls less surely than its texture
+    // does: a keypoint pose that looks more like the image than its refinement is kept.
+    if (from_texture && !has_depth && h.quality >= params_.accept_quality &&
+        appearance_agreement(*color, reference_T_body) > appearance_agreement(*color, h.reference_T_body))
+      h.reference_T_body = reference_T_body;
     if (h.quality >= params_.accept_quality) verified.push_back(h);
-    // A fit this good leaves the other candidates nothing to win but a symmetric twin,
-    // which the turns below find.
-    if (appearance_ && h.quality >= kConfidentQuality) break;
+    return appearance_ && h.quality >= kConfidentQuality;
+  };
+  // A textured body's keypoints place it wherever its texture shows, whatever its shape's
+  // symmetry: tried first over the whole image, and the templates only when they fail.
+  bool confident = false;
+  if (!window.near && keypoints_) {
+    cv::Mat grey = color->image;
+    if (grey.channels() == 3) cv::cvtColor(color->image, grey, cv::COLOR_BGR2GRAY);
+    for (const KeypointModel::Located& located : keypoints_->locate(grey, color->intrinsics)) {
+      ++detection.candidates;
+      if ((confident = refined_confidently(reference_T_camera * located.camera_T_body, true))) break;
+    }
   }
+  if (!confident)
+    for (const PoseCandidate& candidate : template_candidates(frame, *color, window, hypotheses, detection))
+      if (refined_confidently(reference_T_camera * candidate.camera_T_body)) break;
   if (appearance_ && !verified.empty()) {
     // The shape may not tell a box from the box turned about an axis: the appearance does.
     // A turn that maps the shape onto itself needs no refinement to be compared, so only

@@ -4,13 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 #include "icgp/features/daisy.h"
 #include "icgp/features/freak.h"
+#include "icgp/features/hamming_matching.h"
 #include "icgp/features/oriented_brief.h"
 #include "icgp/geometry/rounding.h"
 #include "icgp/modality/iteration_value.h"
@@ -34,55 +33,6 @@ struct CropMap {
     return {static_cast<float>((c.x + 0.5) / scale + u_min - 0.5), static_cast<float>((c.y + 0.5) / scale + v_min - 0.5)};
   }
 };
-
-/// Hamming distance of two binary descriptors of `bytes` bytes, 64 bits at a time.
-inline int hamming(const std::uint8_t* a, const std::uint8_t* b, int bytes) {
-  int distance = 0, i = 0;
-  for (; i + 8 <= bytes; i += 8) {
-    std::uint64_t x, y;
-    std::memcpy(&x, a + i, 8);
-    std::memcpy(&y, b + i, 8);
-    distance += __builtin_popcountll(x ^ y);
-  }
-  for (; i < bytes; ++i) distance += __builtin_popcount(static_cast<unsigned>(a[i] ^ b[i]));
-  return distance;
-}
-
-/// Exhaustive 2-NN by Hamming distance, like cv::BFMatcher, but with the distance inlined
-/// and integer bookkeeping: OpenCV's per-pair call made matching 300 x 300 ORB descriptors
-/// cost 0.7 ms; this takes 0.1 ms. kBytes > 0 fixes the descriptor size at compile time
-/// so that the popcounts unroll (ORB: 32 bytes); 0 takes it from the matrix.
-template <int kBytes>
-__attribute__((always_inline)) inline void two_nearest_rows(const cv::Mat& query, const cv::Mat& train,
-                                                            std::vector<TwoNearest>& out) {
-  const int bytes = kBytes > 0 ? kBytes : query.cols;
-  for (int q = 0; q < query.rows; ++q) {
-    const std::uint8_t* a = query.ptr<std::uint8_t>(q);
-    int best = std::numeric_limits<int>::max(), second = best, index = -1;
-    for (int t = 0; t < train.rows; ++t) {
-      const int d = hamming(a, train.ptr<std::uint8_t>(t), bytes);
-      if (d >= second) continue;
-      if (d < best) {
-        second = best;
-        best = d;
-        index = t;
-      } else {
-        second = d;
-      }
-    }
-    out[q] = {index, static_cast<float>(best), static_cast<float>(second)};
-  }
-}
-
-/// Compiled twice (hardware popcount, and baseline x86-64 without it), picked at load time.
-__attribute__((target_clones("popcnt", "default"))) void two_nearest_hamming(const cv::Mat& query, const cv::Mat& train,
-                                                                           std::vector<TwoNearest>& out) {
-  out.resize(query.rows);
-  if (query.cols == 32)
-    two_nearest_rows<32>(query, train, out);
-  else
-    two_nearest_rows<0>(query, train, out);
-}
 
 }  // namespace
 

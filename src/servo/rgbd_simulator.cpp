@@ -20,22 +20,8 @@ namespace {
 
 /// Renders averaged for motion blur.
 constexpr int kBlurSamples = 4;
-
-/// A closed box centred on its origin, flat grey: the passing occluder.
-Mesh box_mesh(const Eigen::Vector3d& size) {
-  const Eigen::Vector3f h = (0.5 * size).cast<float>();
-  MeshPart part;
-  for (int i = 0; i < 8; ++i)
-    part.vertices.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
-  // Two counter-clockwise triangles per face, seen from outside.
-  part.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                    {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  part.material.diffuse_rgb = {0.55f, 0.5f, 0.45f};
-  Mesh mesh;
-  mesh.source = "occluder box";
-  mesh.parts.push_back(std::move(part));
-  return mesh;
-}
+/// The passing occluder's flat grey.
+const Eigen::Vector3f kOccluderColor(0.55f, 0.5f, 0.45f);
 
 /// Pose of a camera moved back along the straight line to where it was `fraction` of a
 /// step earlier (translation interpolated, rotation along the geodesic).
@@ -160,7 +146,7 @@ RgbdSimulator::RgbdSimulator(const Scenario& scenario, const vpHomogeneousMatrix
   d.renderer.set_lighting(lighting);
   d.object = d.renderer.add_body(load_any_mesh(scenario.object.model), 1);
   d.add_background(seed);
-  if (scenario.occluder) d.occluder = d.renderer.add_body(box_mesh(scenario.occluder->size), 3);
+  if (scenario.occluder) d.occluder = d.renderer.add_body(box_mesh(scenario.occluder->size, kOccluderColor), 3);
   if (scenario.grasp) d.gripper = d.renderer.add_body(load_any_mesh(scenario.grasp->gripper_model), 4);
 }
 

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Detection without a given pose (docs/detection.md): the orientation quantisation against
 // analytic directions and a step edge, the textured box found in a rendered RGB-D frame
-// against its ground truth, and nothing found in frames without it (the clutter alone, blank).
+// against its ground truth, also by its keypoints in a grey image without depth, and
+// nothing found in frames without it (the clutter alone, blank).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
+
+#include <opencv2/imgproc.hpp>
 
 #include "icgp/detection/body_detector.h"
 #include "icgp/detection/orientation_responses.h"
@@ -90,6 +93,37 @@ TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm an
   const Detection none = detector.detect(blank);
   CHECK_FALSE(none.found);
   CHECK_FALSE(none.why_not.empty());
+}
+
+TEST_CASE("detection: the textured box is found by its keypoints in a grey image without depth") {
+  const test::TempDir cache("icgp-detection-grey-cache");
+  TrackerConfig config = load_tracker_config(ICGP_TEST_DATA_DIR "/../configs/coarse_models.yaml");
+  config.cache_dir = cache.path().string();
+  config.modalities = {CueKind::kRegion, CueKind::kTexture};
+  const Mesh mesh = load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj");
+  const Intrinsics color_k{600.0, 600.0, 319.5, 239.5, 640, 480};
+  test::SceneRenderer scene(mesh, color_k, color_k, Pose());
+  config.region.color_camera = "Camera1";
+  config.texture.color_camera = "Camera1";
+  BodyDetector detector(config, mesh, "object", configured_cameras(config));
+
+  // Two views: the box face-on and turned, at two distances; the image grey, no depth.
+  for (const Pose& truth :
+       {Pose::from_rotation_vector(Eigen::Vector3d(0.4, 0.5, -0.2), Eigen::Vector3d(-0.02, 0.03, 0.5)),
+        Pose::from_rotation_vector(Eigen::Vector3d(2.0, 0.3, -0.5), Eigen::Vector3d(0.04, 0.0, 0.65))}) {
+    Frame frame = scene.render(truth);
+    frame.depths.clear();
+    for (ColorImage& c : frame.colors) cv::cvtColor(c.image, c.image, cv::COLOR_BGR2GRAY);
+    const Detection found = detector.detect(frame);
+    INFO("why not: " << found.why_not);
+    REQUIRE(found.found);
+    const double t = translation_error_mm(found.reference_T_body, truth);
+    const double r = rotation_error_deg(found.reference_T_body, truth);
+    std::printf("grey detection: %.2f mm, %.2f deg, quality %.3f, %d candidates, %d refined\n", t, r, found.quality,
+                found.candidates, found.refined);
+    CHECK(t < 5.0);
+    CHECK(r < 5.0);
+  }
 }
 
 }  // namespace

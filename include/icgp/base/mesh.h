@@ -64,6 +64,10 @@ struct Sphere {
 /// focused render or keypoint crop must enclose. Throws std::runtime_error for an empty mesh.
 Sphere bounding_sphere(const Mesh& mesh);
 
+/// A closed box of `size` (metres) centred on its origin, in one flat colour: an occluder
+/// or a prop in a rendered scene.
+Mesh box_mesh(const Eigen::Vector3d& size, const Eigen::Vector3f& diffuse_rgb);
+
 /// Throws std::invalid_argument naming `mesh.source` when the mesh is not one icgp can
 /// track: no triangle, more than MeshLimits::kMaxTriangles, a vertex that is not finite or
 /// beyond MeshLimits::kMaxCoordinate, a triangle index outside its part's vertices, texture

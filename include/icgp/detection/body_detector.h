@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "icgp/base/frame.h"
+#include "icgp/detection/keypoint_model.h"
 #include "icgp/detection/shape_templates.h"
 #include "icgp/detection/template_matcher.h"
 #include "icgp/tracker/tracker.h"
@@ -23,7 +24,7 @@ struct Detection {
   /// Further verified poses as good as the found one and clearly different from it: the
   /// equivalent views of a symmetric object, not a failure.
   std::vector<Pose> equivalents;
-  int candidates = 0;  ///< template matches above the score threshold, after suppression
+  int candidates = 0;  ///< keypoint poses, and template matches above the score threshold after suppression
   int refined = 0;     ///< of those, hypotheses refined by the tracker's cues
   std::string why_not;  ///< when not found: why, in a sentence
 };
@@ -68,6 +69,10 @@ class BodyDetector {
     double appearance = 0.0;
   };
   Detection search(const Frame& frame, const SearchWindow& window, int hypotheses, const OtherPoses& others);
+  /// The template matches in `window`, best first, at most `hypotheses`: with depth placed
+  /// on and checked against the measured surface; whole-image searches coarse to fine.
+  std::vector<PoseCandidate> template_candidates(const Frame& frame, const ColorImage& color,
+                                                 const SearchWindow& window, int hypotheses, Detection& detection);
   /// Tracker frames on `frame` from `reference_T_body`, coarse to fine.
   Hypothesis refine(const Frame& frame, const Pose& reference_T_body);
   /// Zero-mean normalised cross-correlation in [-1, 1] of the body's render (its texture
@@ -90,6 +95,8 @@ class BodyDetector {
   std::unique_ptr<ShapeTemplates> coarse_templates_;
   std::unique_ptr<TemplateMatcher> coarse_matcher_;
   bool appearance_ = false;  ///< the mesh has a texture or colours to compare
+  /// A textured mesh's keypoints, null for a mesh without texture.
+  std::unique_ptr<KeypointModel> keypoints_;
 };
 
 }  // namespace icgp

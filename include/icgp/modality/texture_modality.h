@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "icgp/features/hamming_matching.h"
 #include "icgp/modality/measured_occlusion.h"
 #include "icgp/modality/rendered_scene.h"
 #include "icgp/modality/modality.h"
@@ -43,13 +44,6 @@ class FeatureExtractor {
   cv::Mat crop_;  ///< the colour cut-out or warp, before grey conversion
   cv::Mat grey_;  ///< the focused grey image the detector reads (never shares crop_'s buffer)
   std::vector<cv::KeyPoint> keypoints_;
-};
-
-/// The nearest keyframe descriptor of one frame descriptor, and the distances of the
-/// nearest and the second nearest (the ratio test needs both); train_index −1: none.
-struct TwoNearest {
-  int train_index;
-  float best, second;
 };
 
 /// Keypoints of one frame lifted onto the body surface, with their descriptors.
