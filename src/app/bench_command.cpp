@@ -27,6 +27,8 @@ struct BenchOptions {
   std::string sequence = std::string(ICGP_SOURCE_TEST_DATA_DIR) + "/teabox-blender";
   std::string config;
   std::string summary;
+  std::string plot;  ///< --plot for --sweep or --detect; empty: each one's default
+  std::string out;   ///< --out for --sweep or --detect; empty: each one's default
   int frames = 0;
   int rounds = 3;
   bool ablation = false;
@@ -143,15 +145,17 @@ void register_bench_command(CLI::App& app) {
   CLI::Option* detect =
       cmd->add_flag("--detect", o->detect,
                     "Instead: detection alone (no pose given) on rendered frames of 4 models at 0.3-1.0 m, with exact, "
-                    "RealSense- and Kinect-class depth and grey without depth (docs/detection.md)");
+                    "RealSense- and Kinect-class depth and grey without depth, beside distractors, partly occluded and "
+                    "without the object, against vpKeyPoint (docs/detection.md)");
   detect->excludes("--ablation")->excludes(sweep);
   rounds->excludes(sweep)->excludes("--ablation");
-  cmd->add_option("--out", o->sweep_options.out, "--sweep: folder of the cached sequences, ViSP models and plot script")
-      ->capture_default_str()
-      ->needs(sweep);
-  cmd->add_option("--plot", o->sweep_options.plot, "--sweep: PNG of the mean error against depth noise")
-      ->capture_default_str()
-      ->needs(sweep);
+  cmd->add_option("--out", o->out,
+                  "--sweep: folder of the cached sequences, ViSP models and plot script (default " +
+                      SweepOptions().out + "); --detect: of its cached sequences and plot script (default " +
+                      DetectBenchOptions().out + ")");
+  cmd->add_option("--plot", o->plot,
+                  "--sweep: PNG of the mean error against depth noise (default " + SweepOptions().plot +
+                      "); --detect: PNG of success against occlusion (default " + DetectBenchOptions().plot + ")");
   cmd->add_flag("--quick", o->sweep_options.quick,
                 "--sweep: one model, two conditions and its grey cell, 320x240, at most 8 frames (a test)")
       ->needs(sweep);
@@ -163,11 +167,15 @@ void register_bench_command(CLI::App& app) {
     if (o->detect) {
       DetectBenchOptions detect_options;
       detect_options.summary = o->summary;
+      if (!o->plot.empty()) detect_options.plot = o->plot;
+      if (!o->out.empty()) detect_options.out = o->out;
       if (o->frames > 0) detect_options.frames = o->frames;
       run_detect_bench(detect_options);
     } else if (o->sweep) {
       SweepOptions sweep_options = o->sweep_options;
       sweep_options.summary = o->summary;
+      if (!o->plot.empty()) sweep_options.plot = o->plot;
+      if (!o->out.empty()) sweep_options.out = o->out;
       if (o->frames > 0) sweep_options.frames = o->frames;
       run_sweep(sweep_options);
     } else if (o->ablation) {

@@ -2,20 +2,28 @@
 #include "detect_bench.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <sstream>
 
-#include "commands.h"
+#include <opencv2/imgproc.hpp>
+
+#include "gnuplot.h"
 #include "icgp/detection/body_detector.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/eval/sequence_writer.h"
+#include "icgp/render/renderer.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/tracker/tracker_builder.h"
 #include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/visp/keypoint_baseline.h"
 #include "sweep.h"
 
 namespace icgp::app {
@@ -27,42 +35,104 @@ namespace fs = std::filesystem;
 /// equivalent one of a symmetric model.
 constexpr double kRightMm = 5.0, kRightDeg = 5.0;
 
+/// Camera distances to the object (the orbit's mean, ±0.1 m), covering 0.3-1.0 m.
+const std::vector<double> kDistances = {0.4, 0.65, 0.9};
+
 struct Sensor {
   std::string name;
   SensorNoise noise;
   bool grey = false;  ///< grey images, no depth
 };
 
-struct Tally {
-  int frames = 0, right = 0, equivalent = 0, wrong = 0, not_found = 0;
-  std::vector<double> ms;
-  void add(const Tally& o) {
-    frames += o.frames;
-    right += o.right;
-    equivalent += o.equivalent;
-    wrong += o.wrong;
-    not_found += o.not_found;
-    ms.insert(ms.end(), o.ms.begin(), o.ms.end());
-  }
+const Sensor kExact{"exact", SensorNoise{}, false};
+const Sensor kRealSense{"realsense", SensorNoise::realsense_class(), false};
+const Sensor kKinect{"kinect", SensorNoise::kinect_class(), false};
+const Sensor kGrey{"grey, no depth", SensorNoise{}, true};
+
+/// What stands around the object.
+enum class Scene {
+  kPlain,        ///< the object before the clutter plane
+  kDistractors,  ///< the sweep's other objects beside it, painted in its mean colour
+  kOccluded,     ///< a bar between camera and object, covering a changing part of it
+  kEmpty,        ///< the other objects, and the object itself out of view
 };
 
-std::vector<Sensor> sensors() {
-  return {{"exact", SensorNoise{}, false},
-          {"realsense", SensorNoise::realsense_class(), false},
-          {"kinect", SensorNoise::kinect_class(), false},
-          {"grey, no depth", SensorNoise{}, true}};
+std::string scene_name(Scene scene) {
+  switch (scene) {
+    case Scene::kPlain: return "plain";
+    case Scene::kDistractors: return "distractors";
+    case Scene::kOccluded: return "occluded";
+    case Scene::kEmpty: return "no object";
+  }
+  return "";
 }
 
-/// Camera distances to the object (the orbit's mean, ±0.1 m), covering 0.3-1.0 m.
-const std::vector<double> kDistances = {0.4, 0.65, 0.9};
+struct Row {
+  Scene scene;
+  Sensor sensor;
+};
+
+/// Every object's rows: each sensor class on the plain scene, then the harder scenes with
+/// RealSense-class depth and in grey without depth.
+std::vector<Row> rows() {
+  std::vector<Row> r;
+  for (const Sensor& s : {kExact, kRealSense, kKinect, kGrey}) r.push_back({Scene::kPlain, s});
+  for (const Scene scene : {Scene::kDistractors, Scene::kOccluded, Scene::kEmpty})
+    for (const Sensor& s : {kRealSense, kGrey}) r.push_back({scene, s});
+  return r;
+}
+
+enum class Outcome { kRight, kEquivalent, kWrong, kNotFound };
+
+/// One frame's results: icgp's detector and, for a textured object, vpKeyPoint's.
+struct FrameResult {
+  Outcome icgp = Outcome::kNotFound;
+  double t_mm = 0.0, r_deg = 0.0, ms = 0.0;
+  std::optional<Outcome> baseline;
+  double baseline_t_mm = 0.0, baseline_r_deg = 0.0, baseline_ms = 0.0;
+  double occlusion = 0.0;  ///< share of the object's pixels hidden by the bar
+};
+
+/// The mean colour of a mesh (its textures' and flat colours'), linear RGB.
+Eigen::Vector3f mean_colour(const Mesh& mesh) {
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  for (const MeshPart& part : mesh.parts) {
+    if (part.material.texture_bgr.empty()) {
+      sum += part.material.diffuse_rgb;
+      continue;
+    }
+    const cv::Scalar bgr = cv::mean(part.material.texture_bgr);
+    for (int c = 0; c < 3; ++c) sum[c] += static_cast<float>(std::pow(bgr[2 - c] / 255.0, 2.2));  // sRGB -> linear
+  }
+  return sum / static_cast<float>(mesh.parts.size());
+}
+
+Mesh painted(Mesh mesh, const Eigen::Vector3f& rgb) {
+  for (MeshPart& part : mesh.parts) {
+    part.material.texture_bgr.release();
+    part.texcoords.clear();
+    part.material.diffuse_rgb = rgb;
+  }
+  return mesh;
+}
+
+/// The bar of the occluded scene, as thick as a third of the object's bounding sphere.
+Mesh occluding_bar(const Mesh& object) {
+  const double radius = bounding_sphere(object).radius;
+  return box_mesh(Eigen::Vector3d(0.6 * radius, 1.0, 0.6 * radius), Eigen::Vector3f(0.5f, 0.5f, 0.5f));
+}
 
 /// The cell's sequence: fast, wide orbits (so that the frames show the object from many
-/// sides) in front of the clutter plane, rendered once under `root`.
-std::string sequence_folder(const fs::path& root, const SweepModel& object, const Sensor& sensor, double distance,
-                            int frames) {
-  char name[128];
-  std::snprintf(name, sizeof name, "%s-%s-%.2f-%d", object.name.c_str(), sensor.grey ? "exact" : sensor.name.c_str(),
-                distance, frames);
+/// sides) in front of the clutter plane, with the scene's props, rendered once under `root`.
+std::string sequence_folder(const fs::path& root, const SweepModel& object, const std::vector<SweepModel>& all,
+                            Scene scene, const Sensor& sensor, double distance, int frames) {
+  char name[160];
+  std::snprintf(name, sizeof name, "%s%s-%s-%.2f-%d", object.name.c_str(),
+                scene == Scene::kPlain         ? ""
+                : scene == Scene::kDistractors ? "-distractors"
+                : scene == Scene::kOccluded    ? "-occluded"
+                                               : "-empty",
+                sensor.grey ? "exact" : sensor.name.c_str(), distance, frames);
   const fs::path dir = root / name;
   if (fs::is_regular_file(dir / "sequence.yaml")) return dir.string();
   SequenceWriterOptions o;
@@ -80,37 +150,195 @@ std::string sequence_folder(const fs::path& root, const SweepModel& object, cons
   fs::remove_all(partial);
   std::cerr << "bench --detect: rendering " << dir.filename().string() << "\n";
   SequenceWriter writer(o);
-  writer.add_object(object.name, load_any_mesh(object.mesh_path), Pose(), object.mesh_path);
+  const Mesh mesh = load_any_mesh(object.mesh_path);
+  const double radius = bounding_sphere(mesh).radius;
+  // The object itself; out of view, behind the clutter plane, in the scene without it.
+  const Pose hidden(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.0, -3.0));
+  writer.add_object(object.name, mesh, scene == Scene::kEmpty ? hidden : Pose(), object.mesh_path);
+  if (scene == Scene::kDistractors || scene == Scene::kEmpty) {
+    // The other objects around it, a hand's width apart; beside the object they wear its
+    // mean colour, so that only shape and texture tell them apart.
+    const Eigen::Vector3f colour = mean_colour(mesh);
+    const std::array<Eigen::Vector2d, 3> directions = {Eigen::Vector2d(1.0, 0.2), Eigen::Vector2d(-1.0, 0.4),
+                                                       Eigen::Vector2d(0.1, -1.0)};
+    std::size_t k = 0;
+    for (const SweepModel& other : all) {
+      if (other.name == object.name || k == directions.size()) continue;
+      const Mesh other_mesh = load_any_mesh(other.mesh_path);
+      const double gap = radius + bounding_sphere(other_mesh).radius + 0.02;
+      const Eigen::Vector2d at = gap * directions[k++].normalized();
+      writer.add_object(other.name, scene == Scene::kDistractors ? painted(other_mesh, colour) : other_mesh,
+                        Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(at.x(), at.y(), 0.0)));
+    }
+  }
+  if (scene == Scene::kOccluded) {
+    // A grey bar standing in front of the object, off its centre: as the camera swings,
+    // it covers none to about a third of the object.
+    writer.add_object("occluder", occluding_bar(mesh),
+                      Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.6 * radius, 0.0, 1.8 * radius)));
+  }
   writer.write(partial.string());
   fs::rename(partial, dir);
   return dir.string();
 }
 
-Tally detect_cell(const std::string& folder, const SweepModel& object, const Sensor& sensor, BodyDetector& detector,
-                  const ModelPointErrors& surface) {
+/// The share of the object's pixels the occluder hides at the frame's true poses.
+class OcclusionMeter {
+ public:
+  OcclusionMeter(const Mesh& object, const Mesh& occluder, const Intrinsics& camera)
+      : camera_(camera), object_(renderer_.add_body(object, 1)), occluder_(renderer_.add_body(occluder, 2)) {}
+
+  double occlusion(const Frame& frame, const std::string& object) {
+    const Pose* object_pose = frame.truth(object);
+    const Pose* occluder_pose = frame.truth("occluder");
+    if (!object_pose || !occluder_pose) return 0.0;
+    renderer_.set_body_pose(object_, *object_pose);
+    renderer_.set_body_pose(occluder_, *occluder_pose);
+    renderer_.set_body_visible(occluder_, false);
+    const int alone = cv::countNonZero(renderer_.render(camera_, Pose(), kRenderIds).ids == 1);
+    renderer_.set_body_visible(occluder_, true);
+    const int seen = cv::countNonZero(renderer_.render(camera_, Pose(), kRenderIds).ids == 1);
+    return alone > 0 ? 1.0 - static_cast<double>(seen) / alone : 0.0;
+  }
+
+ private:
+  Renderer renderer_;
+  Intrinsics camera_;
+  Renderer::BodyHandle object_, occluder_;
+};
+
+Outcome judge(const Pose& estimate, const Pose& truth, const ModelPointErrors& surface, double& t_mm,
+              double& r_deg) {
+  t_mm = translation_error_mm(estimate, truth);
+  r_deg = rotation_error_deg(estimate, truth);
+  if (t_mm <= kRightMm && r_deg <= kRightDeg) return Outcome::kRight;
+  return 1e3 * surface.adds(estimate, truth) <= kRightMm ? Outcome::kEquivalent : Outcome::kWrong;
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point begin) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+}
+
+std::vector<FrameResult> detect_cell(const std::string& folder, const SweepModel& object, const Row& row,
+                                     BodyDetector& detector, KeypointBaseline* baseline,
+                                     const ModelPointErrors& surface, OcclusionMeter* occlusion) {
   SequenceOptions options;
-  options.grey_without_depth = sensor.grey;
+  options.grey_without_depth = row.sensor.grey;
   const Sequence sequence = Sequence::open(folder, options);
-  Tally t;
+  std::vector<FrameResult> results;
   for (int i = 0; i < sequence.size(); ++i) {
     const Frame frame = sequence.load(i);
-    const auto begin = std::chrono::steady_clock::now();
-    const Detection d = detector.detect(frame);
-    t.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
-    ++t.frames;
     const Pose& truth = *frame.truth(object.name);
-    if (!d.found) {
-      ++t.not_found;
-    } else if (translation_error_mm(d.reference_T_body, truth) <= kRightMm &&
-               rotation_error_deg(d.reference_T_body, truth) <= kRightDeg) {
-      ++t.right;
-    } else if (1e3 * surface.adds(d.reference_T_body, truth) <= kRightMm) {
-      ++t.equivalent;
-    } else {
-      ++t.wrong;
+    const bool absent = row.scene == Scene::kEmpty;
+    FrameResult r;
+    auto begin = std::chrono::steady_clock::now();
+    const Detection d = detector.detect(frame);
+    r.ms = elapsed_ms(begin);
+    if (d.found) r.icgp = absent ? Outcome::kWrong : judge(d.reference_T_body, truth, surface, r.t_mm, r.r_deg);
+    if (baseline) {
+      cv::Mat grey = frame.colors.front().image;
+      if (grey.channels() == 3) cv::cvtColor(grey, grey, cv::COLOR_BGR2GRAY);
+      begin = std::chrono::steady_clock::now();
+      const std::optional<Pose> pose = baseline->locate(grey, frame.colors.front().intrinsics);
+      r.baseline_ms = elapsed_ms(begin);
+      r.baseline = !pose ? Outcome::kNotFound
+                   : absent ? Outcome::kWrong
+                            : judge(*pose, truth, surface, r.baseline_t_mm, r.baseline_r_deg);
+    }
+    if (occlusion) r.occlusion = occlusion->occlusion(frame, object.name);
+    results.push_back(r);
+  }
+  return results;
+}
+
+/// Counts of one tracker's outcomes over a row.
+struct Tally {
+  int frames = 0, right = 0, equivalent = 0, wrong = 0, not_found = 0;
+  std::vector<double> ms, t_mm, r_deg;  ///< t_mm, r_deg: of the right ones
+  void add(Outcome o, double time, double t, double r) {
+    ++frames;
+    ms.push_back(time);
+    switch (o) {
+      case Outcome::kRight:
+        ++right;
+        t_mm.push_back(t);
+        r_deg.push_back(r);
+        break;
+      case Outcome::kEquivalent: ++equivalent; break;
+      case Outcome::kWrong: ++wrong; break;
+      case Outcome::kNotFound: ++not_found; break;
     }
   }
-  return t;
+  double share(int n) const { return frames ? 100.0 * n / frames : 0.0; }
+  JsonObject json() const {
+    return JsonObject()
+        .add("frames", frames)
+        .add("right", right)
+        .add("equivalent", equivalent)
+        .add("wrong", wrong)
+        .add("not_found", not_found)
+        .add("median_t_mm", t_mm.empty() ? -1.0 : median(t_mm))
+        .add("median_r_deg", r_deg.empty() ? -1.0 : median(r_deg))
+        .add("median_ms", median(ms))
+        .add("p90_ms", percentile(ms, 0.9));
+  }
+};
+
+const char* const kOcclusionBinNames[] = {"0-10 %", "10-20 %", "20-30 %", "30 % and more"};
+
+/// Success (right or equivalent) against the occluded share, in bins, for one line.
+struct OcclusionLine {
+  std::string title;
+  static constexpr int kBins = 4;  ///< 0-10, 10-20, 20-30, 30+ %
+  std::array<int, kBins> frames{}, found{};
+  void add(double occlusion, Outcome o) {
+    const int bin = std::min(kBins - 1, static_cast<int>(occlusion * 10.0));
+    ++frames[bin];
+    found[bin] += o == Outcome::kRight || o == Outcome::kEquivalent;
+  }
+};
+
+void plot_occlusion(const std::vector<OcclusionLine>& lines, const fs::path& script, const std::string& png) {
+  std::ostringstream s;
+  s << "# Written by icgp bench --detect; redraw with: gnuplot " << script.filename().string() << "\n";
+  s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n  set terminal pngcairo size 900,520 noenhanced\n"
+       "} else {\n  set terminal png size 900,520 noenhanced\n}\n";
+  s << "set output '" << png << "'\nset datafile missing 'NaN'\nset grid\nset yrange [0:105]\n";
+  s << "set xtics ('0-10 %%' 0, '10-20 %%' 1, '20-30 %%' 2, '30 %% and more' 3)\nset xrange [-0.3:3.3]\n";
+  s << "set xlabel 'share of the object hidden by the bar'\nset ylabel 'found within 5 mm / 5 deg or equivalent (%)'\n";
+  s << "set key below\nset title 'icgp bench --detect: detection under partial occlusion'\n";
+  s << "$d << EOD\n";
+  for (int b = 0; b < OcclusionLine::kBins; ++b) {
+    s << b;
+    for (const OcclusionLine& l : lines)
+      s << " " << (l.frames[b] ? std::to_string(100.0 * l.found[b] / l.frames[b]) : std::string("NaN"));
+    s << "\n";
+  }
+  s << "EOD\nplot ";
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    s << (i ? ", " : "") << "$d using 1:" << i + 2 << " with linespoints lw 2 pt " << 5 + 2 * i << " title '"
+      << lines[i].title << "'";
+  s << "\nset output\n";
+  draw_with_gnuplot(s.str(), script.string(), png);
+}
+
+bool has_texture(const Mesh& mesh) {
+  return std::any_of(mesh.parts.begin(), mesh.parts.end(),
+                     [](const MeshPart& p) { return !p.material.texture_bgr.empty(); });
+}
+
+void print_row(const std::string& object, const Row& row, const Tally& icgp, const std::optional<Tally>& baseline) {
+  std::printf("%-16s %-11s %-15s %6d %6.1f%% %6.1f%% %6.1f%% %6.1f%% %5.2f %5.2f %6.0f %6.0f", object.c_str(),
+              scene_name(row.scene).c_str(), row.sensor.name.c_str(), icgp.frames, icgp.share(icgp.right),
+              icgp.share(icgp.equivalent), icgp.share(icgp.wrong), icgp.share(icgp.not_found),
+              icgp.t_mm.empty() ? -1.0 : median(icgp.t_mm), icgp.r_deg.empty() ? -1.0 : median(icgp.r_deg),
+              median(icgp.ms), percentile(icgp.ms, 0.9));
+  if (baseline)
+    std::printf(" | %6.1f%% %6.1f%% %6.1f%% %6.1f%% %6.0f", baseline->share(baseline->right),
+                baseline->share(baseline->equivalent), baseline->share(baseline->wrong),
+                baseline->share(baseline->not_found), median(baseline->ms));
+  std::printf("\n");
+  std::fflush(stdout);
 }
 
 }  // namespace
@@ -119,55 +347,86 @@ void run_detect_bench(const DetectBenchOptions& options) {
   const fs::path root(options.out);
   fs::create_directories(root);
   const std::vector<SweepModel> objects = sweep_models();
-  const std::vector<Sensor> sensor_list = sensors();
-  std::printf("%-16s %-15s %6s %7s %10s %6s %9s %10s %9s\n", "object", "sensor", "frames", "right", "equivalent",
-              "wrong", "not found", "median ms", "p90 ms");
-  std::vector<JsonObject> rows;
+  const std::vector<Row> row_list = rows();
+  std::printf("%-16s %-11s %-15s %6s %7s %7s %7s %7s %5s %5s %6s %6s | %-36s\n", "object", "scene", "sensor", "frames",
+              "right", "equiv", "wrong", "miss", "t mm", "r deg", "ms", "p90", "vpKeyPoint: right equiv wrong miss ms");
+  std::vector<JsonObject> json_rows;
+  OcclusionLine icgp_rgbd{"icgp, RealSense-class RGB-D (4 objects)"}, icgp_grey{"icgp, grey (textured objects)"},
+      vp_grey{"vpKeyPoint, grey (textured objects)"};
   const auto start = std::chrono::steady_clock::now();
-  int cells_done = 0;
-  const int cells = static_cast<int>(objects.size() * sensor_list.size());
+  int rows_done = 0;
+  const int row_count = static_cast<int>(objects.size() * row_list.size());
   for (const SweepModel& object : objects) {
     const Mesh mesh = load_any_mesh(object.mesh_path);
     const ModelPointErrors surface(mesh);
-    for (const Sensor& sensor : sensor_list) {
+    auto renderer = std::make_shared<SceneRenderer>();
+    std::unique_ptr<KeypointBaseline> baseline;
+    if (has_texture(mesh))
+      baseline = std::make_unique<KeypointBaseline>(render_training_views(*renderer, Body{object.name, mesh, Pose()}));
+    OcclusionMeter occlusion(mesh, occluding_bar(mesh), Intrinsics::centred(640, 480, 600.0));
+    for (const Row& row : row_list) {
       TrackerConfig config;  // icgp's defaults
       config.regions = object.regions;
-      if (sensor.grey)
+      if (row.sensor.grey)
         config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), CueKind::kDepth),
                                 config.modalities.end());
-      BodyDetector detector(config, mesh, object.name, configured_cameras(config));
-      Tally tally;
-      for (const double distance : kDistances)
-        tally.add(detect_cell(sequence_folder(root, object, sensor, distance, options.frames), object, sensor, detector,
-                              surface));
-      std::printf("%-16s %-15s %6d %6.1f%% %9.1f%% %5.1f%% %8.1f%% %10.1f %9.1f\n", object.name.c_str(),
-                  sensor.name.c_str(), tally.frames, 100.0 * tally.right / tally.frames,
-                  100.0 * tally.equivalent / tally.frames, 100.0 * tally.wrong / tally.frames,
-                  100.0 * tally.not_found / tally.frames, median(tally.ms), percentile(tally.ms, 0.9));
-      std::fflush(stdout);
-      rows.push_back(JsonObject()
-                         .add("object", object.name)
-                         .add("sensor", sensor.name)
-                         .add("frames", tally.frames)
-                         .add("right", tally.right)
-                         .add("equivalent", tally.equivalent)
-                         .add("wrong", tally.wrong)
-                         .add("not_found", tally.not_found)
-                         .add("median_ms", median(tally.ms))
-                         .add("p90_ms", percentile(tally.ms, 0.9)));
-      ++cells_done;
+      BodyDetector detector(config, mesh, object.name, configured_cameras(config), renderer);
+      Tally icgp;
+      std::optional<Tally> vp;
+      if (baseline) vp.emplace();
+      for (const double distance : kDistances) {
+        const std::string folder =
+            sequence_folder(root, object, objects, row.scene, row.sensor, distance, options.frames);
+        for (const FrameResult& f : detect_cell(folder, object, row, detector, baseline.get(), surface,
+                                                row.scene == Scene::kOccluded ? &occlusion : nullptr)) {
+          icgp.add(f.icgp, f.ms, f.t_mm, f.r_deg);
+          if (vp) vp->add(*f.baseline, f.baseline_ms, f.baseline_t_mm, f.baseline_r_deg);
+          if (row.scene != Scene::kOccluded) continue;
+          if (!row.sensor.grey) icgp_rgbd.add(f.occlusion, f.icgp);
+          if (row.sensor.grey && vp) {  // grey: the textured objects, where vpKeyPoint runs too
+            icgp_grey.add(f.occlusion, f.icgp);
+            vp_grey.add(f.occlusion, *f.baseline);
+          }
+        }
+      }
+      print_row(object.name, row, icgp, vp);
+      JsonObject json = JsonObject()
+                            .add("object", object.name)
+                            .add("scene", scene_name(row.scene))
+                            .add("sensor", row.sensor.name)
+                            .add("icgp", icgp.json());
+      if (vp) json.add("vpKeyPoint", vp->json());
+      json_rows.push_back(json);
+      ++rows_done;
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::fprintf(stderr, "bench --detect: %d/%d rows, %.0f s, about %.0f s left\n", cells_done, cells, elapsed,
-                   elapsed / cells_done * (cells - cells_done));
+      std::fprintf(stderr, "bench --detect: %d/%d rows, %.0f s, about %.0f s left\n", rows_done, row_count, elapsed,
+                   elapsed / rows_done * (row_count - rows_done));
     }
   }
-  std::printf("right: within %.0f mm and %.0f deg of the truth; equivalent: ADD-S within %.0f mm (a pose the model's "
-              "symmetry cannot tell apart); frames at %.2f/%.2f/%.2f m, icgp's defaults, one thread\n",
-              kRightMm, kRightDeg, kRightMm, kDistances[0], kDistances[1], kDistances[2]);
+  std::printf(
+      "right: within %.0f mm and %.0f deg of the truth (t mm, r deg: their medians); equiv: ADD-S within %.0f mm (a "
+      "pose the model's symmetry cannot tell apart); miss: not found. On frames without the object every pose is "
+      "wrong and 'miss' is the right answer. Frames at %.2f/%.2f/%.2f m, icgp's defaults, one thread; vpKeyPoint as "
+      "ViSP's tutorial sets it, trained on the same renders (grey image only)\n",
+      kRightMm, kRightDeg, kRightMm, kDistances[0], kDistances[1], kDistances[2]);
+  std::vector<JsonObject> json_occlusion;
+  for (const OcclusionLine& line : {icgp_rgbd, icgp_grey, vp_grey}) {
+    std::printf("occlusion, %-38s", line.title.c_str());
+    std::vector<JsonObject> bins;
+    for (int b = 0; b < OcclusionLine::kBins; ++b) {
+      std::printf("  %s: %5.1f%% of %3d", kOcclusionBinNames[b],
+                  line.frames[b] ? 100.0 * line.found[b] / line.frames[b] : 0.0, line.frames[b]);
+      bins.push_back(JsonObject().add("bin", kOcclusionBinNames[b]).add("frames", line.frames[b]).add("found", line.found[b]));
+    }
+    std::printf("\n");
+    json_occlusion.push_back(JsonObject().add("line", line.title).add("bins", bins));
+  }
   if (!options.summary.empty()) {
-    JsonObject().add("rows", rows).write(options.summary);
+    JsonObject().add("rows", json_rows).add("occlusion", json_occlusion).write(options.summary);
     std::cout << "wrote " << options.summary << "\n";
   }
+  plot_occlusion({icgp_rgbd, icgp_grey, vp_grey}, root / "occlusion.gp", options.plot);
+  std::cout << "plot " << options.plot << "\n";
 }
 
 }  // namespace icgp::app

@@ -8,9 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <optional>
@@ -19,6 +17,7 @@
 
 #include "bench_runner.h"
 #include "commands.h"
+#include "gnuplot.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/eval/sequence_writer.h"
@@ -337,17 +336,9 @@ void write_summary(const std::vector<SweepRow>& rows, int frames, const std::str
       .write(path);
 }
 
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
 /// Mean translation error over all frames of the models, against the depth condition: one
 /// panel per image condition, one line per RGB-D tracker.
 void plot_sweep(const std::vector<SweepRow>& rows, const fs::path& script, const std::string& png) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    throw std::runtime_error("gnuplot is not installed: cannot draw " + png);
   const std::vector<std::string> trackers = {kIcgpDefaults, kIcgpRegionDepth, kIcgReference, kVispRgbd};
   const std::vector<DepthCondition> depths = depth_conditions();
   std::vector<std::string> images;
@@ -389,17 +380,7 @@ void plot_sweep(const std::vector<SweepRow>& rows, const fs::path& script, const
   }
   s << "unset multiplot\nset output\n";
 
-  std::ofstream out(script);
-  out << s.str();
-  if (!out.flush()) throw std::runtime_error(script.string() + ": cannot write the gnuplot script");
-  out.close();
-  const fs::path log = script.string() + ".log";
-  fs::remove(png);  // so that a failed run cannot pass for a drawn one
-  const std::string command = "gnuplot " + shell_quote(script.string()) + " >" + shell_quote(log.string()) + " 2>&1";
-  if (std::system(command.c_str()) != 0 || !fs::is_regular_file(png))
-    throw std::runtime_error("gnuplot failed to draw " + png + " (script " + script.string() + ", messages in " +
-                             log.string() + ")");
-  fs::remove(log);
+  draw_with_gnuplot(s.str(), script.string(), png);
 }
 
 }  // namespace
