@@ -13,12 +13,13 @@ def summary(output):
     return [line for line in output.splitlines() if line.startswith(SUMMARY_LINES)]
 
 
-def test_track_teabox_prints_the_summary_of_icgp_track(icgp_program, tmp_path):
+def test_track_teabox_finds_the_box_and_prints_the_summary_of_icgp_track(icgp_program, tmp_path):
     example = subprocess.run([sys.executable, SOURCE_DIR / "examples" / "python" / "track_teabox.py",
                               "--plot", tmp_path / "error.png"],
                              capture_output=True, text=True, timeout=600, env=os.environ, cwd=tmp_path)
     assert example.returncode == 0, example.stderr
-    code, out, err = run_icgp(icgp_program, "track", "--sequence", TEABOX, "--quiet")
+    assert "found      on frame 0" in example.stdout
+    code, out, err = run_icgp(icgp_program, "track", "--sequence", TEABOX, "--init", "detect", "--quiet")
     assert code == 0, err
     assert len(summary(out)) == 4
     assert summary(example.stdout) == summary(out)
