@@ -151,6 +151,7 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
     auto keypoints =
         std::make_unique<KeypointModel>(render_training_views(refiner_->renderer(), refiner_->body(body_name)));
     if (!keypoints->empty()) keypoints_ = std::move(keypoints);
+    alignment_ = std::make_unique<TextureAlignment>(refiner_->renderer(), refiner_->body(body_name));
   }
 }
 
@@ -381,19 +382,44 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
                         "model with its texture)";
     return detection;
   }
+  cv::Mat grey = color->image;
+  if (grey.channels() == 3 && (keypoints_ || alignment_)) cv::cvtColor(color->image, grey, cv::COLOR_BGR2GRAY);
   std::vector<Hypothesis> verified;
   // Refines a start, keeps it when verified, and says whether it fits so well that the
   // other candidates have nothing to win but a symmetric twin (which the turns below find).
   const auto refined_confidently = [&](const Pose& reference_T_body, bool from_texture = false) {
     Hypothesis h = refine(frame, reference_T_body);
     ++detection.refined;
-    // Without depth the contour of a body in clutter pulls less surely than its texture
-    // does: a keypoint pose that looks more like the image than its refinement is kept.
-    if (from_texture && !has_depth && h.quality >= params_.accept_quality &&
-        appearance_agreement(*color, reference_T_body) > appearance_agreement(*color, h.reference_T_body))
-      h.reference_T_body = reference_T_body;
     if (h.quality < params_.accept_quality) return false;
-    if (appearance_) h.appearance = appearance_agreement(*color, h.reference_T_body);
+    // Without depth the contour of a body in clutter pulls less surely than its texture
+    // does, and leaves a monocular pose millimetres off along the line of sight: the
+    // texture aligns the refined pose (and a keypoint start), and of those poses the one
+    // that looks most like the image is kept.
+    const auto aligned = [&](const Pose& pose) {
+      return alignment_->align(grey, color->intrinsics, color->camera_T_reference, pose, refiner_->occluders());
+    };
+    if (alignment_ && !has_depth) {
+      std::vector<Pose> poses{h.reference_T_body};
+      if (from_texture) poses.push_back(reference_T_body);
+      for (std::size_t k = 0, n = poses.size(); k < n; ++k)
+        if (const std::optional<Pose> pose = aligned(poses[k])) poses.push_back(*pose);
+      h.appearance = -2.0;
+      for (const Pose& pose : poses) {
+        const double agreement = appearance_agreement(*color, pose);
+        if (agreement > h.appearance) h.appearance = agreement, h.reference_T_body = pose;
+      }
+    } else if (appearance_) {
+      h.appearance = appearance_agreement(*color, h.reference_T_body);
+      // With depth the shape fits a body turned a little about an axis it is round about
+      // (a can's label) as well: the texture turns it back, and the cues refine it again.
+      if (alignment_ && h.appearance < kMinAppearance)
+        if (const std::optional<Pose> pose = aligned(h.reference_T_body)) {
+          Hypothesis again = refine(frame, *pose);
+          ++detection.refined;
+          again.appearance = appearance_agreement(*color, again.reference_T_body);
+          if (again.quality >= params_.accept_quality && again.appearance > h.appearance) h = again;
+        }
+    }
     verified.push_back(h);
     // Only a pose that also looks like the body: another object of its shape may fit as well.
     return appearance_ && h.quality >= kConfidentQuality && h.appearance >= kMinAppearance;
@@ -402,8 +428,6 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   // symmetry: tried first over the whole image, and the templates only when they fail.
   bool confident = false;
   if (!window.near && keypoints_) {
-    cv::Mat grey = color->image;
-    if (grey.channels() == 3) cv::cvtColor(color->image, grey, cv::COLOR_BGR2GRAY);
     for (const KeypointModel::Located& located : keypoints_->locate(grey, color->intrinsics)) {
       ++detection.candidates;
       if ((confident = refined_confidently(reference_T_camera * located.camera_T_body, true))) break;
@@ -412,6 +436,9 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   if (!confident)
     for (const PoseCandidate& candidate : template_candidates(frame, *color, window, hypotheses, detection))
       if (refined_confidently(reference_T_camera * candidate.camera_T_body)) break;
+  // The turns of a symmetric shape are far outside a local search's window, whose poses
+  // are near one the tracker trusted: only a whole-image search tries them.
+  const bool try_turns = !window.near;
   if (appearance_ && !verified.empty()) {
     // The shape may not tell a box from the box turned about an axis: the appearance does.
     // A turn that maps the shape onto itself needs no refinement to be compared, so only
@@ -422,7 +449,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     const Eigen::Vector3d c = templates_->sphere().centre;
     std::optional<Pose> look_alike;
     double look_alike_appearance = best.appearance + kAppearanceGain;
-    for (const Eigen::Matrix3d& turn : symmetric_turns()) {
+    for (const Eigen::Matrix3d& turn : try_turns ? symmetric_turns() : std::vector<Eigen::Matrix3d>{}) {
       const Pose turned = best.reference_T_body * Pose(Eigen::Matrix3d::Identity(), c) * Pose(turn, Eigen::Vector3d::Zero()) *
                           Pose(Eigen::Matrix3d::Identity(), -c);
       const double appearance = appearance_agreement(*color, turned);
@@ -442,9 +469,9 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     // (a painted rectangle for a box), and with depth only the appearance tells it from
     // another object of its size.
     verified.erase(std::remove_if(verified.begin(), verified.end(),
-                                    [](const Hypothesis& h) { return h.appearance < kMinAppearance; }),
-                     verified.end());
-  } else if (!verified.empty()) {
+                                  [](const Hypothesis& h) { return h.appearance < kMinAppearance; }),
+                   verified.end());
+  } else if (!verified.empty() && try_turns) {
     // Without appearance, a turn that is no symmetry of the shape shows in the fit of its
     // contour and depth (a mug's handle): every turn is refined and the best fit wins; the
     // turns that fit as well are the equivalent poses of a symmetric shape.

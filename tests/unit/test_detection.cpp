@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Detection without a given pose (docs/detection.md): the orientation quantisation against
 // analytic directions and a step edge, the textured box found in a rendered RGB-D frame
-// against its ground truth, also by its keypoints in a grey image without depth, and
-// nothing found in frames without it (the clutter alone, blank).
+// against its ground truth, also by its keypoints in a grey image without depth, a pose a
+// few millimetres off aligned onto its texture, and nothing found in frames without it
+// (the clutter alone, blank).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -11,6 +12,7 @@
 
 #include "icgp/detection/body_detector.h"
 #include "icgp/detection/orientation_responses.h"
+#include "icgp/detection/texture_alignment.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/io/mesh_loader.h"
 #include "icgp/tracker/tracker_builder.h"
@@ -124,6 +126,29 @@ TEST_CASE("detection: the textured box is found by its keypoints in a grey image
     CHECK(t < 5.0);
     CHECK(r < 5.0);
   }
+}
+
+TEST_CASE("detection: texture alignment pulls a pose a few millimetres off onto the textured box in a grey image") {
+  const Mesh mesh = load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj");
+  const Intrinsics color_k{600.0, 600.0, 319.5, 239.5, 640, 480};
+  test::SceneRenderer scene(mesh, color_k, color_k, Pose());
+  const Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.4, 0.5, -0.2), Eigen::Vector3d(-0.02, 0.03, 0.6));
+  cv::Mat grey;
+  cv::cvtColor(scene.render(truth).colors.front().image, grey, cv::COLOR_BGR2GRAY);
+  SceneRenderer renderer;
+  TextureAlignment alignment(renderer, Body{"object", mesh, Pose()});
+  // 4 mm across and 10 mm along the line of sight, 2 degrees: what a monocular contour
+  // leaves (the shift along the line of sight barely changes the image).
+  const Pose start = truth * Pose::from_rotation_vector(Eigen::Vector3d(0.0, 0.035, 0.0), Eigen::Vector3d(0.004, 0.0, 0.0));
+  const Pose off(start.rotation(), start.translation() + Eigen::Vector3d(0.0, 0.0, 0.010));
+  REQUIRE(translation_error_mm(off, truth) > 5.0);
+  const std::optional<Pose> aligned = alignment.align(grey, color_k, Pose(), off);
+  REQUIRE(aligned);
+  const double t = translation_error_mm(*aligned, truth), r = rotation_error_deg(*aligned, truth);
+  std::printf("texture alignment: from %.2f mm %.2f deg to %.2f mm %.2f deg\n", translation_error_mm(off, truth),
+              rotation_error_deg(off, truth), t, r);
+  CHECK(t < 1.5);
+  CHECK(r < 0.5);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "icgp/detection/keypoint_model.h"
 #include "icgp/detection/shape_templates.h"
 #include "icgp/detection/template_matcher.h"
+#include "icgp/detection/texture_alignment.h"
 #include "icgp/tracker/tracker.h"
 #include "icgp/tracker/tracker_builder.h"
 #include "icgp/tracker/tracker_config.h"
@@ -95,8 +96,9 @@ class BodyDetector {
   std::unique_ptr<ShapeTemplates> coarse_templates_;
   std::unique_ptr<TemplateMatcher> coarse_matcher_;
   bool appearance_ = false;  ///< the mesh has a texture or colours to compare
-  /// A textured mesh's keypoints, null for a mesh without texture.
+  /// A textured mesh's keypoints and texture alignment, null for a mesh without texture.
   std::unique_ptr<KeypointModel> keypoints_;
+  std::unique_ptr<TextureAlignment> alignment_;
 };
 
 }  // namespace icgp
