@@ -308,6 +308,45 @@ double BodyDetector::appearance_agreement(const ColorImage& color, const Pose& r
   return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
 }
 
+std::optional<BodyDetector::Hypothesis> BodyDetector::refine_and_verify(const Frame& frame, const ColorImage& color,
+                                                                      const cv::Mat& grey, const Pose& start,
+                                                                      bool from_texture, Detection& detection) {
+  Hypothesis h = refine(frame, start);
+  ++detection.refined;
+  if (h.quality < params_.accept_quality) return std::nullopt;
+  const auto aligned = [&](const Pose& pose) {
+    return alignment_->align(grey, color.intrinsics, color.camera_T_reference, pose, refiner_->occluders());
+  };
+  const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
+  if (alignment_ && !(depth && depth->delivered())) {
+    // Without depth the contour of a body in clutter pulls less surely than its texture
+    // does, and leaves a monocular pose millimetres off along the line of sight: the
+    // texture aligns the refined pose (and a keypoint start), and of those poses the one
+    // that looks most like the image is kept.
+    std::vector<Pose> poses{h.reference_T_body};
+    if (from_texture) poses.push_back(start);
+    for (std::size_t k = 0, n = poses.size(); k < n; ++k)
+      if (const std::optional<Pose> pose = aligned(poses[k])) poses.push_back(*pose);
+    h.appearance = -2.0;
+    for (const Pose& pose : poses) {
+      const double agreement = appearance_agreement(color, pose);
+      if (agreement > h.appearance) h.appearance = agreement, h.reference_T_body = pose;
+    }
+  } else if (appearance_) {
+    h.appearance = appearance_agreement(color, h.reference_T_body);
+    // With depth the shape fits a body turned a little about an axis it is round about
+    // (a can's label) as well: the texture turns it back, and the cues refine it again.
+    if (alignment_ && h.appearance < kMinAppearance)
+      if (const std::optional<Pose> pose = aligned(h.reference_T_body)) {
+        Hypothesis again = refine(frame, *pose);
+        ++detection.refined;
+        again.appearance = appearance_agreement(color, again.reference_T_body);
+        if (again.quality >= params_.accept_quality && again.appearance > h.appearance) h = again;
+      }
+  }
+  return h;
+}
+
 std::vector<PoseCandidate> BodyDetector::template_candidates(const Frame& frame, const ColorImage& color,
                                                              const SearchWindow& window, int hypotheses,
                                                              Detection& detection) {
@@ -385,44 +424,14 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   cv::Mat grey = color->image;
   if (grey.channels() == 3 && (keypoints_ || alignment_)) cv::cvtColor(color->image, grey, cv::COLOR_BGR2GRAY);
   std::vector<Hypothesis> verified;
-  // Refines a start, keeps it when verified, and says whether it fits so well that the
-  // other candidates have nothing to win but a symmetric twin (which the turns below find).
+  // Keeps a start's verified refinement, and says whether it fits so well that the other
+  // candidates have nothing to win but a symmetric twin (which the turns below find).
   const auto refined_confidently = [&](const Pose& reference_T_body, bool from_texture = false) {
-    Hypothesis h = refine(frame, reference_T_body);
-    ++detection.refined;
-    if (h.quality < params_.accept_quality) return false;
-    // Without depth the contour of a body in clutter pulls less surely than its texture
-    // does, and leaves a monocular pose millimetres off along the line of sight: the
-    // texture aligns the refined pose (and a keypoint start), and of those poses the one
-    // that looks most like the image is kept.
-    const auto aligned = [&](const Pose& pose) {
-      return alignment_->align(grey, color->intrinsics, color->camera_T_reference, pose, refiner_->occluders());
-    };
-    if (alignment_ && !has_depth) {
-      std::vector<Pose> poses{h.reference_T_body};
-      if (from_texture) poses.push_back(reference_T_body);
-      for (std::size_t k = 0, n = poses.size(); k < n; ++k)
-        if (const std::optional<Pose> pose = aligned(poses[k])) poses.push_back(*pose);
-      h.appearance = -2.0;
-      for (const Pose& pose : poses) {
-        const double agreement = appearance_agreement(*color, pose);
-        if (agreement > h.appearance) h.appearance = agreement, h.reference_T_body = pose;
-      }
-    } else if (appearance_) {
-      h.appearance = appearance_agreement(*color, h.reference_T_body);
-      // With depth the shape fits a body turned a little about an axis it is round about
-      // (a can's label) as well: the texture turns it back, and the cues refine it again.
-      if (alignment_ && h.appearance < kMinAppearance)
-        if (const std::optional<Pose> pose = aligned(h.reference_T_body)) {
-          Hypothesis again = refine(frame, *pose);
-          ++detection.refined;
-          again.appearance = appearance_agreement(*color, again.reference_T_body);
-          if (again.quality >= params_.accept_quality && again.appearance > h.appearance) h = again;
-        }
-    }
-    verified.push_back(h);
+    const std::optional<Hypothesis> h = refine_and_verify(frame, *color, grey, reference_T_body, from_texture, detection);
+    if (!h) return false;
+    verified.push_back(*h);
     // Only a pose that also looks like the body: another object of its shape may fit as well.
-    return appearance_ && h.quality >= kConfidentQuality && h.appearance >= kMinAppearance;
+    return appearance_ && h->quality >= kConfidentQuality && h->appearance >= kMinAppearance;
   };
   // A textured body's keypoints place it wherever its texture shows, whatever its shape's
   // symmetry: tried first over the whole image, and the templates only when they fail.

@@ -3,6 +3,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,11 @@ class BodyDetector {
                                                  const SearchWindow& window, int hypotheses, Detection& detection);
   /// Tracker frames on `frame` from `reference_T_body`, coarse to fine.
   Hypothesis refine(const Frame& frame, const Pose& reference_T_body);
+  /// `start` refined; when its quality verifies it, with its appearance, aligned with the
+  /// texture of a textured body (docs/detection.md, step 7); nothing otherwise.
+  /// `from_texture`: the start is a keypoint pose, which may itself be the better one.
+  std::optional<Hypothesis> refine_and_verify(const Frame& frame, const ColorImage& color, const cv::Mat& grey,
+                                              const Pose& start, bool from_texture, Detection& detection);
   /// Zero-mean normalised cross-correlation in [-1, 1] of the body's render (its texture
   /// and colours) with the image over the body's pixels; -1 when it is not in view.
   double appearance_agreement(const ColorImage& color, const Pose& reference_T_body);
