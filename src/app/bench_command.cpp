@@ -35,6 +35,7 @@ struct BenchOptions {
   bool sweep = false;
   SweepOptions sweep_options;
   bool detect = false;
+  std::vector<std::string> detect_objects;
   SequenceOptions sequence_options = visp_sequence_options();
 };
 
@@ -156,6 +157,10 @@ void register_bench_command(CLI::App& app) {
   cmd->add_option("--plot", o->plot,
                   "--sweep: PNG of the mean error against depth noise (default " + SweepOptions().plot +
                       "); --detect: PNG of success against occlusion (default " + DetectBenchOptions().plot + ")");
+  cmd->add_option("--object", o->detect_objects,
+                  "--detect: only this one of the sweep's objects (textured_box, two_region, labelled_can, "
+                  "textureless_mug); repeatable")
+      ->needs(detect);
   cmd->add_flag("--quick", o->sweep_options.quick,
                 "--sweep: one model, two conditions and its grey cell, 320x240, at most 8 frames (a test)")
       ->needs(sweep);
@@ -169,6 +174,7 @@ void register_bench_command(CLI::App& app) {
       detect_options.summary = o->summary;
       if (!o->plot.empty()) detect_options.plot = o->plot;
       if (!o->out.empty()) detect_options.out = o->out;
+      detect_options.objects = o->detect_objects;
       if (o->frames > 0) detect_options.frames = o->frames;
       run_detect_bench(detect_options);
     } else if (o->sweep) {

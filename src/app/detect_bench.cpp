@@ -10,6 +10,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
 
@@ -346,7 +347,17 @@ void print_row(const std::string& object, const Row& row, const Tally& icgp, con
 void run_detect_bench(const DetectBenchOptions& options) {
   const fs::path root(options.out);
   fs::create_directories(root);
-  const std::vector<SweepModel> objects = sweep_models();
+  const std::vector<SweepModel> all_objects = sweep_models();
+  std::vector<SweepModel> objects;
+  for (const SweepModel& m : all_objects)
+    if (options.objects.empty() ||
+        std::find(options.objects.begin(), options.objects.end(), m.name) != options.objects.end())
+      objects.push_back(m);
+  for (const std::string& name : options.objects)
+    if (std::none_of(all_objects.begin(), all_objects.end(), [&](const SweepModel& m) { return m.name == name; }))
+      throw std::invalid_argument("bench --detect --object: '" + name +
+                                  "' is none of the sweep's objects (textured_box, two_region, labelled_can, "
+                                  "textureless_mug)");
   const std::vector<Row> row_list = rows();
   std::printf("%-16s %-11s %-15s %6s %7s %7s %7s %7s %5s %5s %6s %6s | %-36s\n", "object", "scene", "sensor", "frames",
               "right", "equiv", "wrong", "miss", "t mm", "r deg", "ms", "p90", "vpKeyPoint: right equiv wrong miss ms");
@@ -376,7 +387,7 @@ void run_detect_bench(const DetectBenchOptions& options) {
       if (baseline) vp.emplace();
       for (const double distance : kDistances) {
         const std::string folder =
-            sequence_folder(root, object, objects, row.scene, row.sensor, distance, options.frames);
+            sequence_folder(root, object, all_objects, row.scene, row.sensor, distance, options.frames);
         for (const FrameResult& f : detect_cell(folder, object, row, detector, baseline.get(), surface,
                                                 row.scene == Scene::kOccluded ? &occlusion : nullptr)) {
           icgp.add(f.icgp, f.ms, f.t_mm, f.r_deg);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace icgp::app {
 
@@ -13,6 +14,7 @@ struct DetectBenchOptions {
   std::string summary;                   ///< JSON rows; empty: none
   std::string plot = "docs/images/detection_occlusion.png";  ///< success against occlusion
   int frames = 12;                       ///< frames per cell (object x sensor x distance)
+  std::vector<std::string> objects;      ///< of the sweep's objects, these only; empty: all
 };
 
 /// Renders (or reuses) every cell's sequence, detects the object in each frame with icgp's
