@@ -301,10 +301,8 @@ struct OcclusionLine {
 
 void plot_occlusion(const std::vector<OcclusionLine>& lines, const fs::path& script, const std::string& png) {
   std::ostringstream s;
-  s << "# Written by icgp bench --detect; redraw with: gnuplot " << script.filename().string() << "\n";
-  s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n  set terminal pngcairo size 900,520 noenhanced\n"
-       "} else {\n  set terminal png size 900,520 noenhanced\n}\n";
-  s << "set output '" << png << "'\nset datafile missing 'NaN'\nset grid\nset yrange [0:105]\n";
+  s << gnuplot_png_preamble("icgp bench --detect", script.filename().string(), 900, 520, png);
+  s << "set yrange [0:105]\n";
   s << "set xtics ('0-10 %%' 0, '10-20 %%' 1, '20-30 %%' 2, '30 %% and more' 3)\nset xrange [-0.3:3.3]\n";
   s << "set xlabel 'share of the object hidden by the bar'\nset ylabel 'found within 5 mm / 5 deg or equivalent (%)'\n";
   s << "set key below\nset title 'icgp bench --detect: detection under partial occlusion'\n";
@@ -321,11 +319,6 @@ void plot_occlusion(const std::vector<OcclusionLine>& lines, const fs::path& scr
       << lines[i].title << "'";
   s << "\nset output\n";
   draw_with_gnuplot(s.str(), script.string(), png);
-}
-
-bool has_texture(const Mesh& mesh) {
-  return std::any_of(mesh.parts.begin(), mesh.parts.end(),
-                     [](const MeshPart& p) { return !p.material.texture_bgr.empty(); });
 }
 
 void print_row(const std::string& object, const Row& row, const Tally& icgp, const std::optional<Tally>& baseline) {

@@ -16,6 +16,15 @@ std::string shell_quote(const std::string& text) {
   return quoted + "'";
 }
 
+std::string gnuplot_png_preamble(const std::string& written_by, const std::string& script_name, int width,
+                                 int height, const std::string& png) {
+  const std::string size = std::to_string(width) + "," + std::to_string(height);
+  return "# Written by " + written_by + "; redraw with: gnuplot " + script_name + "\n" +
+         "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n  set terminal pngcairo size " + size +
+         " noenhanced\n} else {\n  set terminal png size " + size + " noenhanced\n}\n" + "set output '" + png +
+         "'\nset datafile missing 'NaN'\nset grid\n";
+}
+
 void draw_with_gnuplot(const std::string& script_text, const std::string& script, const std::string& png) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     throw std::runtime_error("gnuplot is not installed: cannot draw " + png);

@@ -350,10 +350,8 @@ void plot_sweep(const std::vector<SweepRow>& rows, const fs::path& script, const
       }
 
   std::ostringstream s;
-  s << "# Written by icgp bench --sweep; redraw with: gnuplot " << script.filename().string() << "\n";
-  s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n  set terminal pngcairo size 1500,520 noenhanced\n"
-       "} else {\n  set terminal png size 1500,520 noenhanced\n}\n";
-  s << "set output '" << png << "'\nset datafile missing 'NaN'\nset grid\nset logscale y\nset format y '%g'\n";
+  s << gnuplot_png_preamble("icgp bench --sweep", script.filename().string(), 1500, 520, png);
+  s << "set logscale y\nset format y '%g'\n";
   s << "set xtics ('exact' 0, 'RealSense-class' 1, 'Kinect-class' 2)\nset xrange [-0.3:2.3]\n";
   s << "set key below\nset ylabel 'mean translation error (mm, all models)'\n";
   s << "set multiplot layout 1," << images.size() << " title 'icgp bench --sweep: defaults vs reference vs ViSP'\n";

@@ -88,6 +88,11 @@ void check_mesh(const Mesh& mesh) {
   if (!((hi - lo).maxCoeff() > 0.f)) refuse("has all its vertices at one point (expected a surface with an extent)");
 }
 
+bool has_texture(const Mesh& mesh) {
+  return std::any_of(mesh.parts.begin(), mesh.parts.end(),
+                     [](const MeshPart& part) { return !part.material.texture_bgr.empty(); });
+}
+
 Mesh box_mesh(const Eigen::Vector3d& size, const Eigen::Vector3f& diffuse_rgb) {
   const Eigen::Vector3f h = (0.5 * size).cast<float>();
   MeshPart part;

@@ -71,11 +71,6 @@ bool has_appearance(const Mesh& mesh) {
   return false;
 }
 
-bool has_texture(const Mesh& mesh) {
-  return std::any_of(mesh.parts.begin(), mesh.parts.end(),
-                     [](const MeshPart& part) { return !part.material.texture_bgr.empty(); });
-}
-
 /// A body with appearance is verified only when its render correlates at least this much
 /// with the image (NCC). In `icgp bench --detect` the right poses of the textured box, the
 /// labelled can and the two-colour box scored 0.69-0.99 (0.79 with a bar across a third of

@@ -8,9 +8,9 @@
 #include <Eigen/Core>
 #include <Eigen/SVD>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 
 #include "icgp/features/hamming_matching.h"
+#include "point_correspondences.h"
 
 namespace icgp {
 namespace {
@@ -87,48 +87,31 @@ std::vector<KeypointModel::Located> KeypointModel::locate(const cv::Mat& grey, c
   if (keypoints.size() < static_cast<std::size_t>(kMinInliers)) return {};
   std::vector<TwoNearest> nearest;
   two_nearest_hamming(descriptors, descriptors_, nearest, &groups_);
-  std::vector<cv::Point3f> object_points;
-  std::vector<cv::Point2f> image_points;
+  PointCorrespondences matched;
   for (std::size_t q = 0; q < nearest.size(); ++q) {
     const TwoNearest& n = nearest[q];
     if (n.train_index < 0 || n.best >= kRatio * n.second) continue;
-    const Eigen::Vector3f& X = points_[n.train_index];
-    object_points.emplace_back(X.x(), X.y(), X.z());
-    image_points.push_back(keypoints[q].pt);
+    matched.add(points_[n.train_index], keypoints[q].pt);
   }
-  if (object_points.size() < static_cast<std::size_t>(kMinInliers)) return {};
-  const cv::Matx33d camera(K.fu, 0.0, K.pu, 0.0, K.fv, K.pv, 0.0, 0.0, 1.0);
+  if (matched.size() < static_cast<std::size_t>(kMinInliers)) return {};
   cv::Vec3d rvec, tvec;
-  std::vector<int> inliers;
-  if (!cv::solvePnPRansac(object_points, image_points, camera, cv::noArray(), rvec, tvec, false, kRansacIterations,
-                          kInlierPx, kRansacConfidence, inliers, cv::SOLVEPNP_EPNP) ||
-      inliers.size() < static_cast<std::size_t>(kMinInliers))
+  std::vector<int> inlier_indices;
+  if (!cv::solvePnPRansac(matched.model, matched.image, camera_matrix(K), cv::noArray(), rvec, tvec, false,
+                          kRansacIterations, kInlierPx, kRansacConfidence, inlier_indices, cv::SOLVEPNP_EPNP) ||
+      inlier_indices.size() < static_cast<std::size_t>(kMinInliers))
     return {};
-  std::vector<cv::Point3f> inlier_objects;
-  std::vector<cv::Point2f> inlier_images;
-  for (const int i : inliers) {
-    inlier_objects.push_back(object_points[i]);
-    inlier_images.push_back(image_points[i]);
-  }
+  const PointCorrespondences inliers = matched.subset(inlier_indices);
   // Keypoints of one face of a box lie on a plane, whose view a turned plane can mimic to
   // within the inlier threshold: then both of IPPE's poses are hypotheses, better first.
   std::vector<cv::Mat> rvecs{cv::Mat(rvec)}, tvecs{cv::Mat(tvec)};
-  if (planar(inlier_objects))
-    cv::solvePnPGeneric(inlier_objects, inlier_images, camera, cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE);
+  if (planar(inliers.model))
+    cv::solvePnPGeneric(inliers.model, inliers.image, camera_matrix(K), cv::noArray(), rvecs, tvecs, false,
+                        cv::SOLVEPNP_IPPE);
   std::vector<Located> located;
-  for (std::size_t k = 0; k < rvecs.size(); ++k) {
+  for (std::size_t k = 0; k < rvecs.size(); ++k)
     // Refined on the inliers alone, by the reprojection error RANSAC judged them with.
-    cv::solvePnPRefineLM(inlier_objects, inlier_images, camera, cv::noArray(), rvecs[k], tvecs[k]);
-    cv::Mat R;
-    cv::Rodrigues(rvecs[k], R);
-    Eigen::Matrix3d rotation;
-    Eigen::Vector3d translation;
-    cv::cv2eigen(R, rotation);
-    cv::cv2eigen(tvecs[k], translation);
-    if (translation.z() > 0.0)
-      located.push_back(
-          {Pose(rotation, translation), static_cast<int>(inliers.size()), static_cast<int>(object_points.size())});
-  }
+    if (const std::optional<Pose> pose = refined_pose(inliers, K, rvecs[k], tvecs[k]))
+      located.push_back({*pose, static_cast<int>(inliers.size()), static_cast<int>(matched.size())});
   return located;
 }
 

@@ -3,11 +3,12 @@
 
 #include <cmath>
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
+
+#include "point_correspondences.h"
 
 namespace icgp {
 namespace {
@@ -27,9 +28,9 @@ constexpr int kFlowLevels = 3;
 /// inliers a pose is taken from.
 constexpr float kInlierPx = 2.0f;
 constexpr int kMinInliers = 20;
+constexpr int kRansacIterations = 100;
+constexpr double kRansacConfidence = 0.99;
 constexpr int kRounds = 2;
-
-cv::Matx33d camera_matrix(const Intrinsics& K) { return {K.fu, 0.0, K.pu, 0.0, K.fv, K.pv, 0.0, 0.0, 1.0}; }
 
 }  // namespace
 
@@ -85,42 +86,31 @@ std::optional<Pose> TextureAlignment::round(const cv::Mat& grey, const Intrinsic
                            kFlowLevels);
   const Pose camera_T_body = camera_T_reference * reference_T_body;
   const Pose body_T_camera = camera_T_body.inverse();
-  std::vector<cv::Point3f> object_points;
-  std::vector<cv::Point2f> image_points;
+  PointCorrespondences followed_points;
   for (std::size_t i = 0; i < corners.size(); ++i) {
     if (!status[i]) continue;
     const int col = static_cast<int>(std::lround(corners[i].x)), row = static_cast<int>(std::lround(corners[i].y));
     const float z = render.depth.at<float>(row, col);
     if (!(z > 0.f)) continue;
     const Eigen::Vector3d X = body_T_camera * crop.back_project<double>(corners[i].x, corners[i].y, z);
-    object_points.emplace_back(static_cast<float>(X.x()), static_cast<float>(X.y()), static_cast<float>(X.z()));
     const cv::Vec2d p = crop_to_image * cv::Vec3d(followed[i].x, followed[i].y, 1.0);
-    image_points.emplace_back(static_cast<float>(p[0]), static_cast<float>(p[1]));
+    followed_points.add(X.cast<float>(), cv::Point2f(static_cast<float>(p[0]), static_cast<float>(p[1])));
   }
-  if (static_cast<int>(object_points.size()) < kMinInliers) return std::nullopt;
-  cv::Mat R, rvec, tvec;
-  cv::eigen2cv(camera_T_body.rotation(), R);
-  cv::Rodrigues(R, rvec);
-  cv::eigen2cv(camera_T_body.translation(), tvec);
+  if (static_cast<int>(followed_points.size()) < kMinInliers) return std::nullopt;
+  // RANSAC from the pose the render was made at.
+  const Eigen::AngleAxisd turn(camera_T_body.rotation());
+  const Eigen::Vector3d rotation_vector = turn.angle() * turn.axis();
+  cv::Mat rvec = (cv::Mat_<double>(3, 1) << rotation_vector.x(), rotation_vector.y(), rotation_vector.z());
+  cv::Mat tvec = (cv::Mat_<double>(3, 1) << camera_T_body.translation().x(), camera_T_body.translation().y(),
+                  camera_T_body.translation().z());
   std::vector<int> inliers;
-  if (!cv::solvePnPRansac(object_points, image_points, camera_matrix(K), cv::noArray(), rvec, tvec, true, 100,
-                          kInlierPx, 0.99, inliers, cv::SOLVEPNP_ITERATIVE) ||
+  if (!cv::solvePnPRansac(followed_points.model, followed_points.image, camera_matrix(K), cv::noArray(), rvec, tvec,
+                          true, kRansacIterations, kInlierPx, kRansacConfidence, inliers, cv::SOLVEPNP_ITERATIVE) ||
       static_cast<int>(inliers.size()) < kMinInliers)
     return std::nullopt;
-  std::vector<cv::Point3f> inlier_objects;
-  std::vector<cv::Point2f> inlier_images;
-  for (const int i : inliers) {
-    inlier_objects.push_back(object_points[i]);
-    inlier_images.push_back(image_points[i]);
-  }
-  cv::solvePnPRefineLM(inlier_objects, inlier_images, camera_matrix(K), cv::noArray(), rvec, tvec);
-  cv::Rodrigues(rvec, R);
-  Eigen::Matrix3d rotation;
-  Eigen::Vector3d translation;
-  cv::cv2eigen(R, rotation);
-  cv::cv2eigen(tvec, translation);
-  if (!(translation.z() > 0.0)) return std::nullopt;
-  return camera_T_reference.inverse() * Pose(rotation, translation);
+  const std::optional<Pose> aligned = refined_pose(followed_points.subset(inliers), K, rvec, tvec);
+  if (!aligned) return std::nullopt;
+  return camera_T_reference.inverse() * *aligned;
 }
 
 }  // namespace icgp

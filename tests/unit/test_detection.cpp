@@ -22,6 +22,18 @@
 namespace icgp {
 namespace {
 
+/// `found` is a detection within 5 mm and 5 degrees of `truth`; prints its errors after `label`.
+void check_found_within_5mm_5deg(const Detection& found, const Pose& truth, const char* label) {
+  INFO("why not: " << found.why_not);
+  REQUIRE(found.found);
+  const double t = translation_error_mm(found.reference_T_body, truth);
+  const double r = rotation_error_deg(found.reference_T_body, truth);
+  std::printf("%s: %.2f mm, %.2f deg, quality %.3f, %d candidates, %d refined\n", label, t, r, found.quality,
+              found.candidates, found.refined);
+  CHECK(t < 5.0);
+  CHECK(r < 5.0);
+}
+
 TEST_CASE("orientation responses: bins of analytic directions, modulo 180 degrees") {
   CHECK(OrientationResponses::bin_of(1.f, 0.f) == 0);
   CHECK(OrientationResponses::bin_of(-1.f, 0.f) == 0);  // the same orientation, other polarity
@@ -64,15 +76,7 @@ TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm an
 
   const Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.5, -0.6, 0.3), Eigen::Vector3d(0.03, -0.02, 0.45));
   const Frame frame = scene.render(truth);
-  const Detection found = detector.detect(frame);
-  INFO("why not: " << found.why_not);
-  REQUIRE(found.found);
-  const double t = translation_error_mm(found.reference_T_body, truth);
-  const double r = rotation_error_deg(found.reference_T_body, truth);
-  std::printf("detection: %.2f mm, %.2f deg, quality %.3f, %d candidates, %d refined\n", t, r, found.quality,
-              found.candidates, found.refined);
-  CHECK(t < 5.0);
-  CHECK(r < 5.0);
+  check_found_within_5mm_5deg(detector.detect(frame), truth, "detection");
 
   // The same clutter of coloured squares without the box (a 1 mm speck in its place): a
   // painted square is no box, since nothing stands out of the plane.
@@ -116,15 +120,7 @@ TEST_CASE("detection: the textured box is found by its keypoints in a grey image
     Frame frame = scene.render(truth);
     frame.depths.clear();
     for (ColorImage& c : frame.colors) cv::cvtColor(c.image, c.image, cv::COLOR_BGR2GRAY);
-    const Detection found = detector.detect(frame);
-    INFO("why not: " << found.why_not);
-    REQUIRE(found.found);
-    const double t = translation_error_mm(found.reference_T_body, truth);
-    const double r = rotation_error_deg(found.reference_T_body, truth);
-    std::printf("grey detection: %.2f mm, %.2f deg, quality %.3f, %d candidates, %d refined\n", t, r, found.quality,
-                found.candidates, found.refined);
-    CHECK(t < 5.0);
-    CHECK(r < 5.0);
+    check_found_within_5mm_5deg(detector.detect(frame), truth, "grey detection");
   }
 }
 

@@ -64,6 +64,9 @@ struct Sphere {
 /// focused render or keypoint crop must enclose. Throws std::runtime_error for an empty mesh.
 Sphere bounding_sphere(const Mesh& mesh);
 
+/// Whether any part of the mesh has a texture image.
+bool has_texture(const Mesh& mesh);
+
 /// A closed box of `size` (metres) centred on its origin, in one flat colour: an occluder
 /// or a prop in a rendered scene.
 Mesh box_mesh(const Eigen::Vector3d& size, const Eigen::Vector3f& diffuse_rgb);
