@@ -99,6 +99,9 @@ class TrackerFixture {
     // models, say) must stop the fuzzer, not turn every input into a "clean refusal".
     const vpImage<uint16_t> flat(kHeight, kWidth, 600);
     for (vpMbIcgTracker* tracker : {&teabox_tracker(rig_), &teabox_tracker(rgbd_camera_)}) {
+      // A fuzzed frame that loses the object runs the detector (recovery is on by default):
+      // it is built here, once, not inside an input's time.
+      tracker->initFromDetection(color_, flat, 1e-3);
       tracker->initFromPose(color_, cMo_);
       tracker->track(color_, flat, 1e-3);
     }
