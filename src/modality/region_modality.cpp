@@ -158,7 +158,11 @@ void RegionModality::start(const Frame& frame, const Renders&) {
   scene_ = {};
   histograms_.emplace(params_.n_histogram_bins, color_image(frame).image.channels());
   count_line_pixels(frame);
-  if (!histograms_->set_from_counts())
+  histograms_learnt_ = histograms_->set_from_counts();
+  // One colour region of a body may be out of view (behind the others, past the image
+  // border) where the body is not: it abstains until finish() sees its pixels. A whole
+  // body without pixels is a start pose that cannot be right.
+  if (!histograms_learnt_ && extent_ == Extent::kWholeBody)
     throw std::runtime_error("region modality of '" + body().name +
                              "': no foreground or background pixels at the start pose (is the object in view?)");
 }
@@ -294,8 +298,14 @@ void RegionModality::correspondences(const Frame& frame, const Renders& renders,
       lines_.push_back(line);
     }
   };
-  collect(true);
-  if (static_cast<int>(lines_.size()) < params_.min_n_unoccluded_lines) collect(false);
+  if (!histograms_learnt_) {
+    // Without colour statistics no line has a posterior: nothing is measurable.
+    lines_.clear();
+    n_measurable_ = 0;
+  } else {
+    collect(true);
+    if (static_cast<int>(lines_.size()) < params_.min_n_unoccluded_lines) collect(false);
+  }
   weigh_lines(pose, corr_iter);
   last_corr_iter_ = corr_iter;
 }
@@ -418,7 +428,10 @@ void RegionModality::finish(const Frame& frame, const Renders&) {
   update_quality();
   ++frames_since_start_;
   count_line_pixels(frame);
-  histograms_->blend_counts(params_.learning_rate_f, params_.learning_rate_b);
+  if (histograms_learnt_)
+    histograms_->blend_counts(params_.learning_rate_f, params_.learning_rate_b);
+  else
+    histograms_learnt_ = histograms_->set_from_counts();
 }
 
 void RegionModality::update_quality() {

@@ -276,6 +276,46 @@ TEST_CASE("build_tracker: one region modality per region of a multi-region objec
   CHECK(results[0].tracked);
 }
 
+TEST_CASE("multi-region: a region out of view at the start abstains, then learns its colours when it comes into view") {
+  TrackerConfig config;
+  config.modalities = {CueKind::kRegion};
+  config.region_model = coarse_model_params();
+  config.regions = {ICGP_MODELS_DIR "/two_region/region_body.obj", ICGP_MODELS_DIR "/two_region/region_lid.obj"};
+  config.cache_dir = (std::filesystem::temp_directory_path() / "icgp-test-multi-region-cache").string();
+  const Mesh object = load_mesh(ICGP_MODELS_DIR "/two_region/object.obj");
+  auto tracker = build_tracker(config, object, "two_region");
+  Body& body = tracker->body("two_region");
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(object, f.color_k, f.depth_k, f.depth_T_color);
+
+  // Seen from the front, 16 cm down: the lid (y 0.015 .. 0.04 m) lies below the image's
+  // last row (y/z > 0.37), the body's top half is in view.
+  const Pose low(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.16, 0.45));
+  const Frame low_frame = scene.render(low, "two_region");
+  body.reference_T_body = low;
+  REQUIRE_NOTHROW(tracker->start(low_frame));
+  std::vector<BodyResult> results = tracker->track(low_frame);
+  REQUIRE(results[0].modalities.size() == 2);  // region_body, region_lid
+  CHECK_FALSE(results[0].modalities[0].abstained);
+  CHECK(results[0].modalities[1].abstained);
+
+  // In view, the lid learns its colours on the first frame and measures from the next.
+  const Frame frame = scene.render(f.truth, "two_region");
+  body.reference_T_body = f.truth;
+  results = tracker->track(frame);
+  CHECK(results[0].modalities[1].abstained);
+  body.reference_T_body = perturbed(f.truth, 3.0, 3.0);
+  for (int i = 0; i < 3; ++i) results = tracker->track(frame);
+  CHECK_FALSE(results[0].modalities[1].abstained);
+  CHECK(results[0].modalities[1].score > 0.5);
+  const double t_mm = 1e3 * (body.reference_T_body.translation() - f.truth.translation()).norm();
+  const double r_deg = rotation_angle_between(body.reference_T_body.rotation(), f.truth.rotation()) * 180 / M_PI;
+  INFO("error " << t_mm << " mm, " << r_deg << " deg, quality " << results[0].quality);
+  CHECK(t_mm < 1.0);
+  CHECK(r_deg < 0.5);
+  CHECK(results[0].tracked);
+}
+
 namespace {
 
 /// Region + depth with the defaults, started at the truth of `frame`.

@@ -124,6 +124,8 @@ class RegionModality : public Modality {
   SceneCrop crop_;  ///< of the scene's render
   RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)
   std::optional<ColorHistograms> histograms_;
+  /// False while a region of a body has not been seen since the start (it abstains).
+  bool histograms_learnt_ = false;
   /// Smoothed step at the segment centres as h_b and h_f − h_b, so that a segment's term
   /// h_f P_f + h_b (1 − P_f) is one multiply-add.
   std::vector<float> step_b_, step_difference_;
