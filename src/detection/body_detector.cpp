@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
+#include "icgp/detection/mesh_symmetries.h"
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
 
@@ -142,6 +143,7 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
       params_.roll_step_deg * kCoarseRollFactor, params_.template_points);
   coarse_matcher_ = std::make_unique<TemplateMatcher>(*coarse_templates_);
   appearance_ = has_appearance(mesh);
+  symmetries_ = mesh_symmetries(mesh);
   if (has_texture(mesh)) {
     auto keypoints =
         std::make_unique<KeypointModel>(render_training_views(refiner_->renderer(), refiner_->body(body_name)));
@@ -510,6 +512,14 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   detection.found = true;
   detection.quality = verified.front().quality;
   detection.reference_T_body = verified.front().reference_T_body;
+  const auto add_equivalent = [&](const Pose& pose) {
+    const bool new_one = std::none_of(detection.equivalents.begin(), detection.equivalents.end(), [&](const Pose& e) {
+      return rotation_angle_between(pose.rotation(), e.rotation()) <= kEquivalentRotation;
+    });
+    if (new_one) detection.equivalents.push_back(pose);
+  };
+  // The body's symmetries give poses no image can tell from the found one.
+  for (const Pose& symmetry : symmetries_) add_equivalent(detection.reference_T_body * symmetry);
   for (std::size_t k = 1; k < verified.size(); ++k) {
     const Hypothesis& h = verified[k];
     if (h.quality < detection.quality - kEquivalentQuality) continue;
@@ -519,10 +529,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     const bool same_place = (pose * templates_->sphere().centre - detection.reference_T_body * templates_->sphere().centre)
                                 .norm() < 0.5 * templates_->sphere().radius;
     const bool turned = rotation_angle_between(pose.rotation(), detection.reference_T_body.rotation()) > kEquivalentRotation;
-    const bool new_one = std::none_of(detection.equivalents.begin(), detection.equivalents.end(), [&](const Pose& e) {
-      return rotation_angle_between(pose.rotation(), e.rotation()) <= kEquivalentRotation;
-    });
-    if (same_place && turned && new_one) detection.equivalents.push_back(pose);
+    if (same_place && turned) add_equivalent(pose);
   }
   return detection;
 }

@@ -23,8 +23,9 @@ struct Detection {
   bool found = false;
   Pose reference_T_body;  ///< the verified pose, in the frame's reference camera
   double quality = 0.0;   ///< the refining cues' quality at that pose
-  /// Further verified poses as good as the found one and clearly different from it: the
-  /// equivalent views of a symmetric object, not a failure.
+  /// Further poses as good as the found one and clearly different from it: the found pose
+  /// turned by each symmetry of the mesh (mesh_symmetries), and other verified poses of
+  /// the same quality and appearance. The equivalent views of a symmetric object, not a failure.
   std::vector<Pose> equivalents;
   int candidates = 0;  ///< keypoint poses, and template matches above the score threshold after suppression
   int refined = 0;     ///< of those, hypotheses refined by the tracker's cues
@@ -102,6 +103,7 @@ class BodyDetector {
   std::unique_ptr<ShapeTemplates> coarse_templates_;
   std::unique_ptr<TemplateMatcher> coarse_matcher_;
   bool appearance_ = false;  ///< the mesh has a texture or colours to compare
+  std::vector<Pose> symmetries_;  ///< mesh_symmetries of the body: S with T·S equivalent to T
   /// A textured mesh's keypoints and texture alignment, null for a mesh without texture.
   std::unique_ptr<KeypointModel> keypoints_;
   std::unique_ptr<TextureAlignment> alignment_;

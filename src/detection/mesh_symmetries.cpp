@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/detection/mesh_symmetries.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <unordered_map>
+
+namespace icgp {
+
+namespace {
+
+constexpr int kSamples = 8000;
+constexpr double kMatchingShare = 0.99;
+constexpr double kToleranceInSpacings = 2.0;
+/// Main face normals tried as axes besides the principal axes (a cube's are degenerate).
+constexpr int kNormalAxes = 6;
+/// Principal spreads closer than this share are taken as equal.
+constexpr double kDistinctSpread = 0.2;
+/// Turns this close count as one: the products of turns about axes of a finely tessellated
+/// surface must not multiply their small errors into new elements.
+constexpr double kSameRotation = deg_to_rad(5.0);
+/// The largest finite rotation group of a solid is the icosahedron's 60; a continuous
+/// symmetry's turns of 60 degrees generate far fewer.
+constexpr std::size_t kMaxGroupSize = 60;
+
+struct SurfaceSample {
+  Eigen::Vector3d point;
+  int colour;
+};
+
+/// Surface points drawn uniformly by area (a fixed seed: the same answer every run), each
+/// with the index of its part's flat colour among the mesh's distinct colours.
+class SampledSurface {
+ public:
+  explicit SampledSurface(const Mesh& mesh) {
+    struct Triangle {
+      Eigen::Vector3d a, b, c;
+      int colour;
+    };
+    std::vector<Triangle> triangles;
+    std::vector<double> cumulative_area;
+    std::vector<Eigen::Vector3f> colours;
+    double area = 0.0;
+    for (const MeshPart& part : mesh.parts) {
+      const auto same = [&](const Eigen::Vector3f& c) { return (c - part.material.diffuse_rgb).cwiseAbs().maxCoeff() < 1.f / 64; };
+      auto found = std::find_if(colours.begin(), colours.end(), same);
+      if (found == colours.end()) found = colours.insert(colours.end(), part.material.diffuse_rgb);
+      const int colour = static_cast<int>(found - colours.begin());
+      for (const Eigen::Vector3i& t : part.triangles) {
+        Triangle triangle{part.vertices[t[0]].cast<double>(), part.vertices[t[1]].cast<double>(),
+                          part.vertices[t[2]].cast<double>(), colour};
+        const Eigen::Vector3d normal = (triangle.b - triangle.a).cross(triangle.c - triangle.a);
+        if (normal.norm() == 0.0) continue;
+        area += 0.5 * normal.norm();
+        const Eigen::Vector3d sum = triangle.a + triangle.b + triangle.c;
+        centroid_ += 0.5 * normal.norm() * sum / 3.0;
+        // The triangle's exact second moment, ∫ x xᵀ dA = A/12 (Σ vᵢvᵢᵀ + s sᵀ), s = Σ vᵢ.
+        second_moment_ += 0.5 * normal.norm() / 12.0 *
+                          (triangle.a * triangle.a.transpose() + triangle.b * triangle.b.transpose() +
+                           triangle.c * triangle.c.transpose() + sum * sum.transpose());
+        face_normals_.push_back(normal);  // length: twice the area, the weight of its direction
+        triangles.push_back(triangle);
+        cumulative_area.push_back(area);
+      }
+    }
+    if (area > 0.0) centroid_ /= area;
+    area_ = area;
+    spacing_ = std::sqrt(area / kSamples);
+    std::mt19937 random(12345);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (int k = 0; k < kSamples && area > 0.0; ++k) {
+      const auto it = std::upper_bound(cumulative_area.begin(), cumulative_area.end(), uniform(random) * area);
+      const Triangle& t = triangles[std::min<std::size_t>(it - cumulative_area.begin(), triangles.size() - 1)];
+      // Uniform on the triangle: the square root keeps the density even towards vertex a.
+      const double r1 = std::sqrt(uniform(random)), r2 = uniform(random);
+      samples_.push_back({(1 - r1) * t.a + r1 * (1 - r2) * t.b + r1 * r2 * t.c, t.colour});
+    }
+    for (std::size_t i = 0; i < samples_.size(); ++i) cells_[cell_key(samples_[i].point)].push_back(static_cast<int>(i));
+  }
+
+  const Eigen::Vector3d& centroid() const { return centroid_; }
+
+  /// The axes worth turning about: the directions of the largest total face area
+  /// (opposite normals counted as one; exact for flat faces), then the surface's principal
+  /// axes (for curved surfaces).
+  std::vector<Eigen::Vector3d> candidate_axes() const {
+    std::vector<Eigen::Vector3d> axes;
+    std::vector<std::pair<Eigen::Vector3d, double>> directions;  // unit direction, total weight
+    for (const Eigen::Vector3d& normal : face_normals_) {
+      const Eigen::Vector3d unit = normal.normalized();
+      auto same = std::find_if(directions.begin(), directions.end(),
+                               [&](const auto& d) { return std::abs(d.first.dot(unit)) > std::cos(deg_to_rad(5.0)); });
+      if (same == directions.end())
+        directions.emplace_back(unit, normal.norm());
+      else
+        same->second += normal.norm();
+    }
+    std::sort(directions.begin(), directions.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    for (std::size_t k = 0; k < directions.size() && k < static_cast<std::size_t>(kNormalAxes); ++k)
+      axes.push_back(directions[k].first);
+
+    const Eigen::Matrix3d covariance = second_moment_ - area_ * centroid_ * centroid_.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(covariance);
+    const Eigen::Vector3d& spread = principal.eigenvalues();
+    for (int k = 0; k < 3; ++k) {
+      // An axis whose spread another shares is any direction of their plane (a cube's, a
+      // cylinder's across): not one to try.
+      const bool distinct = std::abs(spread[k] - spread[(k + 1) % 3]) > kDistinctSpread * spread[k] &&
+                            std::abs(spread[k] - spread[(k + 2) % 3]) > kDistinctSpread * spread[k];
+      if (distinct) axes.push_back(principal.eigenvectors().col(k));
+    }
+    return axes;
+  }
+
+  /// Whether the turn `rotation` about the centroid takes nearly every sample onto the
+  /// surface of its own colour.
+  bool maps_onto_itself(const Eigen::Matrix3d& rotation) const {
+    const double tolerance = kToleranceInSpacings * spacing_;
+    std::size_t matched = 0;
+    for (const SurfaceSample& s : samples_)
+      if (has_sample_near(centroid_ + rotation * (s.point - centroid_), s.colour, tolerance)) ++matched;
+    return matched >= kMatchingShare * samples_.size();
+  }
+
+ private:
+  /// Cells of the tolerance's size: a sample within it lies in one of the 27 around.
+  std::int64_t cell_key(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d cell = (p / (kToleranceInSpacings * spacing_)).array().floor();
+    return cell_key(static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
+                    static_cast<std::int64_t>(cell.z()));
+  }
+  static std::int64_t cell_key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    // MeshLimits bound coordinates to 1e4 m and the spacing follows the mesh's size, so
+    // the cells of one mesh stay far inside 2^20 per axis.
+    return ((x & 0xFFFFF) << 40) | ((y & 0xFFFFF) << 20) | (z & 0xFFFFF);
+  }
+
+  bool has_sample_near(const Eigen::Vector3d& p, int colour, double tolerance) const {
+    const Eigen::Vector3d cell = (p / (kToleranceInSpacings * spacing_)).array().floor();
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(cell_key(static_cast<std::int64_t>(cell.x()) + dx,
+                                               static_cast<std::int64_t>(cell.y()) + dy,
+                                               static_cast<std::int64_t>(cell.z()) + dz));
+          if (it == cells_.end()) continue;
+          for (int i : it->second)
+            if (samples_[i].colour == colour && (samples_[i].point - p).norm() <= tolerance) return true;
+        }
+    return false;
+  }
+
+  std::vector<SurfaceSample> samples_;
+  std::vector<Eigen::Vector3d> face_normals_;
+  Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();  ///< of the surface, by area
+  Eigen::Matrix3d second_moment_ = Eigen::Matrix3d::Zero();  ///< ∫ x xᵀ dA over the surface
+  double area_ = 0.0;
+  double spacing_ = 0.0;
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+};
+
+bool contains(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::Matrix3d& r) {
+  return std::any_of(rotations.begin(), rotations.end(),
+                     [&](const Eigen::Matrix3d& q) { return rotation_angle_between(q, r) < kSameRotation; });
+}
+
+}  // namespace
+
+std::vector<Pose> mesh_symmetries(const Mesh& mesh) {
+  if (has_texture(mesh) || mesh.empty()) return {};
+  const SampledSurface surface(mesh);
+
+  std::vector<Eigen::Matrix3d> group{Eigen::Matrix3d::Identity()};
+  for (const Eigen::Vector3d& axis : surface.candidate_axes())
+    for (int order : {2, 3, 4, 6}) {
+      const Eigen::Matrix3d turn = Eigen::AngleAxisd(2.0 * kPi / order, axis).toRotationMatrix();
+      if (!contains(group, turn) && surface.maps_onto_itself(turn)) group.push_back(turn);
+    }
+  // Products of symmetries are symmetries: close the set into the group they generate.
+  for (std::size_t i = 0; i < group.size() && group.size() < kMaxGroupSize; ++i)
+    for (std::size_t j = 0; j < group.size() && group.size() < kMaxGroupSize; ++j) {
+      const Eigen::Matrix3d product = group[i] * group[j];
+      if (!contains(group, product)) group.push_back(product);
+    }
+
+  std::vector<Pose> symmetries;
+  const Eigen::Vector3d& c = surface.centroid();
+  for (std::size_t k = 1; k < group.size(); ++k) symmetries.emplace_back(group[k], c - group[k] * c);
+  return symmetries;
+}
+
+}  // namespace icgp

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// mesh_symmetries against the known rotation groups of boxes, a cube and the two-colour box.
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+
+#include "icgp/detection/mesh_symmetries.h"
+#include "icgp/io/mesh_loader.h"
+
+using namespace icgp;
+
+namespace {
+
+/// Whether every symmetry maps every vertex of `mesh` onto a vertex of the same part's colour.
+bool maps_vertices_onto_vertices(const Mesh& mesh, const Pose& symmetry) {
+  for (const MeshPart& part : mesh.parts)
+    for (const Eigen::Vector3f& v : part.vertices) {
+      const Eigen::Vector3d moved = symmetry * v.cast<double>();
+      bool found = false;
+      for (const MeshPart& other : mesh.parts) {
+        if ((other.material.diffuse_rgb - part.material.diffuse_rgb).norm() > 1e-3f) continue;
+        for (const Eigen::Vector3f& w : other.vertices) found = found || (w.cast<double>() - moved).norm() < 1e-3;
+      }
+      if (!found) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("mesh symmetries: a box of three different sides has its three half turns") {
+  const Mesh box = box_mesh(Eigen::Vector3d(0.1, 0.08, 0.06), Eigen::Vector3f(0.5f, 0.5f, 0.5f));
+  const std::vector<Pose> symmetries = mesh_symmetries(box);
+  REQUIRE(symmetries.size() == 3);
+  for (const Pose& s : symmetries) {
+    CHECK(Eigen::AngleAxisd(s.rotation()).angle() == Approx(kPi).margin(1e-6));
+    CHECK(s.translation().norm() < 1e-9);
+    CHECK(maps_vertices_onto_vertices(box, s));
+  }
+}
+
+TEST_CASE("mesh symmetries: a cube has the 23 turns of its rotation group") {
+  const Mesh cube = box_mesh(Eigen::Vector3d(0.05, 0.05, 0.05), Eigen::Vector3f(0.2f, 0.6f, 0.2f));
+  const std::vector<Pose> symmetries = mesh_symmetries(cube);
+  CHECK(symmetries.size() == 23);
+  for (const Pose& s : symmetries) CHECK(maps_vertices_onto_vertices(cube, s));
+}
+
+TEST_CASE("mesh symmetries: the two-colour box keeps only the half turn about its colour boundary's normal") {
+  const Mesh two_region = load_mesh(ICGP_MODELS_DIR "/two_region/object.obj");
+  const std::vector<Pose> symmetries = mesh_symmetries(two_region);
+  REQUIRE(symmetries.size() == 1);
+  const Eigen::AngleAxisd turn(symmetries[0].rotation());
+  CHECK(turn.angle() == Approx(kPi).margin(1e-6));
+  CHECK(std::abs(turn.axis().y()) == Approx(1.0).margin(1e-6));
+  CHECK(maps_vertices_onto_vertices(two_region, symmetries[0]));
+}
+
+TEST_CASE("mesh symmetries: a handle off every axis, or a texture, leaves none") {
+  Mesh mug_like = box_mesh(Eigen::Vector3d(0.08, 0.1, 0.08), Eigen::Vector3f(0.9f, 0.9f, 0.9f));
+  Mesh handle = box_mesh(Eigen::Vector3d(0.03, 0.04, 0.01), Eigen::Vector3f(0.9f, 0.9f, 0.9f));
+  handle.transform(Posef(Eigen::Matrix3f::Identity(), Eigen::Vector3f(0.055f, 0.02f, 0.f)));
+  mug_like.append(handle);
+  CHECK(mesh_symmetries(mug_like).empty());
+  CHECK(mesh_symmetries(load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj")).empty());
+}
+
+TEST_CASE("mesh symmetries: the closed mug, its handle centred on the x axis, turns half about that axis") {
+  const Mesh mug = load_mesh(ICGP_MODELS_DIR "/textureless_mug/textureless_mug.obj");
+  const std::vector<Pose> symmetries = mesh_symmetries(mug);
+  REQUIRE(symmetries.size() == 1);
+  const Eigen::AngleAxisd turn(symmetries[0].rotation());
+  CHECK(turn.angle() == Approx(kPi).margin(1e-6));
+  CHECK(std::abs(turn.axis().x()) == Approx(1.0).margin(1e-6));
+  CHECK(symmetries[0].translation().norm() < 1e-6);
+}
