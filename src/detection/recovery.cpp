@@ -3,6 +3,24 @@
 
 namespace icgp {
 
+namespace {
+
+/// Of a detection's pose and its symmetric equivalents, the one nearest `reference` in rotation.
+Pose nearest_rotation(const Detection& detection, const Pose& reference) {
+  Pose nearest = detection.reference_T_body;
+  double least = rotation_angle_between(nearest.rotation(), reference.rotation());
+  for (const Pose& pose : detection.equivalents) {
+    const double angle = rotation_angle_between(pose.rotation(), reference.rotation());
+    if (angle < least) {
+      nearest = pose;
+      least = angle;
+    }
+  }
+  return nearest;
+}
+
+}  // namespace
+
 Recovery::Recovery(Tracker& tracker, TrackerConfig config, std::string main_body, std::vector<CameraCues> cameras,
                    std::shared_ptr<SceneRenderer> renderer)
     : tracker_(tracker),
@@ -79,6 +97,9 @@ std::vector<std::string> Recovery::after_track(const Frame& frame, std::vector<B
     if (!detection.found && (s.frames_lost - 1) % config_.detection.global_search_interval == 0)
       detection = d.detect(frame, others);
     if (!detection.found) continue;
+    // A symmetric object found again: the equivalent pose that continues the one it was
+    // tracked at, so that its frame does not flip over a loss.
+    if (s.trusted) detection.reference_T_body = nearest_rotation(detection, *s.trusted);
     tracker_.body(r.body).reference_T_body = detection.reference_T_body;
     s = BodyState{detection.reference_T_body, false, 0};
     found.push_back(r.body);

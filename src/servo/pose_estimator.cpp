@@ -108,6 +108,7 @@ class IcgpEstimator : public PoseEstimator {
     estimate.lost = !found;
     if (!found) return estimate;
     tracker_.getPose(estimate.cMo);
+    estimate.equivalents = tracker_.getDetectionEquivalentPoses();
     if (gripper_) estimate.cMg = cMg;
     return estimate;
   }

@@ -9,6 +9,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "icgp/base/stop_request.h"
 #include "icgp/eval/metrics.h"
@@ -74,6 +75,21 @@ class ProgressLine {
 /// gripper's to the object, gMo = cMg^-1 cMo.
 vpHomogeneousMatrix servoed_pose(const vpHomogeneousMatrix& cMo, const std::optional<vpHomogeneousMatrix>& cMg) {
   return cMg ? cMg->inverse() * cMo : cMo;
+}
+
+/// Of the detected pose and its symmetric equivalents, the one whose servoed pose is the
+/// least rotation (then translation) from the goal `desired`.
+vpHomogeneousMatrix nearest_to_goal(const PoseEstimate& estimate, const vpHomogeneousMatrix& desired) {
+  vpHomogeneousMatrix nearest = estimate.cMo;
+  PoseError least = pose_error(servoed_pose(nearest, estimate.cMg), desired);
+  for (const vpHomogeneousMatrix& cMo : estimate.equivalents) {
+    const PoseError error = pose_error(servoed_pose(cMo, estimate.cMg), desired);
+    if (std::tie(error.rotation, error.translation) < std::tie(least.rotation, least.translation)) {
+      nearest = cMo;
+      least = error;
+    }
+  }
+  return nearest;
 }
 
 /// What the values of a velocity for `robot` are (velocity_size), for error messages.
@@ -212,6 +228,15 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
       estimate = estimator->detect(capture, kinematic_cMg());
       started = !estimate.lost;
       if (!estimate.cMg) estimate.cMg = kinematic_cMg();
+      if (started && !estimate.equivalents.empty()) {
+        // A symmetric object looks the same at each of these poses: servo on the one that
+        // needs the smallest motion to the goal, not on whichever the detector ranked first.
+        const vpHomogeneousMatrix nearest = nearest_to_goal(estimate, desired);
+        if (nearest != estimate.cMo) {
+          estimate.cMo = nearest;
+          estimator->start(capture, estimate.cMo, estimate.cMg);
+        }
+      }
       if (started) {
         trusted_cMo = estimate.cMo;
         trusted_cMg = estimate.cMg;

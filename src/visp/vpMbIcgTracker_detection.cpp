@@ -21,6 +21,8 @@ bool vpMbIcgTracker::detect_frame(const std::map<std::string, const Image*>& ima
   const icgp::visp_detail::EndDepthReads end_depth_reads{d.assembler};
   return guarded(call, [&] {
     const icgp::Detection detection = d.recovery->initialise(d.assembler.frame());
+    d.detection_equivalents.clear();
+    for (const icgp::Pose& pose : detection.equivalents) d.detection_equivalents.push_back(icgp::to_homogeneous_matrix(pose));
     if (!detection.found) {
       d.detection_message = "not found: " + detection.why_not;
       return false;
@@ -80,6 +82,10 @@ bool vpMbIcgTracker::initFromDetection(std::map<std::string, const vpImage<vpRGB
 }
 
 std::string vpMbIcgTracker::getDetectionMessage() const { return impl_->detection_message; }
+
+std::vector<vpHomogeneousMatrix> vpMbIcgTracker::getDetectionEquivalentPoses() const {
+  return impl_->detection_equivalents;
+}
 
 void vpMbIcgTracker::setRecovery(bool enable) {
   impl_->config.detection.recovery = enable;

@@ -40,6 +40,7 @@ struct vpMbIcgTracker::Impl {
   /// Detection and recovery of `tracker`'s bodies, built with it.
   std::unique_ptr<icgp::Recovery> recovery;
   std::string detection_message = "no detection yet";
+  std::vector<vpHomogeneousMatrix> detection_equivalents;  ///< of the last detection, cMo
   std::vector<icgp::CameraCues> cues;      ///< which cues read which camera, as `tracker` was built
   bool start_pending = false;
 

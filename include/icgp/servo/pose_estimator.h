@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 #include <visp3/core/vpHomogeneousMatrix.h>
 
 #include "icgp/servo/rgbd_simulator.h"
@@ -20,6 +21,9 @@ struct PoseEstimate {
   /// Grasp: the gripper's pose, when the tracker gives it (icgp tracks it as a second body,
   /// the oracle knows it). Empty: the loop takes it from the arm's kinematics.
   std::optional<vpHomogeneousMatrix> cMg;
+  /// After a detection: further poses of the object (cMo) the tracker verified as well as
+  /// cMo, which a symmetry of the object makes indistinguishable from it.
+  std::vector<vpHomogeneousMatrix> equivalents;
 };
 
 /// A pose tracker fed with the simulated RGB-D captures through ViSP's API.

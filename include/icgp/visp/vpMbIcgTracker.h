@@ -250,6 +250,11 @@ class vpMbIcgTracker : public vpMbTracker {
   /// The last detection's outcome in a sentence: the quality it was verified with, or why
   /// nothing was found.
   std::string getDetectionMessage() const;
+  /// After initFromDetection found the object: other poses (cMo) it verified as well as
+  /// getPose(), that a symmetry of the object makes indistinguishable from it. Empty for
+  /// an object without symmetry, or when nothing was found. A program with a goal (a
+  /// servo's desired pose) restarts with initFromPose at the one nearest to it.
+  std::vector<vpHomogeneousMatrix> getDetectionEquivalentPoses() const;
   /// icgp's extension: after a loss, search for the object again in the following frames
   /// (near its last trusted pose every frame, the whole image every few), and resume
   /// tracking only on a verified pose; until then testTracking() reports it lost and
