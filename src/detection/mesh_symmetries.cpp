@@ -20,12 +20,8 @@ constexpr double kToleranceInSpacings = 2.0;
 constexpr int kNormalAxes = 6;
 /// Principal spreads closer than this share are taken as equal.
 constexpr double kDistinctSpread = 0.2;
-/// Turns this close count as one: the products of turns about axes of a finely tessellated
-/// surface must not multiply their small errors into new elements.
-constexpr double kSameRotation = deg_to_rad(5.0);
-/// The largest finite rotation group of a solid is the icosahedron's 60; a continuous
-/// symmetry's turns of 60 degrees generate far fewer.
-constexpr std::size_t kMaxGroupSize = 60;
+/// Turns this close count as one (the same symmetry found about two nearly equal axes).
+constexpr double kSameRotation = deg_to_rad(10.0);
 
 struct SurfaceSample {
   Eigen::Vector3d point;
@@ -102,6 +98,12 @@ class SampledSurface {
     std::sort(directions.begin(), directions.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
     for (std::size_t k = 0; k < directions.size() && k < static_cast<std::size_t>(kNormalAxes); ++k)
       axes.push_back(directions[k].first);
+    // Between the three main ones: a cube's edge and corner axes (its turns of 1/2 and 1/3).
+    if (directions.size() >= 3) {
+      const Eigen::Vector3d &a = directions[0].first, &b = directions[1].first, &c = directions[2].first;
+      const Eigen::Vector3d between[] = {a + b, a - b, b + c, b - c, a + c, a - c, a + b + c, a + b - c, a - b + c, a - b - c};
+      for (const Eigen::Vector3d& axis : between) axes.push_back(axis.normalized());
+    }
 
     const Eigen::Matrix3d covariance = second_moment_ - area_ * centroid_ * centroid_.transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(covariance);
@@ -120,10 +122,12 @@ class SampledSurface {
   /// surface of its own colour.
   bool maps_onto_itself(const Eigen::Matrix3d& rotation) const {
     const double tolerance = kToleranceInSpacings * spacing_;
-    std::size_t matched = 0;
+    const auto allowed_misses = static_cast<std::size_t>((1.0 - kMatchingShare) * samples_.size());
+    std::size_t misses = 0;
     for (const SurfaceSample& s : samples_)
-      if (has_sample_near(centroid_ + rotation * (s.point - centroid_), s.colour, tolerance)) ++matched;
-    return matched >= kMatchingShare * samples_.size();
+      if (!has_sample_near(centroid_ + rotation * (s.point - centroid_), s.colour, tolerance) && ++misses > allowed_misses)
+        return false;
+    return true;
   }
 
  private:
@@ -174,18 +178,15 @@ std::vector<Pose> mesh_symmetries(const Mesh& mesh) {
   if (has_texture(mesh) || mesh.empty()) return {};
   const SampledSurface surface(mesh);
 
+  // Every turn is checked on its own: products of nearly symmetric turns (a box whose
+  // sides are not quite square to each other) would compound into turns that are not.
   std::vector<Eigen::Matrix3d> group{Eigen::Matrix3d::Identity()};
   for (const Eigen::Vector3d& axis : surface.candidate_axes())
-    for (int order : {2, 3, 4, 6}) {
-      const Eigen::Matrix3d turn = Eigen::AngleAxisd(2.0 * kPi / order, axis).toRotationMatrix();
-      if (!contains(group, turn) && surface.maps_onto_itself(turn)) group.push_back(turn);
-    }
-  // Products of symmetries are symmetries: close the set into the group they generate.
-  for (std::size_t i = 0; i < group.size() && group.size() < kMaxGroupSize; ++i)
-    for (std::size_t j = 0; j < group.size() && group.size() < kMaxGroupSize; ++j) {
-      const Eigen::Matrix3d product = group[i] * group[j];
-      if (!contains(group, product)) group.push_back(product);
-    }
+    for (int order : {2, 3, 4, 6})
+      for (int k = 1; k < order; ++k) {
+        const Eigen::Matrix3d turn = Eigen::AngleAxisd(2.0 * kPi * k / order, axis).toRotationMatrix();
+        if (!contains(group, turn) && surface.maps_onto_itself(turn)) group.push_back(turn);
+      }
 
   std::vector<Pose> symmetries;
   const Eigen::Vector3d& c = surface.centroid();

@@ -98,8 +98,9 @@ std::vector<std::string> Recovery::after_track(const Frame& frame, std::vector<B
       detection = d.detect(frame, others);
     if (!detection.found) continue;
     // A symmetric object found again: the equivalent pose that continues the one it was
-    // tracked at, so that its frame does not flip over a loss.
-    if (s.trusted) detection.reference_T_body = nearest_rotation(detection, *s.trusted);
+    // tracked at (lost since its start: the start pose as the cues left it), so that its
+    // frame does not flip over a loss.
+    detection.reference_T_body = nearest_rotation(detection, s.trusted ? *s.trusted : r.reference_T_body);
     tracker_.body(r.body).reference_T_body = detection.reference_T_body;
     s = BodyState{detection.reference_T_body, false, 0};
     found.push_back(r.body);

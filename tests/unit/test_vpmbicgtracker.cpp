@@ -410,6 +410,38 @@ TEST_CASE("vpMbIcgTracker::testTracking tells a tracked box from a lost one") {
   const vpColVector centre{0.0, 0.0, 0.084094, 1.0};  // the middle of the .cao's eight corners
   CHECK((found.getTranslationVector() - aside.getTranslationVector()).frobeniusNorm() > 0.05);
   CHECK((found * centre - truth * centre).frobeniusNorm() < 0.005);
+  // Of the twins, the one turned as the pose it was lost at (aside is the truth moved).
+  CHECK(rotation_angle_between(to_pose(found).rotation(), to_pose(truth).rotation()) < 5.0 * kPi / 180.0);
+}
+
+TEST_CASE("vpMbIcgTracker::initFromDetection finds the teabox; its twins by symmetry are the equivalent poses") {
+  const auto& frames = teabox_frames();
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
+  configure(tracker, {"region", "depth"});
+  tracker.loadModel(kTeabox);
+  set_cameras(tracker, frames[0]);
+  const VispFrame v = to_visp(frames[0]);
+  REQUIRE(tracker.initFromDetection(v.color, v.depth_raw, 1e-4));
+  INFO(tracker.getDetectionMessage());
+  // The .cao is a plain box of three different sides: its three half turns about its
+  // centre give poses no image can tell apart, one of the four is the truth.
+  const std::vector<vpHomogeneousMatrix> equivalents = tracker.getDetectionEquivalentPoses();
+  REQUIRE(equivalents.size() == 3);
+  const vpHomogeneousMatrix truth = to_homogeneous_matrix(*frames[0].truth());
+  const vpColVector centre{0.0, 0.0, 0.084094, 1.0};  // the middle of the .cao's eight corners
+  std::vector<vpHomogeneousMatrix> poses = equivalents;
+  poses.push_back(tracker.getPose());
+  int at_truth = 0;
+  for (const vpHomogeneousMatrix& pose : poses) {
+    CHECK((pose * centre - truth * centre).frobeniusNorm() < 0.005);
+    const double turn = rotation_angle_between(to_pose(pose).rotation(), to_pose(tracker.getPose()).rotation());
+    if (pose != tracker.getPose()) CHECK(turn == Approx(kPi).margin(0.01));
+    if (rotation_angle_between(to_pose(pose).rotation(), to_pose(truth).rotation()) < 5.0 * kPi / 180.0) ++at_truth;
+  }
+  CHECK(at_truth == 1);
+  // Tracking goes on from the detected pose.
+  tracker.track(to_visp(frames[1]).color, to_visp(frames[1]).depth_raw, 1e-4);
+  CHECK_NOTHROW(tracker.testTracking());
 }
 
 TEST_CASE("vpMbIcgTracker::loadModel adds parts to one rigid object") {
