@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "icgp/io/mesh_loader.h"
+#include "icgp/model/model_cache.h"
 #include "icgp/model/viewpoint_model_generator.h"
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
@@ -40,11 +41,12 @@ struct Fixture {
   Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.5, -0.6, 0.3), Eigen::Vector3d(0.01, -0.015, 0.45));
 
   Fixture() {
+    // Cached in the build tree: every test case is a process of its own.
     ModelGenerationOptions quiet;
     quiet.print_progress = false;
-    auto models = generate_viewpoint_models(
+    auto models = load_or_generate(
         mesh, {{ViewpointModel::Kind::kRegion, coarse_model_params()}, {ViewpointModel::Kind::kDepth, coarse_model_params()}},
-        quiet);
+        ICGP_TEST_CACHE_DIR, quiet);
     region_model = std::make_shared<ViewpointModel>(std::move(models[0]));
     depth_model = std::make_shared<ViewpointModel>(std::move(models[1]));
   }
