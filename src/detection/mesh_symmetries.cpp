@@ -28,8 +28,9 @@ struct SurfaceSample {
   int colour;
 };
 
-/// Surface points drawn uniformly by area (a fixed seed: the same answer every run), each
-/// with the index of its part's flat colour among the mesh's distinct colours.
+/// A mesh's surface: its centroid and second moment by area, and points drawn uniformly by
+/// area (a fixed seed: the same answer every run), each with the index of its part's flat
+/// colour among the mesh's distinct colours.
 class SampledSurface {
  public:
   explicit SampledSurface(const Mesh& mesh) {
@@ -65,10 +66,11 @@ class SampledSurface {
     }
     if (area > 0.0) centroid_ /= area;
     area_ = area;
+    if (!measurable()) return;
     spacing_ = std::sqrt(area / kSamples);
     std::mt19937 random(12345);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
-    for (int k = 0; k < kSamples && area > 0.0; ++k) {
+    for (int k = 0; k < kSamples; ++k) {
       const auto it = std::upper_bound(cumulative_area.begin(), cumulative_area.end(), uniform(random) * area);
       const Triangle& t = triangles[std::min<std::size_t>(it - cumulative_area.begin(), triangles.size() - 1)];
       // Uniform on the triangle: the square root keeps the density even towards vertex a.
@@ -78,6 +80,9 @@ class SampledSurface {
     for (std::size_t i = 0; i < samples_.size(); ++i) cells_[cell_key(samples_[i].point)].push_back(static_cast<int>(i));
   }
 
+  /// Enough area to sample: MeshLimits bound coordinates to 1e4 m, so with the spacing
+  /// this gives, cell indices stay far inside 64 bits.
+  bool measurable() const { return area_ > 1e-18; }
   const Eigen::Vector3d& centroid() const { return centroid_; }
 
   /// The axes worth turning about: the directions of the largest total face area
@@ -138,8 +143,8 @@ class SampledSurface {
                     static_cast<std::int64_t>(cell.z()));
   }
   static std::int64_t cell_key(std::int64_t x, std::int64_t y, std::int64_t z) {
-    // MeshLimits bound coordinates to 1e4 m and the spacing follows the mesh's size, so
-    // the cells of one mesh stay far inside 2^20 per axis.
+    // 20 bits per axis: cells further apart may share a key, which only adds candidates
+    // (has_sample_near measures the distance).
     return ((x & 0xFFFFF) << 40) | ((y & 0xFFFFF) << 20) | (z & 0xFFFFF);
   }
 
@@ -177,6 +182,7 @@ bool contains(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::Matrix
 std::vector<Pose> mesh_symmetries(const Mesh& mesh) {
   if (has_texture(mesh) || mesh.empty()) return {};
   const SampledSurface surface(mesh);
+  if (!surface.measurable()) return {};
 
   // Every turn is checked on its own: products of nearly symmetric turns (a box whose
   // sides are not quite square to each other) would compound into turns that are not.

@@ -55,13 +55,17 @@ TEST_CASE("mesh symmetries: the two-colour box keeps only the half turn about it
   CHECK(maps_vertices_onto_vertices(two_region, symmetries[0]));
 }
 
-TEST_CASE("mesh symmetries: a handle off every axis, or a texture, leaves none") {
+TEST_CASE("mesh symmetries: a handle off every axis, a texture or no area leaves none") {
   Mesh mug_like = box_mesh(Eigen::Vector3d(0.08, 0.1, 0.08), Eigen::Vector3f(0.9f, 0.9f, 0.9f));
   Mesh handle = box_mesh(Eigen::Vector3d(0.03, 0.04, 0.01), Eigen::Vector3f(0.9f, 0.9f, 0.9f));
   handle.transform(Posef(Eigen::Matrix3f::Identity(), Eigen::Vector3f(0.055f, 0.02f, 0.f)));
   mug_like.append(handle);
   CHECK(mesh_symmetries(mug_like).empty());
   CHECK(mesh_symmetries(load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj")).empty());
+  // No area to sample (every triangle on a line): nothing to claim.
+  Mesh line;
+  line.parts.push_back({{Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(0.1f, 0, 0), Eigen::Vector3f(0.2f, 0, 0)}, {}, {Eigen::Vector3i(0, 1, 2)}, {}});
+  CHECK(mesh_symmetries(line).empty());
 }
 
 TEST_CASE("mesh symmetries: the closed mug, its handle centred on the x axis, turns half about that axis") {
