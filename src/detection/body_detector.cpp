@@ -251,7 +251,7 @@ BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& re
       for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
     }
   } catch (const std::runtime_error&) {
-    // A cue that cannot start at this pose (a colour region out of view): not verified.
+    // A cue that cannot start at this pose (the body out of view): not verified.
     return {reference_T_body, 0.0, 0.0};
   }
   // Where depth is measured, a verified body also stands out of its surroundings there.
