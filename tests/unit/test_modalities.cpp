@@ -251,44 +251,61 @@ TEST_CASE("tracker: depth converted on read tracks exactly as the dense image, r
   CHECK(reads < static_cast<int>(measured.total()) / 20);
 }
 
-TEST_CASE("build_tracker: one region modality per region of a multi-region object") {
-  TrackerConfig config;
-  config.modalities = {CueKind::kRegion, CueKind::kDepth};
-  config.region_model = config.depth_model = coarse_model_params();
-  config.regions = {ICGP_MODELS_DIR "/two_region/region_body.obj", ICGP_MODELS_DIR "/two_region/region_lid.obj"};
-  config.cache_dir = (std::filesystem::temp_directory_path() / "icgp-test-multi-region-cache").string();
-  const Mesh object = load_mesh(ICGP_MODELS_DIR "/two_region/object.obj");
-  auto tracker = build_tracker(config, object, "two_region");
-  Body& body = tracker->body("two_region");
+namespace {
 
+/// models/two_region tracked with one region modality per colour region (and `modalities`'
+/// other cues), coarse models, with a renderer of its scenes in the fixture's cameras.
+struct TwoRegionTracker {
+  Mesh object = load_mesh(ICGP_MODELS_DIR "/two_region/object.obj");
+  std::unique_ptr<Tracker> tracker;
+  Body* body;
+  test::SceneRenderer scene;
+  explicit TwoRegionTracker(const std::vector<CueKind>& modalities)
+      : scene(object, Fixture::instance().color_k, Fixture::instance().depth_k, Fixture::instance().depth_T_color) {
+    TrackerConfig config;
+    config.modalities = modalities;
+    config.region_model = config.depth_model = coarse_model_params();
+    config.regions = {ICGP_MODELS_DIR "/two_region/region_body.obj", ICGP_MODELS_DIR "/two_region/region_lid.obj"};
+    config.cache_dir = (std::filesystem::temp_directory_path() / "icgp-test-multi-region-cache").string();
+    tracker = build_tracker(config, object, "two_region");
+    body = &tracker->body("two_region");
+  }
+};
+
+/// The body within `max_mm` and `max_deg` of the fixture's truth, and tracked.
+void check_at_truth(const Body& body, const BodyResult& result, double max_mm, double max_deg) {
+  const Pose& truth = Fixture::instance().truth;
+  const double t_mm = 1e3 * (body.reference_T_body.translation() - truth.translation()).norm();
+  const double r_deg = rotation_angle_between(body.reference_T_body.rotation(), truth.rotation()) * 180 / M_PI;
+  INFO("error " << t_mm << " mm, " << r_deg << " deg, quality " << result.quality);
+  CHECK(t_mm < max_mm);
+  CHECK(r_deg < max_deg);
+  CHECK(result.tracked);
+}
+
+}  // namespace
+
+TEST_CASE("build_tracker: one region modality per region of a multi-region object") {
+  TwoRegionTracker two_region({CueKind::kRegion, CueKind::kDepth});
+  Tracker* tracker = two_region.tracker.get();
+  Body& body = *two_region.body;
   Fixture& f = Fixture::instance();
-  test::SceneRenderer scene(object, f.color_k, f.depth_k, f.depth_T_color);
-  const Frame frame = scene.render(f.truth, "two_region");
+  const Frame frame = two_region.scene.render(f.truth, "two_region");
   body.reference_T_body = f.truth;
   tracker->start(frame);
   body.reference_T_body = perturbed(f.truth, 3.0, 3.0);
   std::vector<BodyResult> results;
   for (int i = 0; i < 3; ++i) results = tracker->track(frame);
   REQUIRE(results[0].modalities.size() == 3);  // region_body, region_lid, depth
-  const double t_mm = 1e3 * (body.reference_T_body.translation() - f.truth.translation()).norm();
-  const double r_deg = rotation_angle_between(body.reference_T_body.rotation(), f.truth.rotation()) * 180 / M_PI;
-  INFO("error " << t_mm << " mm, " << r_deg << " deg, quality " << results[0].quality);
-  CHECK(t_mm < 1.0);
-  CHECK(r_deg < 0.5);
-  CHECK(results[0].tracked);
+  check_at_truth(body, results[0], 1.0, 0.5);
 }
 
 TEST_CASE("multi-region: a region out of view at the start abstains, then learns its colours when it comes into view") {
-  TrackerConfig config;
-  config.modalities = {CueKind::kRegion};
-  config.region_model = coarse_model_params();
-  config.regions = {ICGP_MODELS_DIR "/two_region/region_body.obj", ICGP_MODELS_DIR "/two_region/region_lid.obj"};
-  config.cache_dir = (std::filesystem::temp_directory_path() / "icgp-test-multi-region-cache").string();
-  const Mesh object = load_mesh(ICGP_MODELS_DIR "/two_region/object.obj");
-  auto tracker = build_tracker(config, object, "two_region");
-  Body& body = tracker->body("two_region");
+  TwoRegionTracker two_region({CueKind::kRegion});
+  Tracker* tracker = two_region.tracker.get();
+  Body& body = *two_region.body;
   Fixture& f = Fixture::instance();
-  test::SceneRenderer scene(object, f.color_k, f.depth_k, f.depth_T_color);
+  test::SceneRenderer& scene = two_region.scene;
 
   // Seen from the front, 16 cm down: the lid (y 0.015 .. 0.04 m) lies below the image's
   // last row (y/z > 0.37), the body's top half is in view.
@@ -310,12 +327,7 @@ TEST_CASE("multi-region: a region out of view at the start abstains, then learns
   for (int i = 0; i < 3; ++i) results = tracker->track(frame);
   CHECK_FALSE(results[0].modalities[1].abstained);
   CHECK(results[0].modalities[1].score > 0.5);
-  const double t_mm = 1e3 * (body.reference_T_body.translation() - f.truth.translation()).norm();
-  const double r_deg = rotation_angle_between(body.reference_T_body.rotation(), f.truth.rotation()) * 180 / M_PI;
-  INFO("error " << t_mm << " mm, " << r_deg << " deg, quality " << results[0].quality);
-  CHECK(t_mm < 1.0);
-  CHECK(r_deg < 0.5);
-  CHECK(results[0].tracked);
+  check_at_truth(body, results[0], 1.0, 0.5);
 }
 
 namespace {

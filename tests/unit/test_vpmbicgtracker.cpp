@@ -404,7 +404,7 @@ TEST_CASE("vpMbIcgTracker::testTracking tells a tracked box from a lost one") {
   tracker.track(next.color, next.depth_raw, 1e-4);
   CHECK_NOTHROW(tracker.testTracking());
   CHECK(tracker.getTrackingQuality() > 0.5);
-  // The teabox .cao is a plain box: found at the truth or at its 180-degree twin, whose
+  // The teabox .cao is a plain box: found at the truth or at a 180-degree twin, whose
   // centre is the same point.
   const vpHomogeneousMatrix found = tracker.getPose(), truth = to_homogeneous_matrix(*frames[1].truth());
   const vpColVector centre{0.0, 0.0, 0.084094, 1.0};  // the middle of the .cao's eight corners
