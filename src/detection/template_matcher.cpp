@@ -174,22 +174,26 @@ std::vector<PoseCandidate> TemplateMatcher::match(OrientationPyramid& pyramid, c
       const ShapeTemplates::Template& t = all[index];
       if (near_R && rotation_angle_between(*near_R, t.camera_R_body) > window.max_rotation) continue;
       placed.place(t, lv.intrinsics, distance, kProbeOffsetPx / (1 << L));
-      std::fill(scores_.begin(), scores_.end(), 0);
-      for (const PlacedTemplate::Point& p : placed.points) {
-        const int qx = floor_div(p.dx, S), qy = floor_div(p.dy, S);
-        const std::uint8_t* source = responses.linear(p.bin, p.dx - qx * S, p.dy - qy * S);
-        const int shift = qy * cols + qx;
-        const int k0 = std::max(0, -shift), k1 = std::min(size, size - shift);
-        std::uint16_t* out = scores_.data();
-        // Indexing from the run's start, so that no pointer is formed outside the array.
-        for (int k = k0; k < k1; ++k) out[k] = static_cast<std::uint16_t>(out[k] + source[k + shift]);
-      }
-      const float normaliser = 1.f / (OrientationResponses::kMaxResponse * static_cast<float>(placed.points.size()));
       // Positions where the whole template lies in the image.
       const int ci0 = std::max(i0, floor_div(-placed.min_x + S - 1, S));
       const int ci1 = std::min(i1, floor_div(responses.width() - 1 - placed.max_x, S));
       const int cj0 = std::max(j0, floor_div(-placed.min_y + S - 1, S));
       const int cj1 = std::min(j1, floor_div(responses.height() - 1 - placed.max_y, S));
+      if (ci0 > ci1 || cj0 > cj1) continue;
+      // Scores are summed over the grid rows of those positions and their neighbours (the
+      // local-maximum test reads them): a window near a pose costs its own rows only.
+      const int run0 = std::max(0, cj0 - 1) * cols, run1 = std::min(rows, cj1 + 2) * cols;
+      std::fill(scores_.begin() + run0, scores_.begin() + run1, 0);
+      for (const PlacedTemplate::Point& p : placed.points) {
+        const int qx = floor_div(p.dx, S), qy = floor_div(p.dy, S);
+        const std::uint8_t* source = responses.linear(p.bin, p.dx - qx * S, p.dy - qy * S);
+        const int shift = qy * cols + qx;
+        const int k0 = std::max(run0, -shift), k1 = std::min(run1, size - shift);
+        std::uint16_t* out = scores_.data();
+        // Indexing from the run's start, so that no pointer is formed outside the array.
+        for (int k = k0; k < k1; ++k) out[k] = static_cast<std::uint16_t>(out[k] + source[k + shift]);
+      }
+      const float normaliser = 1.f / (OrientationResponses::kMaxResponse * static_cast<float>(placed.points.size()));
       const std::uint16_t threshold = static_cast<std::uint16_t>(std::ceil(min_score / normaliser));
       for (int j = cj0; j <= cj1; ++j)
         for (int i = ci0; i <= ci1; ++i) {
