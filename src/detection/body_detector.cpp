@@ -83,15 +83,22 @@ constexpr double kMinAppearance = 0.65;
 constexpr double kAppearanceGain = 0.1;
 
 /// The turns that map a box, a cylinder or a cube onto itself: 180 degrees about each
-/// axis of the body frame and 90 degrees either way about each, about the sphere centre.
-/// From a verified pose they give the poses an object of such a shape could equally have.
-std::vector<Eigen::Matrix3d> symmetric_turns() {
-  std::vector<Eigen::Matrix3d> turns;
+/// axis of the body frame and 90 degrees either way about each, about the sphere centre
+/// `c`. From a verified pose T they give the poses T·S an object of such a shape could
+/// equally have.
+std::vector<Pose> symmetric_turns(const Eigen::Vector3d& c) {
+  std::vector<Pose> turns;
   for (int axis = 0; axis < 3; ++axis)
-    for (const double angle : {kPi, kPi / 2.0, -kPi / 2.0})
-      turns.push_back(Eigen::AngleAxisd(angle, Eigen::Vector3d::Unit(axis)).toRotationMatrix());
+    for (const double angle : {kPi, kPi / 2.0, -kPi / 2.0}) {
+      const Eigen::Matrix3d turn = Eigen::AngleAxisd(angle, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+      turns.emplace_back(turn, c - turn * c);
+    }
   return turns;
 }
+
+/// Turns about a round shape's axis compared by appearance: a 15-degree step leaves the
+/// best of them within 7.5 degrees, which the texture alignment pulls in.
+constexpr double kRoundTurnStep = 15.0 * kPi / 180.0;
 
 /// The refining tracker: the body alone, with its region cue and, where the rig has one,
 /// its depth cue; texture is left out, since its keyframe would be taken at the unrefined pose.
@@ -107,6 +114,34 @@ std::vector<CameraCues> refinement_cameras(const std::vector<CameraCues>& camera
   std::vector<CameraCues> out = cameras;
   for (CameraCues& c : out) c.texture = false;
   return out;
+}
+
+/// The measured depth's resolution for template matching (RayDepth), over the whole image.
+constexpr int kRayDepthWidth = 160;
+/// Image pixels around a near search's templates that their probes and a level's grid reach.
+constexpr double kWindowMarginPx = 32.0;
+
+/// The part of `color` a search near a pose reads: the window's centre, its radius, the
+/// largest template's radius at the window's nearest distance, and a margin for the
+/// template's probes and the gradients' spread; the intrinsics moved to the part.
+ColorImage window_crop(const ColorImage& color, const SearchWindow& window, const Sphere& sphere) {
+  const Intrinsics& K = color.intrinsics;
+  const Eigen::Vector3d centre = *window.near * sphere.centre;
+  if (centre.z() <= 0.0) return color;
+  const Eigen::Vector2d px = K.project(centre);
+  const double half = window.radius_px + K.fu * sphere.radius / window.min_distance + kWindowMarginPx;
+  const int x0 = std::clamp(static_cast<int>(std::floor(px.x() - half)), 0, K.width - 1);
+  const int y0 = std::clamp(static_cast<int>(std::floor(px.y() - half)), 0, K.height - 1);
+  const int x1 = std::clamp(static_cast<int>(std::ceil(px.x() + half)), x0 + 1, K.width);
+  const int y1 = std::clamp(static_cast<int>(std::ceil(px.y() + half)), y0 + 1, K.height);
+  ColorImage crop = color;
+  crop.image = color.image(cv::Rect(x0, y0, x1 - x0, y1 - y0));
+  crop.intrinsics.pu -= x0;
+  crop.intrinsics.pv -= y0;
+  crop.intrinsics.width = x1 - x0;
+  crop.intrinsics.height = y1 - y0;
+  crop.mask = {};
+  return crop;
 }
 
 }  // namespace
@@ -144,6 +179,11 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
   coarse_matcher_ = std::make_unique<TemplateMatcher>(*coarse_templates_);
   appearance_ = has_appearance(mesh);
   symmetries_ = mesh_symmetries(mesh);
+  turns_ = symmetric_turns(templates_->sphere().centre);
+  // A round shape (a labelled can) fits its contour and depth at any turn about its axis;
+  // with appearance, those turns are compared too (without, they are its symmetries).
+  if (appearance_)
+    for (const Pose& turn : round_axis_turns(mesh, kRoundTurnStep)) turns_.push_back(turn);
   if (has_texture(mesh)) {
     auto keypoints =
         std::make_unique<KeypointModel>(render_training_views(refiner_->renderer(), refiner_->body(body_name)));
@@ -240,13 +280,13 @@ double BodyDetector::place_in_depth(const Frame& frame, PoseCandidate& candidate
   return agreeing / static_cast<double>(view.surface.size());
 }
 
-BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& reference_T_body) {
+BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& reference_T_body, int stages) {
   refiner_->body(body_name_).reference_T_body = reference_T_body;
   BodyResult result;
   // The colour statistics are learnt where the cues start: a second start at the refined
   // pose learns them again from the body's own pixels.
   try {
-    for (int stage = 0; stage < kRefinementStages; ++stage) {
+    for (int stage = 0; stage < stages; ++stage) {
       refiner_->start(frame);
       for (int round = 0; round < kRefinementRounds; ++round) result = refiner_->track(frame).front();
     }
@@ -307,8 +347,9 @@ double BodyDetector::appearance_agreement(const ColorImage& color, const Pose& r
 
 std::optional<BodyDetector::Hypothesis> BodyDetector::refine_and_verify(const Frame& frame, const ColorImage& color,
                                                                       const cv::Mat& grey, const Pose& start,
-                                                                      bool from_texture, Detection& detection) {
-  Hypothesis h = refine(frame, start);
+                                                                      bool from_texture, int stages,
+                                                                      Detection& detection) {
+  Hypothesis h = refine(frame, start, stages);
   ++detection.refined;
   if (h.quality < params_.accept_quality) return std::nullopt;
   const auto aligned = [&](const Pose& pose) {
@@ -331,11 +372,13 @@ std::optional<BodyDetector::Hypothesis> BodyDetector::refine_and_verify(const Fr
     }
   } else if (appearance_) {
     h.appearance = appearance_agreement(color, h.reference_T_body);
-    // With depth the shape fits a body turned a little about an axis it is round about
-    // (a can's label) as well: the texture turns it back, and the cues refine it again.
-    if (alignment_ && h.appearance < kMinAppearance)
+    // With depth the shape fits a body turned about an axis it is round about (a can's
+    // label) as well as the right pose, and its colour regions may not tell either: only
+    // the texture turns it back (5-15 degrees off on the can, looking alike at NCC
+    // 0.65-0.81), and the cues refine it again.
+    if (alignment_)
       if (const std::optional<Pose> pose = aligned(h.reference_T_body)) {
-        Hypothesis again = refine(frame, *pose);
+        Hypothesis again = refine(frame, *pose, stages);
         ++detection.refined;
         again.appearance = appearance_agreement(color, again.reference_T_body);
         if (again.quality >= params_.accept_quality && again.appearance > h.appearance) h = again;
@@ -361,10 +404,15 @@ std::vector<PoseCandidate> BodyDetector::template_candidates(const Frame& frame,
     c.support = std::max(agreement, 0.0) + std::max(silhouette, 0.0);
     return true;
   };
+  // Near a pose, only the part of the image its window's templates can reach is searched:
+  // the same camera with its principal point moved, so the poses found are unchanged.
+  const ColorImage searched = window.near ? window_crop(color, window, templates_->sphere()) : color;
   std::optional<RayDepth> ray_depth;
   SearchWindow gated = window;
-  if (has_depth) gated.depth = &ray_depth.emplace(*depth, color);
-  OrientationPyramid pyramid(color);
+  if (has_depth)
+    gated.depth = &ray_depth.emplace(*depth, searched,
+                                     std::max(1, kRayDepthWidth * searched.intrinsics.width / color.intrinsics.width));
+  OrientationPyramid pyramid(searched);
   const auto best_ranked = [&](std::vector<PoseCandidate> found) {
     std::stable_sort(found.begin(), found.end(), [](const PoseCandidate& a, const PoseCandidate& b) {
       return a.score + a.support > b.score + b.support;
@@ -403,6 +451,9 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     if (it != others.end()) occluder->reference_T_body = it->second;
   }
   Detection detection;
+  // Near a pose the body was just trusted at, its colours are learnt where they are: one
+  // stage is enough, and the cost per frame stays bounded.
+  const int stages = window.near ? 1 : kRefinementStages;
   const ColorImage* color = frame.find_color(color_camera_);
   if (!color) {
     detection.why_not = "the frame has no image from camera '" + color_camera_ + "' to search";
@@ -424,7 +475,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   // Keeps a start's verified refinement, and says whether it fits so well that the other
   // candidates have nothing to win but a symmetric twin (which the turns below find).
   const auto refined_confidently = [&](const Pose& reference_T_body, bool from_texture = false) {
-    const std::optional<Hypothesis> h = refine_and_verify(frame, *color, grey, reference_T_body, from_texture, detection);
+    const std::optional<Hypothesis> h = refine_and_verify(frame, *color, grey, reference_T_body, from_texture, stages, detection);
     if (!h) return false;
     verified.push_back(*h);
     // Only a pose that also looks like the body: another object of its shape may fit as well.
@@ -442,9 +493,12 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   if (!confident)
     for (const PoseCandidate& candidate : template_candidates(frame, *color, window, hypotheses, detection))
       if (refined_confidently(reference_T_camera * candidate.camera_T_body)) break;
-  // The turns of a symmetric shape are far outside a local search's window, whose poses
-  // are near one the tracker trusted: only a whole-image search tries them.
-  const bool try_turns = !window.near;
+  // A local search's window is near a pose the tracker trusted: of the turns, only those
+  // it spans (a round shape's small turns about its axis) are tried there.
+  std::vector<Pose> turns;
+  for (const Pose& turn : turns_)
+    if (!window.near || Eigen::AngleAxisd(turn.rotation()).angle() <= window.max_rotation)
+      turns.push_back(turn);
   if (appearance_ && !verified.empty()) {
     // The shape may not tell a box from the box turned about an axis: the appearance does.
     // A turn that maps the shape onto itself needs no refinement to be compared, so only
@@ -452,42 +506,35 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     const Hypothesis best = *std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
       return a.quality < b.quality;
     });
-    const Eigen::Vector3d c = templates_->sphere().centre;
     std::optional<Pose> look_alike;
-    double look_alike_appearance = best.appearance + kAppearanceGain;
-    for (const Eigen::Matrix3d& turn : try_turns ? symmetric_turns() : std::vector<Eigen::Matrix3d>{}) {
-      const Pose turned = best.reference_T_body * Pose(Eigen::Matrix3d::Identity(), c) * Pose(turn, Eigen::Vector3d::Zero()) *
-                          Pose(Eigen::Matrix3d::Identity(), -c);
+    // A best pose that does not look like the image leaves any better-looking turn worth
+    // its refinement.
+    double look_alike_appearance = best.appearance + (best.appearance >= kMinAppearance ? kAppearanceGain : 0.0);
+    for (const Pose& turn : turns) {
+      const Pose turned = best.reference_T_body * turn;
       const double appearance = appearance_agreement(*color, turned);
       if (appearance <= look_alike_appearance) continue;
       look_alike = turned;
       look_alike_appearance = appearance;
     }
-    if (look_alike) {
-      Hypothesis h = refine(frame, *look_alike);
-      ++detection.refined;
-      if (h.quality >= params_.accept_quality) {
-        h.appearance = appearance_agreement(*color, h.reference_T_body);
-        verified.push_back(h);
-      }
-    }
+    if (look_alike)
+      if (const std::optional<Hypothesis> h = refine_and_verify(frame, *color, grey, *look_alike, false, stages, detection))
+        verified.push_back(*h);
     // Without depth only the appearance tells a textured body from a picture of its shape
     // (a painted rectangle for a box), and with depth only the appearance tells it from
     // another object of its size.
     verified.erase(std::remove_if(verified.begin(), verified.end(),
                                   [](const Hypothesis& h) { return h.appearance < kMinAppearance; }),
                    verified.end());
-  } else if (!verified.empty() && try_turns) {
+  } else if (!verified.empty()) {
     // Without appearance, a turn that is no symmetry of the shape shows in the fit of its
     // contour and depth (a mug's handle): every turn is refined and the best fit wins; the
     // turns that fit as well are the equivalent poses of a symmetric shape.
     const Hypothesis best = *std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
       return a.quality < b.quality;
     });
-    const Eigen::Vector3d c = templates_->sphere().centre;
-    for (const Eigen::Matrix3d& turn : symmetric_turns()) {
-      const Hypothesis h = refine(frame, best.reference_T_body * Pose(Eigen::Matrix3d::Identity(), c) *
-                                             Pose(turn, Eigen::Vector3d::Zero()) * Pose(Eigen::Matrix3d::Identity(), -c));
+    for (const Pose& turn : turns) {
+      const Hypothesis h = refine(frame, best.reference_T_body * turn, stages);
       ++detection.refined;
       if (h.quality >= params_.accept_quality) verified.push_back(h);
     }

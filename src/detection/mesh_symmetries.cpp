@@ -30,10 +30,10 @@ struct SurfaceSample {
 
 /// A mesh's surface: its centroid and second moment by area, and points drawn uniformly by
 /// area (a fixed seed: the same answer every run), each with the index of its part's flat
-/// colour among the mesh's distinct colours.
+/// colour among the mesh's distinct colours (all 0 for its shape alone).
 class SampledSurface {
  public:
-  explicit SampledSurface(const Mesh& mesh) {
+  SampledSurface(const Mesh& mesh, Keeping keeping) {
     struct Triangle {
       Eigen::Vector3d a, b, c;
       int colour;
@@ -46,7 +46,7 @@ class SampledSurface {
       const auto same = [&](const Eigen::Vector3f& c) { return (c - part.material.diffuse_rgb).cwiseAbs().maxCoeff() < 1.f / 64; };
       auto found = std::find_if(colours.begin(), colours.end(), same);
       if (found == colours.end()) found = colours.insert(colours.end(), part.material.diffuse_rgb);
-      const int colour = static_cast<int>(found - colours.begin());
+      const int colour = keeping == Keeping::kShape ? 0 : static_cast<int>(found - colours.begin());
       for (const Eigen::Vector3i& t : part.triangles) {
         Triangle triangle{part.vertices[t[0]].cast<double>(), part.vertices[t[1]].cast<double>(),
                           part.vertices[t[2]].cast<double>(), colour};
@@ -179,9 +179,9 @@ bool contains(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::Matrix
 
 }  // namespace
 
-std::vector<Pose> mesh_symmetries(const Mesh& mesh) {
-  if (has_texture(mesh) || mesh.empty()) return {};
-  const SampledSurface surface(mesh);
+std::vector<Pose> mesh_symmetries(const Mesh& mesh, Keeping keeping) {
+  if ((keeping == Keeping::kAppearance && has_texture(mesh)) || mesh.empty()) return {};
+  const SampledSurface surface(mesh, keeping);
   if (!surface.measurable()) return {};
 
   // Every turn is checked on its own: products of nearly symmetric turns (a box whose
@@ -198,6 +198,29 @@ std::vector<Pose> mesh_symmetries(const Mesh& mesh) {
   const Eigen::Vector3d& c = surface.centroid();
   for (std::size_t k = 1; k < group.size(); ++k) symmetries.emplace_back(group[k], c - group[k] * c);
   return symmetries;
+}
+
+std::vector<Pose> round_axis_turns(const Mesh& mesh, double step) {
+  if (mesh.empty() || !(step > 0.0)) return {};
+  const SampledSurface surface(mesh, Keeping::kShape);
+  if (!surface.measurable()) return {};
+  const int steps = static_cast<int>(std::ceil(2.0 * kPi / step));
+  std::vector<Eigen::Vector3d> round;
+  std::vector<Pose> turns;
+  const Eigen::Vector3d& c = surface.centroid();
+  for (const Eigen::Vector3d& axis : surface.candidate_axes()) {
+    if (std::any_of(round.begin(), round.end(), [&](const Eigen::Vector3d& a) { return std::abs(a.dot(axis)) > std::cos(kSameRotation); }))
+      continue;
+    const bool is_round = surface.maps_onto_itself(Eigen::AngleAxisd(kPi / 2.0, axis).toRotationMatrix()) &&
+                          surface.maps_onto_itself(Eigen::AngleAxisd(kPi / 3.0, axis).toRotationMatrix());
+    if (!is_round) continue;
+    round.push_back(axis);
+    for (int k = 1; k < steps; ++k) {
+      const Eigen::Matrix3d turn = Eigen::AngleAxisd(2.0 * kPi * k / steps, axis).toRotationMatrix();
+      turns.emplace_back(turn, c - turn * c);
+    }
+  }
+  return turns;
 }
 
 }  // namespace icgp

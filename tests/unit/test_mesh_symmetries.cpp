@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// mesh_symmetries against the known rotation groups of boxes, a cube and the two-colour box.
+// mesh_symmetries against the known rotation groups of boxes, a cube and the two-colour box;
+// round_axis_turns against a labelled can (round) and shapes that are not round.
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
@@ -76,4 +77,27 @@ TEST_CASE("mesh symmetries: the closed mug, its handle centred on the x axis, tu
   CHECK(turn.angle() == Approx(kPi).margin(1e-6));
   CHECK(std::abs(turn.axis().x()) == Approx(1.0).margin(1e-6));
   CHECK(symmetries[0].translation().norm() < 1e-6);
+}
+
+TEST_CASE("round axis turns: the labelled can's shape is round about its axis, whatever its label says") {
+  const Mesh can = load_mesh(ICGP_MODELS_DIR "/labelled_can/object.obj");
+  // Its label breaks every symmetry of its look, not of its shape.
+  CHECK(mesh_symmetries(can).empty());
+  CHECK_FALSE(mesh_symmetries(can, Keeping::kShape).empty());
+  const std::vector<Pose> turns = round_axis_turns(can, deg_to_rad(15.0));
+  REQUIRE(turns.size() == 23);
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    const Eigen::AngleAxisd turn(turns[k].rotation());
+    CHECK(std::abs(turn.axis().y()) == Approx(1.0).margin(1e-6));
+    // 15, 30, ... 345 degrees (as 15..180 about +y or -y).
+    const double degrees = turn.angle() * 180.0 / kPi;
+    CHECK(std::remainder(degrees, 15.0) == Approx(0.0).margin(1e-6));
+    CHECK(turns[k].translation().norm() < 1e-3);  // about the can's centroid, on its axis
+  }
+}
+
+TEST_CASE("round axis turns: a box, a cube and a mug with its handle have no round axis") {
+  CHECK(round_axis_turns(box_mesh(Eigen::Vector3d(0.1, 0.08, 0.06), Eigen::Vector3f(0.5f, 0.5f, 0.5f)), deg_to_rad(15.0)).empty());
+  CHECK(round_axis_turns(box_mesh(Eigen::Vector3d(0.05, 0.05, 0.05), Eigen::Vector3f(0.5f, 0.5f, 0.5f)), deg_to_rad(15.0)).empty());
+  CHECK(round_axis_turns(load_mesh(ICGP_MODELS_DIR "/textureless_mug/textureless_mug.obj"), deg_to_rad(15.0)).empty());
 }

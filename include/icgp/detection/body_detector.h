@@ -76,13 +76,15 @@ class BodyDetector {
   /// on and checked against the measured surface; whole-image searches coarse to fine.
   std::vector<PoseCandidate> template_candidates(const Frame& frame, const ColorImage& color,
                                                  const SearchWindow& window, int hypotheses, Detection& detection);
-  /// Tracker frames on `frame` from `reference_T_body`, coarse to fine.
-  Hypothesis refine(const Frame& frame, const Pose& reference_T_body);
+  /// Tracker frames on `frame` from `reference_T_body`, coarse to fine, in `stages` starts
+  /// (each learning the colour statistics again where the one before ended).
+  Hypothesis refine(const Frame& frame, const Pose& reference_T_body, int stages);
   /// `start` refined; when its quality verifies it, with its appearance, aligned with the
   /// texture of a textured body (docs/detection.md, step 7); nothing otherwise.
   /// `from_texture`: the start is a keypoint pose, which may itself be the better one.
   std::optional<Hypothesis> refine_and_verify(const Frame& frame, const ColorImage& color, const cv::Mat& grey,
-                                              const Pose& start, bool from_texture, Detection& detection);
+                                              const Pose& start, bool from_texture, int stages,
+                                              Detection& detection);
   /// Zero-mean normalised cross-correlation in [-1, 1] of the body's render (its texture
   /// and colours) with the image over the body's pixels; -1 when it is not in view.
   double appearance_agreement(const ColorImage& color, const Pose& reference_T_body);
@@ -104,6 +106,8 @@ class BodyDetector {
   std::unique_ptr<TemplateMatcher> coarse_matcher_;
   bool appearance_ = false;  ///< the mesh has a texture or colours to compare
   std::vector<Pose> symmetries_;  ///< mesh_symmetries of the body: S with T·S equivalent to T
+  /// Turns S of a verified pose T whose T·S the shape may fit as well (docs/detection.md, step 6).
+  std::vector<Pose> turns_;
   /// A textured mesh's keypoints and texture alignment, null for a mesh without texture.
   std::unique_ptr<KeypointModel> keypoints_;
   std::unique_ptr<TextureAlignment> alignment_;

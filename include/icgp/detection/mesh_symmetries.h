@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// The rotations that map a body's mesh onto itself, colours included.
+// The rotations that map a body's mesh onto itself (colours included, or its shape alone).
 #pragma once
 
 #include <vector>
@@ -8,6 +8,9 @@
 #include "icgp/base/pose.h"
 
 namespace icgp {
+
+/// What a symmetry keeps: the body's look (its shape, texture and part colours), or its shape alone.
+enum class Keeping { kAppearance, kShape };
 
 /// The proper symmetries S of `mesh` other than the identity: rigid motions of the body
 /// frame that map its surface onto itself, every point onto one of the same flat colour.
@@ -19,7 +22,14 @@ namespace icgp {
 /// the turned samples land within two sample spacings of a sample of their colour; the
 /// group they generate is returned. A textured mesh has none (its print is taken to
 /// break any symmetry of its shape); a continuous symmetry (a plain cylinder) comes out as
-/// its turns of 60 degrees.
-std::vector<Pose> mesh_symmetries(const Mesh& mesh);
+/// its turns of 60 degrees. With Keeping::kShape, textures and colours are ignored.
+std::vector<Pose> mesh_symmetries(const Mesh& mesh, Keeping keeping = Keeping::kAppearance);
+
+/// Turns in steps of about `step` radians about every axis the shape of `mesh` is round
+/// about (its turns of a quarter and of a sixth both map it onto itself: a cylinder, a
+/// cone), through its centroid; textures and colours ignored. Contour and depth cannot
+/// tell these turns of a labelled can apart: a detector compares them by appearance.
+/// Empty when the shape has no such axis.
+std::vector<Pose> round_axis_turns(const Mesh& mesh, double step);
 
 }  // namespace icgp
