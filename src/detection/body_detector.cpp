@@ -182,8 +182,11 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
   turns_ = symmetric_turns(templates_->sphere().centre);
   // A round shape (a labelled can) fits its contour and depth at any turn about its axis;
   // with appearance, those turns are compared too (without, they are its symmetries).
-  if (appearance_)
-    for (const Pose& turn : round_axis_turns(mesh, kRoundTurnStep)) turns_.push_back(turn);
+  if (appearance_) {
+    const std::vector<Pose> round_turns = round_axis_turns(mesh, kRoundTurnStep);
+    round_ = !round_turns.empty();
+    turns_.insert(turns_.end(), round_turns.begin(), round_turns.end());
+  }
   if (has_texture(mesh)) {
     auto keypoints =
         std::make_unique<KeypointModel>(render_training_views(refiner_->renderer(), refiner_->body(body_name)));
@@ -375,8 +378,9 @@ std::optional<BodyDetector::Hypothesis> BodyDetector::refine_and_verify(const Fr
     // With depth the shape fits a body turned about an axis it is round about (a can's
     // label) as well as the right pose, and its colour regions may not tell either: only
     // the texture turns it back (5-15 degrees off on the can, looking alike at NCC
-    // 0.65-0.81), and the cues refine it again.
-    if (alignment_)
+    // 0.65-0.81), and the cues refine it again. Any other shape is aligned only when it
+    // does not look like the image.
+    if (alignment_ && (round_ || h.appearance < kMinAppearance))
       if (const std::optional<Pose> pose = aligned(h.reference_T_body)) {
         Hypothesis again = refine(frame, *pose, stages);
         ++detection.refined;

@@ -108,6 +108,9 @@ class BodyDetector {
   std::vector<Pose> symmetries_;  ///< mesh_symmetries of the body: S with T·S equivalent to T
   /// Turns S of a verified pose T whose T·S the shape may fit as well (docs/detection.md, step 6).
   std::vector<Pose> turns_;
+  /// With appearance: the shape is round about an axis (round_axis_turns), so only its
+  /// texture or colours fix the turn about it.
+  bool round_ = false;
   /// A textured mesh's keypoints and texture alignment, null for a mesh without texture.
   std::unique_ptr<KeypointModel> keypoints_;
   std::unique_ptr<TextureAlignment> alignment_;
