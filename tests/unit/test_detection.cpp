@@ -59,23 +59,44 @@ TEST_CASE("orientation responses: a vertical step edge answers orientation 0 nea
   CHECK(responses.linear(4, 0, 2)[k] == 0);
 }
 
+/// An RGB-D rig as the tests render it (colour Camera1 and depth Camera2 of 640x480, 2.5 cm
+/// apart, over the test scene's clutter) and a detector of `mesh_path` with every cue, on
+/// the coarse test models cached in a folder of its own.
+struct RgbdDetection {
+  static TrackerConfig config(const std::string& cache_dir) {
+    TrackerConfig config = load_tracker_config(ICGP_TEST_DATA_DIR "/../configs/coarse_models.yaml");
+    config.cache_dir = cache_dir;
+    config.region.color_camera = "Camera1";
+    config.region.depth_camera = "Camera2";
+    config.depth.depth_camera = "Camera2";
+    config.texture.color_camera = "Camera1";
+    config.texture.depth_camera = "Camera2";
+    return config;
+  }
+
+  static Intrinsics intrinsics() { return {600.0, 600.0, 319.5, 239.5, 640, 480}; }
+  static Pose depth_T_color() { return {Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.025, 0.0, 0.0)}; }
+
+  RgbdDetection(const std::string& mesh_path, const std::string& cache_prefix)
+      : cache(cache_prefix),
+        mesh(load_mesh(mesh_path)),
+        scene(mesh, intrinsics(), intrinsics(), depth_T_color()),
+        tracker_config(config(cache.path().string())),
+        detector(tracker_config, mesh, "object", configured_cameras(tracker_config)) {}
+
+  test::TempDir cache;
+  Mesh mesh;
+  test::SceneRenderer scene;
+  TrackerConfig tracker_config;
+  BodyDetector detector;
+};
+
 TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm and 5 degrees, not in a blank one") {
-  const test::TempDir cache("icgp-detection-cache");
-  TrackerConfig config = load_tracker_config(ICGP_TEST_DATA_DIR "/../configs/coarse_models.yaml");
-  config.cache_dir = cache.path().string();
-  const Mesh mesh = load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj");
-  const Intrinsics color_k{600.0, 600.0, 319.5, 239.5, 640, 480};
-  const Pose depth_T_color{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.025, 0.0, 0.0)};
-  test::SceneRenderer scene(mesh, color_k, color_k, depth_T_color);
-  config.region.color_camera = "Camera1";
-  config.region.depth_camera = "Camera2";
-  config.depth.depth_camera = "Camera2";
-  config.texture.color_camera = "Camera1";
-  config.texture.depth_camera = "Camera2";
-  BodyDetector detector(config, mesh, "object", configured_cameras(config));
+  RgbdDetection rig(ICGP_MODELS_DIR "/textured_box/textured_box.obj", "icgp-detection-cache");
+  BodyDetector& detector = rig.detector;
 
   const Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.5, -0.6, 0.3), Eigen::Vector3d(0.03, -0.02, 0.45));
-  const Frame frame = scene.render(truth);
+  const Frame frame = rig.scene.render(truth);
   check_found_within_5mm_5deg(detector.detect(frame), truth, "detection");
 
   // The same clutter of coloured squares without the box (a 1 mm speck in its place): a
@@ -86,7 +107,8 @@ TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm an
   Mesh nothing;
   nothing.source = "speck";
   nothing.parts.push_back(speck);
-  test::SceneRenderer clutter(nothing, color_k, color_k, depth_T_color);
+  test::SceneRenderer clutter(nothing, RgbdDetection::intrinsics(), RgbdDetection::intrinsics(),
+                              RgbdDetection::depth_T_color());
   for (const double z : {0.35, 0.45, 0.6}) {
     const Detection none = detector.detect(clutter.render(Pose(truth.rotation(), Eigen::Vector3d(0.0, 0.0, z))));
     INFO("clutter plane " << z + 0.3 << " m away");
@@ -148,24 +170,13 @@ TEST_CASE("detection: texture alignment pulls a pose a few millimetres off onto 
 }
 
 TEST_CASE("detection: the labelled can, whose shape fits any turn about its axis, is found at its label's turn") {
-  const test::TempDir cache("icgp-detection-can-cache");
-  TrackerConfig config = load_tracker_config(ICGP_TEST_DATA_DIR "/../configs/coarse_models.yaml");
-  config.cache_dir = cache.path().string();
-  const Mesh mesh = load_mesh(ICGP_MODELS_DIR "/labelled_can/object.obj");
-  const Intrinsics color_k{600.0, 600.0, 319.5, 239.5, 640, 480};
-  const Pose depth_T_color{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.025, 0.0, 0.0)};
-  test::SceneRenderer scene(mesh, color_k, color_k, depth_T_color);
-  config.region.color_camera = "Camera1";
-  config.region.depth_camera = "Camera2";
-  config.depth.depth_camera = "Camera2";
-  config.texture.color_camera = "Camera1";
-  config.texture.depth_camera = "Camera2";
-  BodyDetector detector(config, mesh, "object", configured_cameras(config));
+  RgbdDetection rig(ICGP_MODELS_DIR "/labelled_can/object.obj", "icgp-detection-can-cache");
+  BodyDetector& detector = rig.detector;
 
   // Seen from the side, a little from above: the contour and the depth say nothing of the
   // turn about the can's (y) axis; only the label does.
   const Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.35, 0.9, 0.05), Eigen::Vector3d(0.02, 0.01, 0.5));
-  const Frame frame = scene.render(truth);
+  const Frame frame = rig.scene.render(truth);
   check_found_within_5mm_5deg(detector.detect(frame), truth, "labelled can");
 
   // Lost at a pose turned 15 degrees about its axis and 1 cm off: the local search turns it
