@@ -116,8 +116,6 @@ std::vector<CameraCues> refinement_cameras(const std::vector<CameraCues>& camera
   return out;
 }
 
-/// The measured depth's resolution for template matching (RayDepth), over the whole image.
-constexpr int kRayDepthWidth = 160;
 /// Image pixels around a near search's templates that their probes and a level's grid reach.
 constexpr double kWindowMarginPx = 32.0;
 
@@ -414,8 +412,9 @@ std::vector<PoseCandidate> BodyDetector::template_candidates(const Frame& frame,
   std::optional<RayDepth> ray_depth;
   SearchWindow gated = window;
   if (has_depth)
-    gated.depth = &ray_depth.emplace(*depth, searched,
-                                     std::max(1, kRayDepthWidth * searched.intrinsics.width / color.intrinsics.width));
+    // A crop keeps the whole image's cell size.
+    gated.depth = &ray_depth.emplace(
+        *depth, searched, std::max(1, RayDepth::kWidth * searched.intrinsics.width / color.intrinsics.width));
   OrientationPyramid pyramid(searched);
   const auto best_ranked = [&](std::vector<PoseCandidate> found) {
     std::stable_sort(found.begin(), found.end(), [](const PoseCandidate& a, const PoseCandidate& b) {

@@ -13,9 +13,12 @@ namespace icgp {
 /// template of the wrong size for that distance is not scored there.
 class RayDepth {
  public:
+  /// Cells across the whole image (4 pixels each in a 640-pixel-wide one).
+  static constexpr int kWidth = 160;
+
   /// Every `step`-th pixel of `depth` in both directions, into a `width`-pixel-wide image
   /// of `color`'s camera (the height follows its aspect ratio).
-  RayDepth(const DepthImage& depth, const ColorImage& color, int width = 160, int step = 2);
+  RayDepth(const DepthImage& depth, const ColorImage& color, int width = kWidth, int step = 2);
 
   /// The nearest measured depth within `radius` cells of the colour pixel (u, v) (full
   /// resolution); 0 where nothing is measured there.
