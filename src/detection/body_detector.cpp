@@ -481,7 +481,8 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   // Keeps a start's verified refinement, and says whether it fits so well that the other
   // candidates have nothing to win but a symmetric twin (which the turns below find).
   const auto refined_confidently = [&](const Pose& reference_T_body, bool from_texture = false) {
-    const std::optional<Hypothesis> h = refine_and_verify(frame, *color, grey, reference_T_body, from_texture, stages, detection);
+    const std::optional<Hypothesis> h =
+        refine_and_verify(frame, *color, grey, reference_T_body, from_texture, stages, detection);
     if (!h) return false;
     verified.push_back(*h);
     // Only a pose that also looks like the body: another object of its shape may fit as well.
@@ -524,7 +525,8 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
       look_alike_appearance = appearance;
     }
     if (look_alike)
-      if (const std::optional<Hypothesis> h = refine_and_verify(frame, *color, grey, *look_alike, false, stages, detection))
+      if (const std::optional<Hypothesis> h =
+              refine_and_verify(frame, *color, grey, *look_alike, false, stages, detection))
         verified.push_back(*h);
     // Without depth only the appearance tells a textured body from a picture of its shape
     // (a painted rectangle for a box), and with depth only the appearance tells it from

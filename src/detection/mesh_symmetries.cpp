@@ -209,8 +209,8 @@ std::vector<Pose> round_axis_turns(const Mesh& mesh, double step) {
   std::vector<Pose> turns;
   const Eigen::Vector3d& c = surface.centroid();
   for (const Eigen::Vector3d& axis : surface.candidate_axes()) {
-    if (std::any_of(round.begin(), round.end(), [&](const Eigen::Vector3d& a) { return std::abs(a.dot(axis)) > std::cos(kSameRotation); }))
-      continue;
+    const auto same_axis = [&](const Eigen::Vector3d& a) { return std::abs(a.dot(axis)) > std::cos(kSameRotation); };
+    if (std::any_of(round.begin(), round.end(), same_axis)) continue;
     const bool is_round = surface.maps_onto_itself(Eigen::AngleAxisd(kPi / 2.0, axis).toRotationMatrix()) &&
                           surface.maps_onto_itself(Eigen::AngleAxisd(kPi / 3.0, axis).toRotationMatrix());
     if (!is_round) continue;

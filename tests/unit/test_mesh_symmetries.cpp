@@ -97,7 +97,8 @@ TEST_CASE("round axis turns: the labelled can's shape is round about its axis, w
 }
 
 TEST_CASE("round axis turns: a box, a cube and a mug with its handle have no round axis") {
-  CHECK(round_axis_turns(box_mesh(Eigen::Vector3d(0.1, 0.08, 0.06), Eigen::Vector3f(0.5f, 0.5f, 0.5f)), deg_to_rad(15.0)).empty());
-  CHECK(round_axis_turns(box_mesh(Eigen::Vector3d(0.05, 0.05, 0.05), Eigen::Vector3f(0.5f, 0.5f, 0.5f)), deg_to_rad(15.0)).empty());
+  const Eigen::Vector3f grey(0.5f, 0.5f, 0.5f);
+  CHECK(round_axis_turns(box_mesh(Eigen::Vector3d(0.1, 0.08, 0.06), grey), deg_to_rad(15.0)).empty());
+  CHECK(round_axis_turns(box_mesh(Eigen::Vector3d(0.05, 0.05, 0.05), grey), deg_to_rad(15.0)).empty());
   CHECK(round_axis_turns(load_mesh(ICGP_MODELS_DIR "/textureless_mug/textureless_mug.obj"), deg_to_rad(15.0)).empty());
 }
