@@ -13,6 +13,7 @@
 #include "icgp/features/oriented_brief.h"
 #include "icgp/geometry/rounding.h"
 #include "icgp/modality/iteration_value.h"
+#include "icgp/modality/reprojection_terms.h"
 
 namespace icgp {
 namespace {
@@ -97,43 +98,6 @@ void FeatureExtractor::extract(const cv::Mat& image, const ImageSquare& square, 
   }
   points.reserve(keypoints_.size());
   for (const cv::KeyPoint& kp : keypoints_) points.push_back(map.to_image(kp.pt));
-}
-
-void KeyframeLifter::lift(const Intrinsics& k, const Pose& camera_T_body, const FocusedRender& render,
-                          std::uint8_t body_id, const std::vector<cv::Point2f>& points, const cv::Mat& descriptors,
-                          const DepthImage* depth, const Pose& depth_T_camera, Keyframe& keyframe) const {
-  keyframe.body_points.clear();
-  keyframe.image_points.clear();
-  keyframe.descriptors.release();
-  keyframe.camera_R_body = camera_T_body.rotation();
-  keyframe.age = 0;
-  if (points.empty()) return;
-  const Intrinsics& crop_k = render.intrinsics;
-  const double su = crop_k.fu / k.fu, sv = crop_k.fv / k.fv;
-  const Pose body_T_camera = camera_T_body.inverse();
-  const Posef depth_T_body = (depth_T_camera * camera_T_body).cast<float>();
-  // The object's own surface may rise towards the camera by about the radius around a
-  // point (slopes up to 45°); steeper rises stay within the threshold.
-  const float depth_offset = static_cast<float>(occlusion_.radius);
-  std::vector<int> kept;
-  kept.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const cv::Point2f& x = points[i];
-    const int col = round_to_int(static_cast<float>(crop_k.pu + (x.x - k.pu) * su));
-    const int row = round_to_int(static_cast<float>(crop_k.pv + (x.y - k.pv) * sv));
-    if (col < 0 || row < 0 || col >= render.depth.cols || row >= render.depth.rows) continue;
-    const float z = render.depth.at<float>(row, col);
-    // Another tracked body in front hides the point: it is not on this body's surface.
-    if (z <= 0.f || render.ids.at<std::uint8_t>(row, col) != body_id) continue;
-    const Eigen::Vector3d camera_X = k.back_project<double>(x.x, x.y, z);
-    const Eigen::Vector3f body_X = (body_T_camera * camera_X).cast<float>();
-    if (depth && occlusion_.occluded(*depth, depth_T_body * body_X, depth_offset)) continue;
-    keyframe.body_points.push_back(body_X);
-    keyframe.image_points.push_back(x);
-    kept.push_back(static_cast<int>(i));
-  }
-  keyframe.descriptors.create(static_cast<int>(kept.size()), descriptors.cols, descriptors.type());
-  for (std::size_t j = 0; j < kept.size(); ++j) descriptors.row(kept[j]).copyTo(keyframe.descriptors.row(static_cast<int>(j)));
 }
 
 TextureModality::TextureModality(Body& body, TextureParams params)
@@ -228,8 +192,18 @@ void TextureModality::make_keyframe(const Frame& frame, const Renders& renders) 
                                   "' must give a CV_32FC1 depth image");
   }
   const Pose depth_T_camera = depth ? depth->camera_T_reference * camera_T_reference_.inverse() : Pose();
-  lifter_.lift(intrinsics_, camera_T_body(), renders.at(*request), renders.id(body().name), points_, descriptors_,
-               depth, depth_T_camera, keyframe_);
+  const std::vector<SurfacePoint> lifted =
+      lifter_.lift(intrinsics_, camera_T_body(), renders.at(*request), renders.id(body().name), points_, depth,
+                   depth_T_camera);
+  keyframe_ = Keyframe{};
+  keyframe_.camera_R_body = camera_T_body().rotation();
+  if (lifted.empty()) return;
+  keyframe_.descriptors.create(static_cast<int>(lifted.size()), descriptors_.cols, descriptors_.type());
+  for (std::size_t j = 0; j < lifted.size(); ++j) {
+    keyframe_.body_points.push_back(lifted[j].body_point);
+    keyframe_.image_points.push_back(points_[lifted[j].index]);
+    descriptors_.row(lifted[j].index).copyTo(keyframe_.descriptors.row(static_cast<int>(j)));
+  }
 }
 
 void TextureModality::start(const Frame& frame, const Renders& renders) {
@@ -308,46 +282,16 @@ void TextureModality::update_weights() {
 
 CueTerms TextureModality::gradient_hessian(int corr_iter, int) {
   update_weights();
-  const Posef T = camera_T_body().cast<float>();
-  const float sigma = static_cast<float>(this->sigma(corr_iter));
-  const float inverse_variance = 1.f / (sigma * sigma);
-  Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
-  Eigen::Matrix<float, 6, 6> H_sum = Eigen::Matrix<float, 6, 6>::Zero();
-  for (const Match& m : matches_) {
-    const Eigen::Vector3f X = T * m.body_point;
-    if (X.z() <= 0.f || m.weight <= 0.f) continue;
-    const Eigen::Vector2f residual = intrinsics_.project<float>(X) - m.image_point;
-    const Eigen::Matrix<float, 2, 6> J =
-        intrinsics_.projection_jacobian<float>(X) * point_jacobian_body_variation<float>(T.rotation(), m.body_point);
-    const float w = m.weight * inverse_variance;
-    g_sum.noalias() -= w * J.transpose() * residual;
-    H_sum.noalias() -= w * J.transpose() * J;
-  }
-  return {g_sum.cast<double>(), H_sum.cast<double>(), static_cast<int>(matches_.size())};
+  return reprojection_terms(matches_, camera_T_body().cast<float>(), intrinsics_,
+                            static_cast<float>(this->sigma(corr_iter)));
 }
 
 double TextureModality::log_likelihood(int corr_iter) const {
-  const Pose T = camera_T_body();
-  const double sigma = this->sigma(corr_iter);
-  double sum = 0.0;
-  for (const Match& m : matches_) {
-    const Eigen::Vector3d X = T * m.body_point.cast<double>();
-    if (X.z() <= 0.0) continue;
-    sum -= 0.5 * m.weight * (intrinsics_.project<double>(X) - m.image_point.cast<double>()).squaredNorm() /
-           (sigma * sigma);
-  }
-  return sum;
+  return reprojection_log_likelihood(matches_, camera_T_body(), intrinsics_, sigma(corr_iter));
 }
 
 void TextureModality::append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const {
-  const Pose T = camera_T_body();
-  for (const Match& m : matches_) {
-    const Eigen::Vector3d X = T * m.body_point.cast<double>();
-    if (X.z() <= 0.0) continue;
-    const Eigen::Vector2d e = intrinsics_.project<double>(X) - m.image_point.cast<double>();
-    residuals.insert(residuals.end(), {e.x(), e.y()});
-    weights.insert(weights.end(), {m.weight, m.weight});  // Tukey
-  }
+  append_reprojection_residuals(matches_, camera_T_body(), intrinsics_, residuals, weights);  // Tukey weights
 }
 
 void TextureModality::append_image_features(std::vector<ImageFeature>& features) const {

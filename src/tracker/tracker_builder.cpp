@@ -9,6 +9,7 @@
 #include "icgp/model/model_cache.h"
 #include "icgp/modality/cue_kind.h"
 #include "icgp/modality/depth_modality.h"
+#include "icgp/modality/flow_modality.h"
 #include "icgp/modality/region_modality.h"
 #include "icgp/modality/texture_modality.h"
 
@@ -34,11 +35,11 @@ std::vector<ViewpointModel> multi_region_models(const TrackerConfig& config, con
 
 /// Which cues the configuration and the rig ask for.
 struct CueSelection {
-  bool region, depth, texture;
+  bool region, depth, texture, flow;
 };
 
 /// Adds the cues of one tracked body: its region model(s) and depth model from the cache
-/// (`region_models` given: a multi-region body's), then its texture cue per camera.
+/// (`region_models` given: a multi-region body's), then its texture and flow cues per camera.
 void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const std::vector<CameraCues>& cameras,
               const CueSelection& cues, std::vector<ViewpointModel> region_models) {
   std::vector<ModelRequest> requests;
@@ -78,6 +79,11 @@ void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const s
       params.depth_camera = camera.occlusion_depth_camera;
       tracker.add_modality(std::make_unique<TextureModality>(body, params));
     }
+  if (cues.flow)
+    for (const CameraCues& camera : cameras)
+      if (camera.texture)
+        tracker.add_modality(
+            std::make_unique<FlowModality>(body, config.flow, camera.camera, camera.occlusion_depth_camera));
 }
 
 /// The mesh of a configured body, with the body named in any error.
@@ -132,7 +138,8 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   };
   const CueSelection cues{has_cue(config.modalities, CueKind::kRegion) && any_camera(&CameraCues::region),
                           has_cue(config.modalities, CueKind::kDepth) && any_camera(&CameraCues::depth),
-                          has_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture)};
+                          has_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture),
+                          has_cue(config.modalities, CueKind::kFlow) && any_camera(&CameraCues::texture)};
 
   auto tracker = std::make_unique<Tracker>(config.tracker, std::move(renderer));
   Body& body = tracker->add_body({body_name, mesh, Pose()});

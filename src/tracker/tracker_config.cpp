@@ -259,6 +259,28 @@ const Fields<TextureParams> kTextureFields = {
     field("occlusion_render_size", &TextureParams::occlusion, &OcclusionParams::render_size, int_range<16, 2048>()),
 };
 
+const Fields<FlowParams> kFlowFields = {
+    field("max_features", &FlowParams::max_features, int_range<0, 100000>()),
+    field("quality", &FlowParams::quality, kFraction),
+    field("min_distance", &FlowParams::min_distance, kNonNegative),
+    field("block_size", &FlowParams::block_size, int_range<1, 31>()),
+    field("use_harris", &FlowParams::use_harris, kBool),
+    field("harris_k", &FlowParams::harris_k, kPositive),
+    // Lucas–Kanade needs a window wider than the derivative's kernel (OpenCV: above 2).
+    field("window_size", &FlowParams::window_size, int_range<3, 101>()),
+    field("pyramid_levels", &FlowParams::pyramid_levels, int_range<0, 8>()),
+    field("mask_border", &FlowParams::mask_border, int_range<0, 100>()),
+    field("forward_backward_threshold", &FlowParams::forward_backward_threshold, kPositive),
+    field("renew_fraction", &FlowParams::renew_fraction, kFraction),
+    field("renew_rotation_deg", &FlowParams::renew_rotation_deg, kPositive),
+    field("min_points", &FlowParams::min_points, int_range<0, 100000>()),
+    field("standard_deviations", &FlowParams::standard_deviations, kPositives),
+    section("noise", &FlowParams::noise, kNoiseFields),
+    field("measure_occlusions", &FlowParams::occlusion, &OcclusionParams::measure, kBool),
+    field("occlusion_radius", &FlowParams::occlusion, &OcclusionParams::radius, kNonNegative),
+    field("occlusion_threshold", &FlowParams::occlusion, &OcclusionParams::threshold, kNonNegative),
+};
+
 bool known_preset(const std::string& name) {
   const std::vector<std::string>& names = tracker_config_presets();
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -286,6 +308,7 @@ const Fields<TrackerConfig> kConfigFields = {
     section("region", &TrackerConfig::region, kRegionFields),
     section("depth", &TrackerConfig::depth, kDepthFields),
     section("texture", &TrackerConfig::texture, kTextureFields),
+    section("flow", &TrackerConfig::flow, kFlowFields),
     field("regions", &TrackerConfig::regions,
           Rule<std::vector<std::string>>{"a list of region mesh files",
                                          [](const std::vector<std::string>& files) {
@@ -311,7 +334,7 @@ TrackerConfig tracker_config_preset(const std::string& name) {
   TrackerConfig config;
   config.preset = name;
   if (name == "icg_reference") {
-    for (NoiseParams* noise : {&config.region.noise, &config.depth.noise, &config.texture.noise})
+    for (NoiseParams* noise : {&config.region.noise, &config.depth.noise, &config.texture.noise, &config.flow.noise})
       noise->estimate = noise->robust = false;
     config.region.subpixel_posterior = false;
     config.texture.descriptor = Descriptor::kOrb;
@@ -346,8 +369,8 @@ TrackerConfig read_over(const yaml::Value& root, const std::filesystem::path& fo
 
 }  // namespace
 
-TrackerConfig load_tracker_config(const std::string& path) {
-  return read_over(yaml::load_file(path, kWording), std::filesystem::path(path).parent_path(), TrackerConfig{});
+TrackerConfig load_tracker_config(const std::string& path, const TrackerConfig& base) {
+  return read_over(yaml::load_file(path, kWording), std::filesystem::path(path).parent_path(), base);
 }
 
 TrackerConfig read_tracker_config(const std::string& yaml_text, const std::string& source, const std::string& folder,

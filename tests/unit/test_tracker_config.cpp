@@ -161,6 +161,30 @@ texture:
   modeled_occlusion_radius: 0.03
   modeled_occlusion_threshold: 0.04
   occlusion_render_size: 64
+flow:
+  max_features: 400
+  quality: 0.02
+  min_distance: 8.0
+  block_size: 5
+  use_harris: false
+  harris_k: 0.04
+  window_size: 9
+  pyramid_levels: 2
+  mask_border: 3
+  forward_backward_threshold: 0.5
+  renew_fraction: 0.5
+  renew_rotation_deg: 15.0
+  min_points: 10
+  standard_deviations: [8.0, 2.0]
+  noise:
+    estimate: false
+    robust: false
+    floor: 0.2
+    min_residuals: 30
+    tukey_constant: 3.0
+  measure_occlusions: false
+  occlusion_radius: 0.02
+  occlusion_threshold: 0.05
 regions: [/models/a/body.obj, /models/a/lid.obj]
 bodies:
   - name: lid
@@ -264,8 +288,8 @@ TEST_CASE("tracker config: presets") {
   CHECK(reference.texture.descriptor == icgp::Descriptor::kOrb);
   auto expected = flatten_yaml(to_yaml(defaults));
   expected["preset"] = "icg_reference";
-  expected["depth.noise.estimate"] = expected["texture.noise.estimate"] = "false";
-  expected["region.noise.robust"] = expected["depth.noise.robust"] = "false";
+  expected["depth.noise.estimate"] = expected["texture.noise.estimate"] = expected["flow.noise.estimate"] = "false";
+  expected["region.noise.robust"] = expected["depth.noise.robust"] = expected["flow.noise.robust"] = "false";
   expected["region.subpixel_posterior"] = "false";
   expected["texture.descriptor"] = "orb";
   CHECK(flatten_yaml(to_yaml(reference)) == expected);
@@ -387,7 +411,7 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
   };
   const Case cases[] = {
       {"regoin: {}", "regoin: unknown key (valid keys: preset, tracker, modalities, region_model, depth_model, region, depth, "
-                     "texture, regions, bodies, detection, cache_dir)"},
+                     "texture, flow, regions, bodies, detection, cache_dir)"},
       {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
       {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
       {"- tracker\n- region\n", "expected a map with the keys preset, tracker, modalities,"},

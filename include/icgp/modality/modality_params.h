@@ -28,6 +28,10 @@ inline constexpr NoiseParams kDepthNoise{true, true, 1e-4};
 /// Texture: floor 0.5 px, about the keypoint localisation of the 200 px detection crop.
 /// Its robust weights are the papers' Tukey norm (TextureParams::tukey_norm_constant).
 inline constexpr NoiseParams kTextureNoise{true, false, 0.5};
+/// Flow: floor 0.1 px, about what pyramidal Lucas–Kanade resolves on a corner. Tukey weights
+/// on the estimated scale drop points the flow lost (a jump to a look-alike, a highlight
+/// sliding over the surface) however few the others are.
+inline constexpr NoiseParams kFlowNoise{true, true, 0.1};
 
 /// Measured occlusions (ALGORITHMS.md §7): a point of a cue is hidden when a measurement of
 /// the cue's depth camera within `radius` of its projection is closer by more than
@@ -160,6 +164,36 @@ struct TextureParams {
   std::vector<double> standard_deviations = {15.0, 5.0};  ///< σ_t, pixels; the noise estimate's ceiling
   NoiseParams noise = kTextureNoise;
   OcclusionParams occlusion;
+};
+
+/// Parameters of the flow cue (ViSP's KLT tracker): Shi–Tomasi corners on the body, tracked
+/// from frame to frame with pyramidal Lucas–Kanade and lifted onto the model where they were
+/// found. The corner and flow settings are vpKltOpencv's, with vpMbKltTracker's defaults;
+/// the cameras are the texture cue's. Pixel values refer to the full colour image.
+struct FlowParams {
+  int max_features = 10000;    ///< cv::goodFeaturesToTrack's maxCorners; 0: no limit, as there
+  double quality = 0.01;       ///< its qualityLevel: of the best corner's response
+  double min_distance = 5.0;   ///< pixels between corners
+  int block_size = 3;          ///< pixels of the corner response's window
+  bool use_harris = true;      ///< Harris' response instead of the smaller eigenvalue
+  double harris_k = 0.01;      ///< Harris' free parameter
+  int window_size = 5;         ///< pixels, side of Lucas–Kanade's window
+  int pyramid_levels = 3;      ///< coarser levels above the image
+  /// Pixels of the body's silhouette that give no corner (vpMbKltTracker's mask border):
+  /// corners on the outline belong to the background as much as to the body.
+  int mask_border = 5;
+  /// A point tracked forward and back must come back within this many pixels, or it is
+  /// dropped: the flow then lost it (a look-alike, an occluder, a highlight).
+  double forward_backward_threshold = 1.0;
+  /// Corners are found anew when fewer than this share of the last renewal's survive, or
+  /// when the body turned by renew_rotation_deg since: new faces then carry none.
+  double renew_fraction = 0.6;
+  double renew_rotation_deg = 10.0;
+  /// With fewer corners lifted than this, the cue abstains from the body's quality.
+  int min_points = 20;
+  std::vector<double> standard_deviations = {15.0, 5.0};  ///< pixels; the noise estimate's ceiling
+  NoiseParams noise = kFlowNoise;
+  OcclusionParams occlusion;  ///< measured occlusions of corners when they are lifted
 };
 
 }  // namespace icgp

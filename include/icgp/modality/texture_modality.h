@@ -15,6 +15,7 @@
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
 #include "icgp/modality/residual_noise.h"
+#include "icgp/modality/surface_lifter.h"
 
 namespace icgp {
 
@@ -53,23 +54,6 @@ struct Keyframe {
   cv::Mat descriptors;                    ///< one row per point
   Eigen::Matrix3d camera_R_body = Eigen::Matrix3d::Identity();
   int age = 0;  ///< frames since it was made
-};
-
-/// Makes keyframes: back-projects the keypoints that fall on the body in a focused render
-/// of the scene at the keyframe pose to body-frame points, and drops the ones a depth
-/// measurement shows to be occluded (ALGORITHMS.md §7).
-class KeyframeLifter {
- public:
-  explicit KeyframeLifter(MeasuredOcclusion occlusion) : occlusion_(occlusion) {}
-
-  /// `render` must show the body (id `body_id`) where the points were detected, in the
-  /// camera of intrinsics `k`; `depth` may be null (no occlusion test).
-  void lift(const Intrinsics& k, const Pose& camera_T_body, const FocusedRender& render, std::uint8_t body_id,
-            const std::vector<cv::Point2f>& points, const cv::Mat& descriptors, const DepthImage* depth,
-            const Pose& depth_T_camera, Keyframe& keyframe) const;
-
- private:
-  MeasuredOcclusion occlusion_;
 };
 
 /// Keypoint-based texture modality (paper §III-C): keypoints detected once per frame in
@@ -143,7 +127,7 @@ class TextureModality : public Modality {
 
   TextureParams params_;
   FeatureExtractor extractor_;
-  KeyframeLifter lifter_;
+  SurfaceLifter lifter_;
   cv::BFMatcher matcher_;
   SceneCrop crop_;  ///< of the scene's render; its sphere bounds the detection crop and keyframe renders
   RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)

@@ -13,9 +13,10 @@
 
 namespace icgp {
 
-/// One camera of a rig and the cues that read it. The colour cues (region, texture) test
-/// their lines and keypoints for measured occlusion in `occlusion_depth_camera`'s depth
-/// (empty: none).
+/// One camera of a rig and the cues that read it. The colour cues (region, texture, flow)
+/// test their lines and points for measured occlusion in `occlusion_depth_camera`'s depth
+/// (empty: none). `texture` marks the camera of the point cues: texture and flow, as the
+/// configuration selects them (ViSP's KLT_TRACKER).
 struct CameraCues {
   std::string camera;
   bool region = false;

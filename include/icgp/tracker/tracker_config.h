@@ -28,6 +28,8 @@ struct TrackerConfig {
   RegionParams region;
   DepthParams depth;
   TextureParams texture;
+  /// The flow cue's parameters (`modalities` names it "flow"; it reads the texture cue's cameras).
+  FlowParams flow;
   /// Multi-region tracking (paper §III-D): one mesh file per colour region of the object,
   /// all in the object's frame; each gets its own region model and modality with its own
   /// colour statistics. Empty: one region modality on the whole object. Relative paths in a
@@ -53,9 +55,9 @@ TrackerConfig tracker_config_preset(const std::string& name);
 /// The preset names tracker_config_preset() knows, "default" first.
 const std::vector<std::string>& tracker_config_presets();
 
-/// Reads a YAML configuration over the defaults. Unknown keys and values of the wrong type
-/// or range throw std::runtime_error naming the file and the key.
-TrackerConfig load_tracker_config(const std::string& path);
+/// Reads a YAML configuration over `base` (the defaults unless given). Unknown keys and
+/// values of the wrong type or range throw std::runtime_error naming the file and the key.
+TrackerConfig load_tracker_config(const std::string& path, const TrackerConfig& base = {});
 /// Reads a configuration given as YAML text (the keys of a file) over `base`; a `preset`
 /// key starts again from that preset. Errors name `source` as they name a file
 /// ("<source>: <key>: expected …"); relative mesh paths are resolved against `folder`.
