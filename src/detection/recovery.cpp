@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/detection/recovery.h"
 
+#include <algorithm>
+
 namespace icgp {
 
 namespace {
@@ -76,6 +78,10 @@ bool Recovery::lost(const std::string& body) const {
   return it != states_.end() && it->second.lost;
 }
 
+bool Recovery::can_detect() const {
+  return std::any_of(cameras_.begin(), cameras_.end(), [](const CameraCues& c) { return c.region; });
+}
+
 std::vector<std::string> Recovery::after_track(const Frame& frame, std::vector<BodyResult>& results) {
   std::vector<std::string> found;
   for (const BodyResult& r : results) {
@@ -87,7 +93,9 @@ std::vector<std::string> Recovery::after_track(const Frame& frame, std::vector<B
       s = BodyState{r.reference_T_body, false, 0};
       continue;
     }
-    if (!config_.detection.recovery) continue;
+    // Templates are matched in the region cue's image: without one (a KLT or depth camera
+    // alone) a lost body stays lost until the program initialises it again.
+    if (!config_.detection.recovery || !can_detect()) continue;
     s.lost = true;
     ++s.frames_lost;
     BodyDetector& d = detector(r.body);

@@ -94,7 +94,7 @@ std::vector<CameraCues> CameraRig::cues(const std::vector<CueKind>& modalities) 
   for (const auto& [name, camera] : cameras_) {
     CameraCues c{name};
     c.region = (camera.types & kEdge) && has_cue(modalities, CueKind::kRegion);
-    c.texture = (camera.types & kKlt) && has_cue(modalities, CueKind::kTexture);
+    c.texture = (camera.types & kKlt) && (has_cue(modalities, CueKind::kTexture) || has_cue(modalities, CueKind::kFlow));
     c.depth = is_depth_camera(name) && has_cue(modalities, CueKind::kDepth);
     c.occlusion_depth_camera = is_depth_camera(name) ? name : first_depth_camera;
     out.push_back(c);

@@ -231,7 +231,7 @@ void vpMbIcgTracker::loadConfigFile(const std::map<std::string, std::string>& ma
       if (extension == ".yaml" || extension == ".yml") {
         require_file(file, "configuration file");
         try {
-          setTrackerConfig(icgp::load_tracker_config(file));
+          setTrackerConfig(icgp::load_tracker_config(file, Impl::default_config()));
         } catch (const std::exception& e) {
           throw vpException(vpException::badValue, std::string("vpMbIcgTracker::loadConfigFile: ") + e.what());
         }

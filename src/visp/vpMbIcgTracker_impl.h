@@ -30,8 +30,16 @@ struct vpMbIcgTracker::Impl {
 
   explicit Impl(icgp::CameraRig rig) : rig(std::move(rig)) {}
 
+  /// icgp's defaults with the flow cue too: a program that asks for KLT_TRACKER expects
+  /// corners tracked from frame to frame, as ViSP's KLT does. YAML files are read over them.
+  static icgp::TrackerConfig default_config() {
+    icgp::TrackerConfig config;
+    config.modalities.push_back(icgp::CueKind::kFlow);
+    return config;
+  }
+
   icgp::CameraRig rig;
-  icgp::TrackerConfig config;
+  icgp::TrackerConfig config = default_config();
   icgp::Mesh mesh;
   bool has_visp_model_part = false;  ///< ViSP's projection-error model exists (.cao / .wrl)
   /// Meshes what ViSP's parser calls the init* hooks with, while loadModel parses a .cao / .wrl.

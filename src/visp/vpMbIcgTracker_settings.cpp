@@ -13,7 +13,8 @@ namespace {
 const char* const kVisibility = "the cues' visibility comes from the viewpoint models rendered from the mesh";
 const char* const kMovingEdges = "icgp's region cue replaces the moving edges: its correspondence lines and "
                                  "scales are set in the YAML parameters (region:)";
-const char* const kKlt = "icgp's texture cue replaces the KLT tracker (texture: in the YAML parameters)";
+const char* const kKlt = "icgp's flow and texture cues replace the KLT tracker (flow: and texture: in the YAML "
+                         "parameters)";
 const char* const kDepthFeatures = "icgp's depth cue samples the model's sparse viewpoint points (depth: in the YAML "
                                    "parameters)";
 
@@ -45,7 +46,27 @@ vpKltOpencv visp_default_klt() {
   return klt;
 }
 
+/// The flow cue's parameters with a KLT tracker's corner and flow settings, which have the
+/// same meaning (FlowParams). vpKltOpencv has no getter of its Harris switch: it stays as set.
+icgp::FlowParams with_klt_settings(icgp::FlowParams flow, const vpKltOpencv& klt) {
+  flow.max_features = klt.getMaxFeatures();
+  flow.quality = klt.getQuality();
+  flow.min_distance = klt.getMinDistance();
+  flow.block_size = klt.getBlockSize();
+  flow.harris_k = klt.getHarrisFreeParameter();
+  flow.window_size = klt.getWindowSize();
+  flow.pyramid_levels = klt.getPyramidLevels();
+  return flow;
+}
+
 }  // namespace
+
+void vpMbIcgTracker::apply_klt_settings(const vpKltOpencv& klt, unsigned int mask_border) {
+  icgp::TrackerConfig config = impl_->config;
+  config.flow = with_klt_settings(config.flow, klt);
+  config.flow.mask_border = static_cast<int>(mask_border);
+  setTrackerConfig(config);
+}
 
 void vpMbIcgTracker::store_visp_xml_settings(const std::string& camera, const vpMbtXmlGenericParser& parser) {
   // What vpMbGenericTracker's loadConfigFile sets from <ecm>, <klt> and <face>, quietly:
@@ -66,6 +87,14 @@ void vpMbIcgTracker::store_visp_xml_settings(const std::string& camera, const vp
   if (parser.hasNearClippingDistance()) flags |= vpPolygon3D::NEAR_CLIPPING;
   if (parser.hasFarClippingDistance()) flags |= vpPolygon3D::FAR_CLIPPING;
   if (parser.getFovClipping()) flags |= vpPolygon3D::FOV_CLIPPING;
+  // The flow cue's parameters are shared by every camera: they come from the <klt> block of
+  // the reference camera, or of the camera that tracks KLT when the reference does not.
+  // A file without a <klt> block leaves ViSP's parser at zeros, no window among them.
+  const bool has_klt_block = parser.getKltWindowSize() > 0;
+  const bool tracks_klt = (impl_->rig.at(camera, "loadConfigFile").types & KLT_TRACKER) != 0;
+  const bool reference_tracks_klt = (impl_->rig.at(impl_->rig.reference(), "loadConfigFile").types & KLT_TRACKER) != 0;
+  if (has_klt_block && tracks_klt && (camera == impl_->rig.reference() || !reference_tracks_klt))
+    apply_klt_settings(klt, parser.getKltMaskBorder());
   if (camera != impl_->rig.reference()) return;
   // As vpMbGenericTracker: the reference camera's angles and clipping flags become
   // vpMbTracker's own; its clipping distances do not.
@@ -292,8 +321,9 @@ void vpMbIcgTracker::setKltOpencv(const std::map<std::string, vpKltOpencv>& mapO
     impl_->visp.klts[camera] = klt;
   }
   if (mapOfKlts.empty()) return;
-  // The one KLT setting with an icgp meaning: how many keypoints to detect. The texture
-  // cue's parameters are shared by every camera; the reference camera's count wins.
+  // The cues' parameters are shared by every camera: the reference camera's settings win.
+  // They are the flow cue's, and the maximum number of features is also the texture cue's
+  // keypoint count.
   const auto reference = mapOfKlts.find(impl_->rig.reference());
   const auto& klt = reference != mapOfKlts.end() ? reference->second : mapOfKlts.begin()->second;
   if (klt.getMaxFeatures() > 0 && klt.getMaxFeatures() != impl_->config.texture.orb_n_features) {
@@ -301,6 +331,7 @@ void vpMbIcgTracker::setKltOpencv(const std::map<std::string, vpKltOpencv>& mapO
     config.texture.orb_n_features = klt.getMaxFeatures();
     setTrackerConfig(config);
   }
+  apply_klt_settings(klt, getKltMaskBorder());
 }
 
 vpKltOpencv vpMbIcgTracker::getKltOpencv() const {
@@ -339,7 +370,7 @@ void vpMbIcgTracker::setKltMaskBorder(const std::map<std::string, unsigned int>&
     impl_->rig.at(camera, "setKltMaskBorder");
     impl_->visp.klt_mask_borders[camera] = erosion;
   }
-  impl_->report_without_effect("setKltMaskBorder", kKlt);
+  apply_klt_settings(getKltOpencv(), getKltMaskBorder());
 }
 
 unsigned int vpMbIcgTracker::getKltMaskBorder() const {

@@ -368,6 +368,12 @@ std::vector<const icgp::Modality*> vpMbIcgTracker::cues(const std::string& name,
   return out;
 }
 
+std::vector<const icgp::Modality*> vpMbIcgTracker::klt_cues(const std::string& camera) const {
+  std::vector<const icgp::Modality*> out = cues(to_string(CueKind::kTexture), camera);
+  for (const icgp::Modality* m : cues(to_string(CueKind::kFlow), camera)) out.push_back(m);
+  return out;
+}
+
 unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const std::string& camera,
                                                   int depth_type) const {
   if (!impl_->tracker) return 0;
@@ -390,7 +396,9 @@ unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const
 }
 
 unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return correspondence_count(to_string(CueKind::kRegion)); }
-unsigned int vpMbIcgTracker::getNbFeaturesKlt() const { return correspondence_count(to_string(CueKind::kTexture)); }
+unsigned int vpMbIcgTracker::getNbFeaturesKlt() const {
+  return correspondence_count(to_string(CueKind::kTexture)) + correspondence_count(to_string(CueKind::kFlow));
+}
 unsigned int vpMbIcgTracker::getNbFeaturesDepthNormal() const {
   return correspondence_count(to_string(CueKind::kDepth), "", DEPTH_NORMAL_TRACKER);
 }
@@ -416,7 +424,7 @@ std::vector<std::vector<double>> vpMbIcgTracker::features_for_display(const std:
   for (const icgp::ImageFeature& f : features)
     out.push_back({0.0, f.pixel.y(), f.pixel.x(), f.weight >= 0.5 ? kFullWeight : kDownWeighted});
   features.clear();
-  for (const icgp::Modality* m : cues(to_string(CueKind::kTexture), camera)) m->append_image_features(features);
+  for (const icgp::Modality* m : klt_cues(camera)) m->append_image_features(features);
   for (std::size_t id = 0; id < features.size(); ++id)
     out.push_back({1.0, features[id].pixel.y(), features[id].pixel.x(), static_cast<double>(id)});
   return out;
@@ -433,8 +441,7 @@ void vpMbIcgTracker::getFeaturesForDisplay(std::map<std::string, std::vector<std
 
 std::map<int, vpImagePoint> vpMbIcgTracker::getKltImagePointsWithId() const {
   std::vector<icgp::ImageFeature> features;
-  for (const icgp::Modality* m : cues(to_string(CueKind::kTexture), impl_->rig.reference()))
-    m->append_image_features(features);
+  for (const icgp::Modality* m : klt_cues(impl_->rig.reference())) m->append_image_features(features);
   std::map<int, vpImagePoint> points;
   for (std::size_t id = 0; id < features.size(); ++id)
     points[static_cast<int>(id)] = vpImagePoint(features[id].pixel.y(), features[id].pixel.x());

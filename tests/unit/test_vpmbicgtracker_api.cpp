@@ -1361,10 +1361,10 @@ void apply_settings(Tracker& t, bool with_klt) {
     t.setKltOpencv(klt_all);
     t.setKltOpencv(klt1, klt2);
     t.setKltOpencv(std::map<std::string, vpKltOpencv>{{kCamera1, klt_all}});  // Camera1 klt_all, Camera2 klt2
+    t.setKltMaskBorder(4u);
+    t.setKltMaskBorder(6u, 7u);
+    t.setKltMaskBorder(std::map<std::string, unsigned int>{{kCamera1, 8u}});  // Camera1 8, Camera2 7
   }
-  t.setKltMaskBorder(4u);
-  t.setKltMaskBorder(6u, 7u);
-  t.setKltMaskBorder(std::map<std::string, unsigned int>{{kCamera1, 8u}});  // Camera1 8, Camera2 7
   t.setKltThresholdAcceptation(0.7);
   t.setGoodMovingEdgesRatioThreshold(0.3);
 
@@ -1460,7 +1460,7 @@ void check_same_settings(const vpMbIcgTracker& ours, const vpMbGenericTracker& v
 
 /// The settings reported once as having no effect.
 const std::vector<std::string> kWithoutEffect = {
-    "setMovingEdge", "setKltMaskBorder", "setKltThresholdAcceptation", "setGoodMovingEdgesRatioThreshold",
+    "setMovingEdge", "setKltThresholdAcceptation", "setGoodMovingEdgesRatioThreshold",
     "setClipping", "setNearClippingDistance", "setFarClippingDistance", "setAngleAppear", "setAngleDisappear",
     "setLod", "setMinLineLengthThresh", "setMinPolygonAreaThresh", "setOgreShowConfigDialog",
     "setOgreVisibilityTest", "setScanLineVisibilityTest", "setOptimizationMethod", "setProjectionErrorDisplay",

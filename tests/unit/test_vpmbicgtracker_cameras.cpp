@@ -220,3 +220,47 @@ TEST_CASE("vpMbIcgTracker with KLT_TRACKER alone: the texture cue's first frame,
     CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 10.0);
   }
 }
+
+TEST_CASE("vpMbIcgTracker with KLT_TRACKER alone follows corners from frame to frame with ViSP's KLT settings") {
+  const std::vector<Frame> frames = test::teabox_frames(12);
+  vpMbIcgTracker tracker(1, vpMbIcgTracker::KLT_TRACKER);
+  test::configure_for_tests(tracker);
+  // A ViSP XML's <klt> block and setKltOpencv / setKltMaskBorder set the flow cue.
+  tracker.loadConfigFile((test::kTeaboxBlender / "teabox.xml").string(), false);
+  CHECK(tracker.getTrackerConfig().flow.max_features == 300);
+  vpKltOpencv klt = tracker.getKltOpencv();
+  klt.setWindowSize(7);
+  klt.setMinDistance(4);
+  tracker.setKltOpencv(klt);
+  tracker.setKltMaskBorder(3);
+  const icgp::FlowParams& flow = tracker.getTrackerConfig().flow;
+  CHECK(flow.window_size == 7);
+  CHECK(flow.min_distance == 4.0);
+  CHECK(flow.mask_border == 3);
+  REQUIRE(icgp::has_cue(tracker.getTrackerConfig().modalities, icgp::CueKind::kFlow));
+
+  tracker.loadModel(kTeaboxCao);
+  tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics));
+  VispRgbdFrame input;
+  input.convert(frames.front(), false);
+  tracker.initFromPose(input.grey, to_homogeneous_matrix(*frames.front().truth()));
+  double max_mm = 0.0, max_deg = 0.0;
+  unsigned int fewest = 100000;
+  for (const Frame& frame : frames) {
+    input.convert(frame, false);
+    tracker.track(input.grey);
+    CHECK_NOTHROW(tracker.testTracking());
+    fewest = std::min(fewest, tracker.getNbFeaturesKlt());
+    max_mm = std::max(max_mm, translation_error_mm(to_pose(tracker.getPose()), *frame.truth()));
+    max_deg = std::max(max_deg, rotation_error_deg(to_pose(tracker.getPose()), *frame.truth()));
+  }
+  const Pose& first = *frames.front().truth();
+  const Pose& last = *frames.back().truth();
+  INFO("max error " << max_mm << " mm, " << max_deg << " deg; a frozen pose: " << translation_error_mm(first, last)
+                    << " mm, " << rotation_error_deg(first, last) << " deg; fewest KLT features " << fewest);
+  CHECK(max_mm < 2.0);
+  CHECK(max_deg < 0.5);
+  CHECK(max_mm < 0.5 * translation_error_mm(first, last));
+  CHECK(fewest >= 50);
+  CHECK(tracker.getKltNbPoints() == static_cast<int>(tracker.getNbFeaturesKlt()));
+}

@@ -51,6 +51,8 @@ class Recovery {
     int frames_lost = 0;
   };
   BodyDetector& detector(const std::string& body);
+  /// Whether a camera has the image detection matches its templates in (the region cue's).
+  bool can_detect() const;
   /// Where the tracker's other bodies and occluders are now.
   BodyDetector::OtherPoses other_poses(const std::string& body);
 

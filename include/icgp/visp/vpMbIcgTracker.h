@@ -615,15 +615,20 @@ class vpMbIcgTracker : public vpMbTracker {
   /// The camera a raw depth image belongs to: the reference camera if it has a depth type,
   /// else the first camera that has one.
   std::string depth_camera_of_raw_depth() const;
-  /// The tracker's cues called `name` ("region", "depth", "texture"), of `camera` or all.
+  /// The tracker's cues called `name` ("region", "depth", "texture", "flow"), of `camera` or all.
   std::vector<const icgp::Modality*> cues(const std::string& name, const std::string& camera = "") const;
+  /// The cues that replace ViSP's KLT tracker (texture, then flow) of `camera`.
+  std::vector<const icgp::Modality*> klt_cues(const std::string& camera) const;
   /// The correspondences the cues called `name` summed over in the last update, of `camera`
   /// or all; for "depth", of the cameras whose types count them as `depth_type` (0: all).
   unsigned int correspondence_count(const std::string& name, const std::string& camera = "", int depth_type = 0) const;
   /// ViSP's getFeaturesForDisplay format for one camera.
   std::vector<std::vector<double>> features_for_display(const std::string& camera) const;
-  /// Keeps a ViSP XML file's settings of ViSP's own cues for their getters.
+  /// Keeps a ViSP XML file's settings of ViSP's own cues for their getters; the reference
+  /// camera's KLT settings become the flow cue's.
   void store_visp_xml_settings(const std::string& camera, const vpMbtXmlGenericParser& parser);
+  /// Gives the flow cue a KLT tracker's settings and mask border.
+  void apply_klt_settings(const vpKltOpencv& klt, unsigned int mask_border);
   /// Forgets the model (reInitModel loads another).
   void clear_model();
   std::unique_ptr<Impl> impl_;
