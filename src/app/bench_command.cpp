@@ -16,6 +16,7 @@
 #include "timing_rounds.h"
 #include "detect_bench.h"
 #include "sweep.h"
+#include "visp_types_bench.h"
 
 namespace icgp::app {
 namespace {
@@ -36,6 +37,8 @@ struct BenchOptions {
   SweepOptions sweep_options;
   bool detect = false;
   std::vector<std::string> detect_objects;
+  bool visp_types = false;
+  std::vector<std::string> more_sequences;  ///< --visp-types: sequences after --sequence
   SequenceOptions sequence_options = visp_sequence_options();
 };
 
@@ -161,6 +164,16 @@ void register_bench_command(CLI::App& app) {
                   "--detect: only this one of the sweep's objects (textured_box, two_region, labelled_can, "
                   "textureless_mug); repeatable")
       ->needs(detect);
+  CLI::Option* visp_types = cmd->add_flag(
+      "--visp-types", o->visp_types,
+      "Instead: every ViSP tracker type alone and combined (EDGE, KLT, EDGE+KLT, DEPTH_DENSE, DEPTH_NORMAL, each "
+      "colour type + DEPTH_DENSE) with vpMbGenericTracker and vpMbIcgTracker on the same frames (docs/visp.md)");
+  visp_types->excludes("--ablation")->excludes(sweep)->excludes(detect);
+  cmd->add_option("--and-sequence", o->more_sequences,
+                  "--visp-types: a further sequence with ground truth (repeatable); its ViSP files are written for "
+                  "its mesh when it has no .cao")
+      ->check(CLI::ExistingDirectory)
+      ->needs(visp_types);
   cmd->add_flag("--quick", o->sweep_options.quick,
                 "--sweep: one model, two conditions and its grey cell, 320x240, at most 8 frames (a test)")
       ->needs(sweep);
@@ -169,7 +182,16 @@ void register_bench_command(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->needs(sweep);
   cmd->callback([o] {
-    if (o->detect) {
+    if (o->visp_types) {
+      VispTypesBenchOptions types_options;
+      types_options.sequences.push_back(o->sequence);
+      for (const std::string& dir : o->more_sequences) types_options.sequences.push_back(dir);
+      types_options.frames = o->frames;
+      types_options.rounds = o->rounds;
+      types_options.summary = o->summary;
+      types_options.sequence_options = o->sequence_options;
+      run_visp_types_bench(types_options);
+    } else if (o->detect) {
       DetectBenchOptions detect_options;
       detect_options.summary = o->summary;
       if (!o->plot.empty()) detect_options.plot = o->plot;

@@ -108,11 +108,36 @@ struct RgbdRun {
   std::vector<double> convert_ms;  ///< building the grey image and the point cloud
 };
 
-/// Tracks `frames` as a ViSP RGB-D program does, using only calls that vpMbGenericTracker
-/// and vpMbIcgTracker share with identical signatures: the model for both cameras, the
-/// cameras of the first frame (colour "Camera1" as reference, depth "Camera2" at
-/// depth_M_color), initFromPose at `cMo0` on the first frame's grey image, then per frame
-/// track() with the grey image and the organised point cloud, and getPose().
+/// Which of ViSP's tracker types a program gives its colour camera (kColorCamera, with
+/// EDGE_TRACKER and/or KLT_TRACKER) and its depth camera (kDepthCamera, with
+/// DEPTH_DENSE_TRACKER and/or DEPTH_NORMAL_TRACKER); 0 leaves that camera out. The colour
+/// camera is the reference camera when it is used, else the depth camera.
+struct VispCameraTypes {
+  int color = 0;
+  int depth = 0;
+
+  /// The cameras and their types, in the form vpMbGenericTracker's constructor takes.
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    if (color) out.push_back(kColorCamera);
+    if (depth) out.push_back(kDepthCamera);
+    return out;
+  }
+  std::vector<int> types() const {
+    std::vector<int> out;
+    if (color) out.push_back(color);
+    if (depth) out.push_back(depth);
+    return out;
+  }
+};
+
+/// Tracks `frames` as a ViSP program of the cameras `types` does, using only calls that
+/// vpMbGenericTracker and vpMbIcgTracker share with identical signatures: the model for each
+/// camera, the cameras of the first frame (the depth camera at depth_M_color), initFromPose
+/// at `cMo0` (the colour camera's pose) on the first frame's grey image, then per frame
+/// track() with the colour camera's grey image (`colour`: its RGBa image) and the depth
+/// camera's organised point cloud, and getPose(). The poses returned are the colour
+/// camera's, whichever camera is the reference.
 ///
 /// The tracker's own parameters are the caller's business and must be set before (a ViSP
 /// XML with loadConfigFile, icgp's YAML or setTrackerConfig): the cameras set here override
@@ -120,8 +145,8 @@ struct RgbdRun {
 /// Both trackers run OpenMP / OpenCV loops: limit threads around this call for timings
 /// comparable with a single-threaded tracker.
 template <class TrackerT>
-RgbdRun track_rgbd_sequence(TrackerT& tracker, const std::vector<Frame>& frames, const VispModelFiles& files,
-                            const vpHomogeneousMatrix& cMo0) {
+RgbdRun track_visp_sequence(TrackerT& tracker, const std::vector<Frame>& frames, const VispModelFiles& files,
+                            const vpHomogeneousMatrix& cMo0, const VispCameraTypes& types, bool colour = false) {
   using Clock = std::chrono::steady_clock;
   const auto ms_between = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
@@ -129,38 +154,86 @@ RgbdRun track_rgbd_sequence(TrackerT& tracker, const std::vector<Frame>& frames,
 
   RgbdRun run;
   if (frames.empty()) return run;
+  const bool with_depth = types.depth != 0;
   VispRgbdFrame input;
-  input.convert(frames.front());
-  const DepthImage& depth = frames.front().depths.front();
+  input.convert(frames.front(), with_depth);
+  // The depth camera's pose from the colour camera's, and back: a tracker without the
+  // colour camera gives and takes the depth camera's.
+  const vpHomogeneousMatrix depth_M_color =
+      with_depth ? to_homogeneous_matrix(frames.front().depths.front().camera_T_reference) : vpHomogeneousMatrix();
+  const vpHomogeneousMatrix reference_M_color = types.color ? vpHomogeneousMatrix() : depth_M_color;
+  std::map<std::string, std::string> models;
+  std::map<std::string, vpCameraParameters> cameras;
+  std::map<std::string, vpHomogeneousMatrix> camera_M_reference;
+  if (types.color) {
+    models[kColorCamera] = files.model;
+    cameras[kColorCamera] = to_camera_parameters(frames.front().colors.front().intrinsics);
+    camera_M_reference[kColorCamera] = vpHomogeneousMatrix();
+  }
+  if (with_depth) {
+    models[kDepthCamera] = files.model;
+    cameras[kDepthCamera] = to_camera_parameters(frames.front().depths.front().intrinsics);
+    camera_M_reference[kDepthCamera] = depth_M_color * reference_M_color.inverse();
+  }
   {
     const detail::StdoutSilencer quiet_parser;
-    tracker.loadModel(files.model, files.model);
+    tracker.loadModel(models);
   }
-  tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics),
-                              to_camera_parameters(depth.intrinsics));
-  tracker.setCameraTransformationMatrix(std::map<std::string, vpHomogeneousMatrix>{
-      {kColorCamera, vpHomogeneousMatrix()}, {kDepthCamera, to_homogeneous_matrix(depth.camera_T_reference)}});
-  tracker.initFromPose(input.grey, cMo0);
+  tracker.setCameraParameters(cameras);
+  tracker.setCameraTransformationMatrix(camera_M_reference);
+  // A depth camera alone still takes an image of its size: its depth features read only that.
+  vpImage<unsigned char> depth_sized;
+  if (!types.color)
+    depth_sized.resize(static_cast<unsigned int>(frames.front().depths.front().depth.rows),
+                       static_cast<unsigned int>(frames.front().depths.front().depth.cols), 0);
+  const vpImage<unsigned char>& reference_image = types.color ? input.grey : depth_sized;
+  tracker.initFromPose(reference_image, reference_M_color * cMo0);
 
-  std::map<std::string, const vpImage<unsigned char>*> images = {{kColorCamera, &input.grey}};
+  vpImage<vpRGBa> rgba;
+  cv::Mat bgr;
+  std::map<std::string, const vpImage<unsigned char>*> images = {
+      {types.color ? kColorCamera : kDepthCamera, &reference_image}};
+  std::map<std::string, const vpImage<vpRGBa>*> colour_images = {{kColorCamera, &rgba}};
   std::map<std::string, const std::vector<vpColVector>*> clouds = {{kDepthCamera, &input.point_cloud}};
   std::map<std::string, unsigned int> widths, heights;
   vpHomogeneousMatrix cMo;
   // The first frame is tracked too, as ViSP's tutorials do after initFromPose.
   for (const Frame& frame : frames) {
     const auto begin = Clock::now();
-    input.convert(frame);
+    input.convert(frame, with_depth);
     widths[kDepthCamera] = input.depth_width;
     heights[kDepthCamera] = input.depth_height;
+    const bool track_colour = colour && types.color;
+    if (track_colour) {
+      const cv::Mat& image = frame.colors.front().image;
+      if (image.channels() == 1) cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+      to_vp_image(image.channels() == 1 ? bgr : image, rgba);
+    }
     const auto converted = Clock::now();
-    tracker.track(images, clouds, widths, heights);
+    if (track_colour && with_depth)
+      tracker.track(colour_images, clouds, widths, heights);
+    else if (track_colour)
+      tracker.track(colour_images);
+    else if (with_depth)
+      tracker.track(images, clouds, widths, heights);
+    else
+      tracker.track(images);
     const auto tracked = Clock::now();
     tracker.getPose(cMo);
-    run.poses.push_back(to_pose(cMo));
+    run.poses.push_back(to_pose(reference_M_color.inverse() * cMo));
     run.convert_ms.push_back(ms_between(begin, converted));
     run.track_ms.push_back(ms_between(converted, tracked));
   }
   return run;
+}
+
+/// Tracks `frames` as a ViSP RGB-D program does (track_visp_sequence with kRgbdTrackerTypes):
+/// colour camera "Camera1" as reference with its grey image, depth camera "Camera2" with
+/// its organised point cloud.
+template <class TrackerT>
+RgbdRun track_rgbd_sequence(TrackerT& tracker, const std::vector<Frame>& frames, const VispModelFiles& files,
+                            const vpHomogeneousMatrix& cMo0) {
+  return track_visp_sequence(tracker, frames, files, cMo0, VispCameraTypes{kRgbdTrackerTypes[0], kRgbdTrackerTypes[1]});
 }
 
 }  // namespace icgp
