@@ -11,7 +11,8 @@
 
 namespace icgp {
 
-DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params)
+DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params,
+                             Sampling sampling)
     : Modality(body),
       model_(std::move(model)),
       params_(std::move(params)),
@@ -22,6 +23,7 @@ DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> m
   occlusion_ = {params_.occlusion.radius, params_.occlusion.threshold};
   occlusion_offset_index_ = depth_offset_index(*model_, params_.occlusion.radius);
   modeled_offset_index_ = depth_offset_index(*model_, params_.occlusion.modeled_radius);
+  if (sampling == Sampling::kDense) dense_.emplace(body, params_.depth_camera, params_.dense);
   correspondences_.reserve(params_.n_points_max);
 }
 
@@ -54,7 +56,12 @@ void DepthModality::start(const Frame&, const Renders&) {
 
 std::vector<RenderRequest> DepthModality::render_requests(const Frame& frame, Stage stage) const {
   const DepthImage* depth = frame.find_depth(params_.depth_camera);
-  if (!params_.occlusion.model || !depth) return {};
+  if (!depth) return {};
+  if (dense_) {
+    if (std::optional<RenderRequest> request = dense_->request(stage, *depth)) return {*request};
+    return {};
+  }
+  if (!params_.occlusion.model) return {};
   if (std::optional<RenderRequest> request =
           crop_.request(stage, depth->intrinsics, depth->camera_T_reference))
     return {*request};
@@ -162,8 +169,23 @@ void DepthModality::correspondences(const Frame& frame, const Renders& renders, 
     saw_depth_ = false;
     return;
   }
-  const DepthImage& depth = *delivered;
-  depth_T_reference_ = depth.camera_T_reference.cast<float>();
+  depth_T_reference_ = delivered->camera_T_reference.cast<float>();
+  if (dense_)
+    dense_correspondences(*delivered, renders, corr_iter);
+  else
+    model_point_correspondences(*delivered, renders, corr_iter);
+  estimate_noise();
+}
+
+void DepthModality::dense_correspondences(const DepthImage& depth, const Renders& renders, int corr_iter) {
+  const auto considered_distance = static_cast<float>(iteration_value(params_.considered_distances, corr_iter));
+  const DenseDepthSampling::Counts counts = dense_->collect(renders, depth, considered_distance, correspondences_);
+  n_considered_ = counts.n_on_body;
+  n_hidden_by_bodies_ = 0;  // pixels another body covers show that body in the render: not counted
+  saw_depth_ = counts.saw_depth;
+}
+
+void DepthModality::model_point_correspondences(const DepthImage& depth, const Renders& renders, int corr_iter) {
   const Posef depth_T_body_now = depth_T_body();
   const Eigen::Vector3f camera_in_body = depth_T_body_now.inverse().translation();
   const int view = view_selector_.select(*model_, camera_in_body.normalized());
@@ -204,13 +226,12 @@ void DepthModality::correspondences(const Frame& frame, const Renders& renders, 
   };
   collect(test_occlusions);
   if (test_occlusions && static_cast<int>(correspondences_.size()) < params_.min_n_unoccluded_points) collect(false);
-  estimate_noise();
 }
 
 void DepthModality::estimate_noise() {
   noise_.estimate([&](auto add) {
     const Posef body_T_depth = depth_T_body().inverse();
-    for (const Correspondence& c : correspondences_)
+    for (const DepthCorrespondence& c : correspondences_)
       add(c.body_normal.dot(c.body_point - body_T_depth * c.measured) / c.measured.z());
   });
 }
@@ -224,7 +245,7 @@ CueTerms DepthModality::gradient_hessian(int corr_iter, int) {
   const float sigma = static_cast<float>(this->sigma(corr_iter));
   Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
   Eigen::Matrix<float, 6, 6> H_sum = Eigen::Matrix<float, 6, 6>::Zero();
-  for (const Correspondence& c : correspondences_) {
+  for (const DepthCorrespondence& c : correspondences_) {
     const Eigen::Vector3f P = body_T_depth * c.measured;  // measured point, body frame
     const float residual = c.body_normal.dot(c.body_point - P);
     const float w2 = noise_.weight(residual / c.measured.z(), sigma) / (sigma * sigma * c.measured.z() * c.measured.z());
@@ -242,7 +263,7 @@ double DepthModality::log_likelihood(int corr_iter) const {
   const Pose body_T_depth = (depth_T_reference_.cast<double>() * body().reference_T_body).inverse();
   const double sigma = this->sigma(corr_iter);
   double sum = 0.0;
-  for (const Correspondence& c : correspondences_) {
+  for (const DepthCorrespondence& c : correspondences_) {
     const double residual = c.body_normal.cast<double>().dot(c.body_point.cast<double>() -
                                                              body_T_depth * c.measured.cast<double>());
     sum -= noise_.loss(residual / (sigma * c.measured.z()));
@@ -252,7 +273,7 @@ double DepthModality::log_likelihood(int corr_iter) const {
 
 void DepthModality::append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const {
   const Pose body_T_depth = (depth_T_reference_.cast<double>() * body().reference_T_body).inverse();
-  for (const Correspondence& c : correspondences_) {
+  for (const DepthCorrespondence& c : correspondences_) {
     residuals.push_back(c.body_normal.cast<double>().dot(c.body_point.cast<double>() - body_T_depth * c.measured.cast<double>()));
     weights.push_back(1.0);  // every correspondence passed the distance gate and counts fully
   }
@@ -269,7 +290,7 @@ void DepthModality::update_quality() {
   const float inlier = 0.5f * static_cast<float>(params_.considered_distances.back());
   const Posef body_T_depth = depth_T_body().inverse();
   int n_inliers = 0;
-  for (const Correspondence& c : correspondences_)
+  for (const DepthCorrespondence& c : correspondences_)
     if (std::abs(c.body_normal.dot(c.body_point - body_T_depth * c.measured)) < inlier) ++n_inliers;
   // Points another body hides are not expected to find data, unlike those an unknown
   // occluder hides: they do not count against the score.

@@ -106,6 +106,7 @@ void SceneRenderer::render(const std::vector<const Body*>& bodies, const std::ve
                                   request.square.size, request.size, request.targets, &render.intrinsics);
     render.depth = std::move(images.depth);
     render.ids = std::move(images.ids);
+    render.normals = std::move(images.normals);
     render.color = std::move(images.color);
     out.add(request, std::move(render));
   }

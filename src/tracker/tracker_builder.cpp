@@ -36,6 +36,7 @@ std::vector<ViewpointModel> multi_region_models(const TrackerConfig& config, con
 /// Which cues the configuration and the rig ask for.
 struct CueSelection {
   bool region, depth, texture, flow;
+  bool depth_alone() const { return depth && !region && !texture && !flow; }
 };
 
 /// Adds the cues of one tracked body: its region model(s) and depth model from the cache
@@ -55,6 +56,11 @@ void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const s
   for (ViewpointModel& model : models) shared.push_back(std::make_shared<const ViewpointModel>(std::move(model)));
   const RegionModality::Extent extent =
       multi_region ? RegionModality::Extent::kRegionOfBody : RegionModality::Extent::kWholeBody;
+  // Depth alone must pin all six degrees of freedom by itself: the body's whole visible
+  // surface does that better than the model's sparse points (docs/configuration.md).
+  const DepthModality::Sampling depth_sampling = cues.depth_alone() && config.depth.dense.when_only_cue
+                                                     ? DepthModality::Sampling::kDense
+                                                     : DepthModality::Sampling::kModelPoints;
   // Model by model, then camera by camera: one camera per cue gives the modality order of
   // a single-camera tracker.
   for (const auto& model : shared) {
@@ -67,7 +73,11 @@ void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const s
       } else if (model->kind() == ViewpointModel::Kind::kDepth && cues.depth && camera.depth) {
         DepthParams params = config.depth;
         params.depth_camera = camera.camera;
-        tracker.add_modality(std::make_unique<DepthModality>(body, model, params));
+        if (camera.dense_depth_step) {
+          params.dense.step_x = camera.dense_depth_step->x;
+          params.dense.step_y = camera.dense_depth_step->y;
+        }
+        tracker.add_modality(std::make_unique<DepthModality>(body, model, params, depth_sampling));
       }
     }
   }

@@ -13,6 +13,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include "icgp/base/resource_limits.h"
 #include "icgp/io/yaml_reader.h"
 #include "icgp/modality/cue_kind.h"
 
@@ -228,6 +229,10 @@ const Fields<DepthParams> kDepthFields = {
     field("occlusion_render_size", &DepthParams::occlusion, &OcclusionParams::render_size, int_range<16, 2048>()),
     field("n_unoccluded_iterations", &DepthParams::n_unoccluded_iterations, int_range<0, 1000>()),
     field("min_n_unoccluded_points", &DepthParams::min_n_unoccluded_points, int_range<0, 5000>()),
+    field("dense_when_only_cue", &DepthParams::dense, &DenseDepthParams::when_only_cue, kBool),
+    field("dense_step_x", &DepthParams::dense, &DenseDepthParams::step_x, int_range<0, kMaxImageSide>()),
+    field("dense_step_y", &DepthParams::dense, &DenseDepthParams::step_y, int_range<0, kMaxImageSide>()),
+    field("dense_n_points_max", &DepthParams::dense, &DenseDepthParams::n_points_max, int_range<1, 1000000>()),
 };
 
 const Fields<TextureParams> kTextureFields = {

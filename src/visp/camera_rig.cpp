@@ -97,6 +97,7 @@ std::vector<CameraCues> CameraRig::cues(const std::vector<CueKind>& modalities) 
     c.texture = (camera.types & kKlt) && (has_cue(modalities, CueKind::kTexture) || has_cue(modalities, CueKind::kFlow));
     c.depth = is_depth_camera(name) && has_cue(modalities, CueKind::kDepth);
     c.occlusion_depth_camera = is_depth_camera(name) ? name : first_depth_camera;
+    c.dense_depth_step = (camera.types & kDepthDense) ? camera.dense_step : camera.normal_step;
     out.push_back(c);
   }
   return out;

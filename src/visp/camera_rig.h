@@ -2,6 +2,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,9 @@ class CameraRig {
     vpCameraParameters parameters;
     bool parameters_set = false;  ///< ViSP silently uses its default camera; icgp refuses to
     vpHomogeneousMatrix camera_M_reference;
+    /// ViSP's sampling steps of its dense and normal depth features (setters or XML), for
+    /// icgp's dense depth; none: the configuration's.
+    std::optional<SamplingStep> dense_step, normal_step;
   };
 
   /// ViSP's names for n cameras: "Camera" for one, "Camera1" ... "CameraN" otherwise.
@@ -56,6 +60,8 @@ class CameraRig {
   /// Which cues run on which camera: EDGE → region, KLT → texture, DEPTH_NORMAL or
   /// DEPTH_DENSE → depth, each only if `modalities` names it. A colour camera looks for
   /// occlusions in its own depth when it has a depth type, else in the first depth camera.
+  /// Dense depth samples with the camera's dense step when it has DEPTH_DENSE, with its
+  /// normal step when it has DEPTH_NORMAL alone.
   std::vector<CameraCues> cues(const std::vector<CueKind>& modalities) const;
   /// Has a depth type (its depth may serve for occlusions even if the depth cue is off).
   bool is_depth_camera(const std::string& name) const;

@@ -15,13 +15,33 @@ const char* const kMovingEdges = "icgp's region cue replaces the moving edges: i
                                  "scales are set in the YAML parameters (region:)";
 const char* const kKlt = "icgp's flow and texture cues replace the KLT tracker (flow: and texture: in the YAML "
                          "parameters)";
-const char* const kDepthFeatures = "icgp's depth cue samples the model's sparse viewpoint points (depth: in the YAML "
-                                   "parameters)";
+const char* const kDepthFeatures = "icgp's depth cue pairs the model's sparse viewpoint points, or with depth as "
+                                   "the only cue a render's sampled pixels, with the closest measurements (depth: in "
+                                   "the YAML parameters)";
 
 /// The values of a two-camera call as a map of the first and second camera.
 template <typename T>
 std::map<std::string, T> as_map(const std::pair<std::string, std::string>& cameras, const T& first, const T& second) {
   return {{cameras.first, first}, {cameras.second, second}};
+}
+
+/// ViSP's sampling step of its depth features as icgp's dense depth step. ViSP refuses a
+/// step of 0 too; the upper bound is the largest image side vpMbIcgTracker takes.
+icgp::SamplingStep sampling_step(unsigned int step_x, unsigned int step_y, const std::string& call) {
+  const unsigned int most = icgp::kMaxImageSide;
+  if (step_x == 0 || step_y == 0 || step_x > most || step_y > most)
+    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": sampling step (" + std::to_string(step_x) +
+                                                 ", " + std::to_string(step_y) + ") must be pixels from 1 to " +
+                                                 std::to_string(most) + " along columns (stepX) and rows (stepY)");
+  return {static_cast<int>(step_x), static_cast<int>(step_y)};
+}
+
+/// Stores a camera's sampling step; true when it changed. The cues are rebuilt (at the next
+/// initialisation) only then, so that loading the same settings again leaves tracking running.
+bool store_step(std::optional<icgp::SamplingStep>& stored, const icgp::SamplingStep& step) {
+  if (stored && stored->x == step.x && stored->y == step.y) return false;
+  stored = step;
+  return true;
 }
 
 /// A camera's clipping flags: as set, else vpMbGenericTracker's default (none).
@@ -83,6 +103,16 @@ void vpMbIcgTracker::store_visp_xml_settings(const std::string& camera, const vp
   klt.setPyramidLevels(static_cast<int>(parser.getKltPyramidLevels()));
   s.klts[camera] = klt;
   s.klt_mask_borders[camera] = parser.getKltMaskBorder();
+  // The sampling steps of <depth_dense> and <depth_normal> are the one part that steers
+  // icgp: its dense depth samples the pixels they say, as ViSP's depth features do.
+  icgp::CameraRig::Camera& rig_camera = impl_->rig.at(camera, "loadConfigFile");
+  const bool dense_changed = store_step(
+      rig_camera.dense_step,
+      sampling_step(parser.getDepthDenseSamplingStepX(), parser.getDepthDenseSamplingStepY(), "loadConfigFile"));
+  const bool normal_changed = store_step(
+      rig_camera.normal_step,
+      sampling_step(parser.getDepthNormalSamplingStepX(), parser.getDepthNormalSamplingStepY(), "loadConfigFile"));
+  if (dense_changed || normal_changed) impl_->tracker_changed();
   unsigned int& flags = s.clipping_flags[camera];
   if (parser.hasNearClippingDistance()) flags |= vpPolygon3D::NEAR_CLIPPING;
   if (parser.hasFarClippingDistance()) flags |= vpPolygon3D::FAR_CLIPPING;
@@ -268,8 +298,12 @@ void vpMbIcgTracker::setDepthDenseFilteringMinDistance(double) {
 void vpMbIcgTracker::setDepthDenseFilteringOccupancyRatio(double) {
   impl_->report_without_effect("setDepthDenseFilteringOccupancyRatio", kDepthFeatures);
 }
-void vpMbIcgTracker::setDepthDenseSamplingStep(unsigned int, unsigned int) {
-  impl_->report_without_effect("setDepthDenseSamplingStep", kDepthFeatures);
+void vpMbIcgTracker::setDepthDenseSamplingStep(unsigned int stepX, unsigned int stepY) {
+  const icgp::SamplingStep step = sampling_step(stepX, stepY, "setDepthDenseSamplingStep");
+  bool changed = false;
+  for (const std::string& camera : impl_->rig.names())
+    changed |= store_step(impl_->rig.at(camera, "setDepthDenseSamplingStep").dense_step, step);
+  if (changed) impl_->tracker_changed();
 }
 void vpMbIcgTracker::setDepthNormalFaceCentroidMethod(const vpMbtFaceDepthNormal::vpFaceCentroidType&) {
   impl_->report_without_effect("setDepthNormalFaceCentroidMethod", kDepthFeatures);
@@ -286,8 +320,12 @@ void vpMbIcgTracker::setDepthNormalPclPlaneEstimationRansacMaxIter(int) {
 void vpMbIcgTracker::setDepthNormalPclPlaneEstimationRansacThreshold(double) {
   impl_->report_without_effect("setDepthNormalPclPlaneEstimationRansacThreshold", kDepthFeatures);
 }
-void vpMbIcgTracker::setDepthNormalSamplingStep(unsigned int, unsigned int) {
-  impl_->report_without_effect("setDepthNormalSamplingStep", kDepthFeatures);
+void vpMbIcgTracker::setDepthNormalSamplingStep(unsigned int stepX, unsigned int stepY) {
+  const icgp::SamplingStep step = sampling_step(stepX, stepY, "setDepthNormalSamplingStep");
+  bool changed = false;
+  for (const std::string& camera : impl_->rig.names())
+    changed |= store_step(impl_->rig.at(camera, "setDepthNormalSamplingStep").normal_step, step);
+  if (changed) impl_->tracker_changed();
 }
 
 void vpMbIcgTracker::setDisplayFeatures(bool displayF) { vpMbTracker::setDisplayFeatures(displayF); }

@@ -131,6 +131,10 @@ depth:
   occlusion_render_size: 100
   n_unoccluded_iterations: 3
   min_n_unoccluded_points: 7
+  dense_when_only_cue: false
+  dense_step_x: 3
+  dense_step_y: 2
+  dense_n_points_max: 800
 texture:
   color_camera: left
   depth_camera: ""
@@ -441,6 +445,8 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
       {"depth: {considered_distances: [0.05, -0.01]}", "depth.considered_distances: expected a list of 1 to 100 positive numbers, got [0.05, -0.01]"},
       {"depth: {stride_length: .inf}", "depth.stride_length: expected a positive number"},
       {"depth: {n_unoccluded_iterations: -2}", "depth.n_unoccluded_iterations: expected an integer from 0 to 1000, got -2"},
+      {"depth: {dense_step_x: -1}", "depth.dense_step_x: expected an integer from 0 to 8192, got -1"},
+      {"depth: {dense_n_points_max: 0}", "depth.dense_n_points_max: expected an integer from 1 to 1000000, got 0"},
       {"texture: {occlusion_radius: -0.01}", "texture.occlusion_radius: expected a non-negative number"},
       {"texture: {descriptor: surf}",
        "texture.descriptor: expected one of orb, brisk, sift, akaze, freak, daisy, oriented_brief"},

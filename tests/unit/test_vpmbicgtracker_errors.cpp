@@ -183,3 +183,14 @@ TEST_CASE("vpMbIcgTracker: setScanLineVisibilityTest is accepted and reported on
   CHECK_THAT(text, Contains("setScanLineVisibilityTest: no effect"));
   CHECK(text.find("setScanLineVisibilityTest") == text.rfind("setScanLineVisibilityTest"));  // once
 }
+
+TEST_CASE("vpMbIcgTracker: a depth sampling step of 0 is a vpException naming the step") {
+  vpMbIcgTracker tracker(1, vpMbIcgTracker::DEPTH_DENSE_TRACKER);
+  const vpException dense = vp_exception_of([&] { tracker.setDepthDenseSamplingStep(0, 2); });
+  CHECK(dense.getCode() == vpException::badValue);
+  CHECK_THAT(dense.getStringMessage(),
+             Contains("setDepthDenseSamplingStep") && Contains("(0, 2)") && Contains("pixels from 1"));
+  const vpException normal = vp_exception_of([&] { tracker.setDepthNormalSamplingStep(3, 0); });
+  CHECK(normal.getCode() == vpException::badValue);
+  CHECK_THAT(normal.getStringMessage(), Contains("setDepthNormalSamplingStep") && Contains("(3, 0)"));
+}

@@ -5,6 +5,8 @@
 #include <optional>
 #include <vector>
 
+#include "icgp/modality/dense_depth_sampling.h"
+#include "icgp/modality/depth_correspondence.h"
 #include "icgp/modality/measured_occlusion.h"
 #include "icgp/modality/rendered_scene.h"
 #include "icgp/modality/modality.h"
@@ -15,20 +17,29 @@
 
 namespace icgp {
 
-/// Point-to-plane alignment of sparse model surface points with the closest measured
-/// points of a depth camera (ICG's depth modality, ALGORITHMS.md §5, §7).
+/// Point-to-plane alignment of the body's surface with the measured points of a depth
+/// camera: sparse model points paired with their closest measurements (ICG's depth
+/// modality, ALGORITHMS.md §5, §7), or, dense, every sampled pixel where a render shows
+/// the body paired with the surface seen there (docs/configuration.md, dense depth).
 ///
 /// Noise: a point's standard deviation is σ·Z (σ in metres at 1 m). σ is estimated in every
 /// correspondence iteration from the point-to-plane residuals divided by Z, clamped between
 /// the noise floor and the iteration's `standard_deviations` entry (ResidualNoise).
 class DepthModality : public Modality {
  public:
-  DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params);
+  /// Where the correspondences come from.
+  enum class Sampling {
+    kModelPoints,  ///< the depth viewpoint model's sparse points
+    kDense,        ///< the render's pixel lattice (DenseDepthSampling with params.dense)
+  };
+  DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params,
+                Sampling sampling = Sampling::kModelPoints);
 
   std::string name() const override { return "depth"; }
   const std::string& camera() const override { return params_.depth_camera; }
-  /// With other bodies and model_occlusions: a focused render of the scene in the depth
-  /// camera at the first correspondence iteration.
+  /// Model points, with other bodies and model_occlusions: a focused render of the scene in
+  /// the depth camera at the first correspondence iteration. Dense: the render of the
+  /// sampling lattice in every correspondence iteration.
   std::vector<RenderRequest> render_requests(const Frame& frame, Stage stage) const override;
   void start(const Frame& frame, const Renders& renders) override;
   void correspondences(const Frame& frame, const Renders& renders, int corr_iter) override;
@@ -43,12 +54,6 @@ class DepthModality : public Modality {
   const ViewpointModel& model() const { return *model_; }
 
  private:
-  struct Correspondence {
-    Eigen::Vector3f body_point;
-    Eigen::Vector3f body_normal;
-    Eigen::Vector3f measured;  ///< in the depth camera frame
-  };
-
   /// The frame's image of the depth camera; nullptr when it delivered no depth this frame.
   const DepthImage* depth_image(const Frame& frame) const;
   /// How a correspondence pass searches the depth image around each point.
@@ -58,6 +63,10 @@ class DepthModality : public Modality {
     bool projected_pixel;       ///< also try the pixel the point projects to
   };
   Search search_of_pass(const DepthImage& depth, const Posef& depth_T_body, int corr_iter) const;
+  /// The model points' correspondences of iteration `corr_iter`.
+  void model_point_correspondences(const DepthImage& depth, const Renders& renders, int corr_iter);
+  /// The dense correspondences of iteration `corr_iter`.
+  void dense_correspondences(const DepthImage& depth, const Renders& renders, int corr_iter);
   /// The searched measurement closest to `point` within the considered distance; sets
   /// `saw_depth` when any searched pixel held a valid depth.
   bool find_closest_measurement(const DepthImage& depth, const Eigen::Vector3f& point, const Search& search,
@@ -78,7 +87,8 @@ class DepthModality : public Modality {
   RenderedScene scene_;       ///< this frame's render of the scene (empty without other bodies)
   Posef depth_T_reference_;
   ViewSelector view_selector_;
-  std::vector<Correspondence> correspondences_;
+  std::optional<DenseDepthSampling> dense_;  ///< set for Sampling::kDense
+  std::vector<DepthCorrespondence> correspondences_;
   ResidualNoise noise_;
   ViewOcclusions occlusions_;  ///< measured
   ViewOcclusions hidden_by_bodies_;  ///< modeled, in scene_

@@ -95,6 +95,31 @@ struct RegionParams {
   int min_n_unoccluded_lines = 0;
 };
 
+/// Dense depth correspondences (docs/configuration.md): when depth is a body's only cue, a
+/// model's ~200 sparse points pin its pose less well than its visible surface can. The
+/// cue then renders the body's depth and normals at the current pose in every
+/// correspondence iteration and pairs each sampled measured pixel inside the rendered
+/// silhouette with the rendered surface at that pixel, point-to-plane, as ViSP's dense
+/// depth features do.
+struct DenseDepthParams {
+  /// Dense correspondences replace the sparse model points when depth is the body's only
+  /// cue; false keeps the model points.
+  bool when_only_cue = true;
+  /// Image pixels between samples along columns (x) and rows (y), ViSP's
+  /// setDepthDenseSamplingStep; 0: the smallest step that puts at most n_points_max
+  /// samples on the image of the body's bounding sphere, so that a near body costs no more
+  /// than a far one and a far one still gets every pixel.
+  int step_x = 0;
+  int step_y = 0;
+  int n_points_max = 5000;
+};
+
+/// Image pixels between the samples of dense depth along columns (x) and rows (y).
+struct SamplingStep {
+  int x = 1;
+  int y = 1;
+};
+
 /// Parameters of the depth modality (ALGORITHMS.md §5, §7) with the reference defaults.
 struct DepthParams {
   std::string depth_camera = kDepthCamera;
@@ -106,6 +131,7 @@ struct DepthParams {
   OcclusionParams occlusion;
   int n_unoccluded_iterations = 10;
   int min_n_unoccluded_points = 0;
+  DenseDepthParams dense;
 };
 
 /// The keypoint descriptors of the texture cue (make_descriptor; docs/configuration.md).

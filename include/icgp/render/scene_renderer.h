@@ -45,6 +45,7 @@ struct FocusedRender {
   Intrinsics intrinsics;  ///< of the crop: maps its pixels back into the camera's image
   cv::Mat depth;          ///< CV_32FC1 metric Z, 0 on background
   cv::Mat ids;            ///< CV_8UC1 SceneRenderer::id of the body seen, 0 on background
+  cv::Mat normals;        ///< CV_32FC3 unit face normals in the camera frame, when the targets have kRenderNormals
   cv::Mat color;          ///< CV_8UC3 BGR shaded colour, when the request's targets have kRenderColor
 };
 

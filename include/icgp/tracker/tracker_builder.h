@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct CameraCues {
   bool texture = false;
   bool depth = false;
   std::string occlusion_depth_camera;
+  /// The sampling step of this camera's dense depth (ViSP's setDepthDenseSamplingStep),
+  /// over the configuration's depth.dense step; none: the configuration's.
+  std::optional<SamplingStep> dense_depth_step;
 };
 
 /// Reads the mesh of a configured body (BodyConfig): file and metres per unit.
