@@ -23,9 +23,10 @@ constexpr double kMinEigenvalue = 1e-4;
 /// A surface seen at more than about 85° from its normal shows its corners too obliquely to
 /// follow them.
 constexpr float kMinViewCosine = 0.087f;
-/// Focused renders where corners are lifted have about one pixel per image pixel, so that a
-/// corner finds its own depth; these bound their side.
-constexpr int kMinCornerRender = 64, kMaxCornerRender = 1024;
+/// Side of the focused render corners are lifted in and masked by. A corner is lifted along
+/// its own ray, so a coarser render only misplaces it in depth by the surface's slope over a
+/// render pixel; one size for every renewal spares the renderer new buffers.
+constexpr int kCornerRenderSize = 256;
 
 }  // namespace
 
@@ -36,6 +37,7 @@ FlowModality::FlowModality(Body& body, FlowParams params, std::string color_came
       depth_camera_(std::move(depth_camera)),
       lifter_(MeasuredOcclusion{params_.occlusion.radius, params_.occlusion.threshold}),
       sphere_(bounding_sphere(body.mesh)),
+      frames_(params_.window_size, params_.pyramid_levels),
       noise_(params_.noise) {}
 
 const ColorImage& FlowModality::color_image(const Frame& frame) const {
@@ -54,34 +56,37 @@ Pose FlowModality::camera_T_body() const { return camera_T_reference_ * body().r
 bool FlowModality::load_image(const ColorImage& color) {
   intrinsics_ = color.intrinsics;
   camera_T_reference_ = color.camera_T_reference;
-  const bool same_size = pyramid_.empty() || (grey_.cols == color.image.cols && grey_.rows == color.image.rows);
-  // A copy, not a view: the caller may reuse the image's buffer for its next frame while
-  // this pyramid is still the previous one.
-  if (color.image.channels() == 3)
-    cv::cvtColor(color.image, grey_, cv::COLOR_BGR2GRAY);
-  else
-    color.image.copyTo(grey_);
-  std::swap(previous_pyramid_, pyramid_);
-  const cv::Size window(params_.window_size, params_.window_size);
-  cv::buildOpticalFlowPyramid(grey_, pyramid_, window, params_.pyramid_levels, true);
-  return same_size;
+  return frames_.load(color.image);
+}
+
+cv::Rect FlowModality::body_region() const {
+  const Eigen::Vector3d centre = camera_T_body() * sphere_.centre;
+  if (!(centre.z() > sphere_.radius)) return {};
+  const ImageSquare square = square_around_sphere(intrinsics_, centre, sphere_.radius);
+  const int side = static_cast<int>(std::ceil(square.size)) + 1;
+  return {static_cast<int>(std::floor(square.u_min)), static_cast<int>(std::floor(square.v_min)), side, side};
 }
 
 void FlowModality::track_points(const PixelMask& mask) {
-  if (matches_.empty() || previous_pyramid_.empty()) return;
+  frames_.focus(body_region());
+  if (matches_.empty() || !frames_.ready()) {
+    matches_.clear();
+    return;
+  }
+  // The pyramids cover region(): points are followed in its coordinates.
+  const cv::Point2f origin(static_cast<float>(frames_.region().x), static_cast<float>(frames_.region().y));
   scratch_from_.clear();
-  for (const Match& m : matches_) scratch_from_.emplace_back(m.image_point.x(), m.image_point.y());
-  const cv::Size window(params_.window_size, params_.window_size);
-  cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid_, scratch_from_, scratch_to_, scratch_status_, scratch_error_,
-                           window, params_.pyramid_levels, kFlowTermination, 0, kMinEigenvalue);
+  for (const Match& m : matches_) scratch_from_.push_back(cv::Point2f(m.image_point.x(), m.image_point.y()) - origin);
+  cv::calcOpticalFlowPyrLK(frames_.previous(), frames_.current(), scratch_from_, scratch_to_, scratch_status_,
+                           scratch_error_, frames_.window(), frames_.levels(), kFlowTermination, 0, kMinEigenvalue);
   // Back from where each point went: a point the flow lost (to a look-alike, an occluder, a
   // highlight) rarely comes back to where it was.
-  cv::calcOpticalFlowPyrLK(pyramid_, previous_pyramid_, scratch_to_, scratch_back_, scratch_back_status_,
-                           scratch_error_, window, params_.pyramid_levels, kFlowTermination, 0, kMinEigenvalue);
+  cv::calcOpticalFlowPyrLK(frames_.current(), frames_.previous(), scratch_to_, scratch_back_, scratch_back_status_,
+                           scratch_error_, frames_.window(), frames_.levels(), kFlowTermination, 0, kMinEigenvalue);
   const float max_return = static_cast<float>(params_.forward_backward_threshold);
   std::size_t kept = 0;
   for (std::size_t i = 0; i < matches_.size(); ++i) {
-    const cv::Point2f& to = scratch_to_[i];
+    const cv::Point2f to = scratch_to_[i] + origin;
     const cv::Point2f back = scratch_back_[i] - scratch_from_[i];
     if (!scratch_status_[i] || !scratch_back_status_[i] || !(std::hypot(back.x, back.y) <= max_return)) continue;
     const Eigen::Vector2f pixel(to.x, to.y);
@@ -103,9 +108,8 @@ void FlowModality::drop_turned_away_points() {
 }
 
 void FlowModality::start(const Frame& frame, const Renders& renders) {
-  const ColorImage& color = color_image(frame);
-  load_image(color);
-  previous_pyramid_.clear();
+  load_image(color_image(frame));
+  frames_.forget_previous();
   noise_.reset();
   quality_ = {};
   frames_since_start_ = 0;
@@ -181,10 +185,8 @@ bool FlowModality::renewal_due() const {
 
 std::optional<RenderRequest> FlowModality::corner_render(const Frame& frame) const {
   const ColorImage& color = color_image(frame);
-  std::optional<RenderRequest> request = focused_render_request(
-      color_camera_, color.intrinsics, color.camera_T_reference, body().reference_T_body, sphere_, kMinCornerRender);
-  if (request) request->size = std::clamp(round_to_int(request->square.size), kMinCornerRender, kMaxCornerRender);
-  return request;
+  return focused_render_request(color_camera_, color.intrinsics, color.camera_T_reference, body().reference_T_body,
+                                sphere_, kCornerRenderSize);
 }
 
 std::vector<RenderRequest> FlowModality::render_requests(const Frame& frame, Stage stage) const {
@@ -226,14 +228,14 @@ void FlowModality::renew_points(const Frame& frame, const Renders& renders) {
                                 static_cast<int>(std::floor(request->square.v_min)),
                                 static_cast<int>(std::ceil(request->square.size)) + 1,
                                 static_cast<int>(std::ceil(request->square.size)) + 1) &
-                       cv::Rect(0, 0, grey_.cols, grey_.rows);
+                       cv::Rect(0, 0, frames_.grey().cols, frames_.grey().rows);
   if (roi.empty()) return;
   const FocusedRender& render = renders.at(*request);
   const std::uint8_t body_id = renders.id(body().name);
   cv::Mat mask = body_mask(render, body_id, roi);
   if (!color.mask.all_pixels()) mask &= color.mask.mask(roi) != 0;
   std::vector<cv::Point2f> corners;
-  cv::goodFeaturesToTrack(grey_(roi), corners, params_.max_features, params_.quality, params_.min_distance, mask,
+  cv::goodFeaturesToTrack(frames_.grey()(roi), corners, params_.max_features, params_.quality, params_.min_distance, mask,
                           params_.block_size, params_.use_harris, params_.harris_k);
   for (cv::Point2f& p : corners) p += cv::Point2f(static_cast<float>(roi.x), static_cast<float>(roi.y));
 
@@ -261,7 +263,8 @@ void FlowModality::finish(const Frame& frame, const Renders& renders) {
   // Like the texture cue's keyframes, corners lifted at the start pose would confirm it on
   // the first frame whatever it is: the flow vouches once the other cues had a frame to
   // confirm that pose. Too few corners are chance, not evidence.
-  quality_.abstained = n_lifted_ < params_.min_points || frames_since_start_ == 0;
+  quality_.just_started = frames_since_start_ == 0;
+  quality_.abstained = n_lifted_ < params_.min_points || quality_.just_started;
   ++frames_since_start_;
   quality_.sigma = sigma(last_corr_iter_);
   if (renewal_due()) renew_points(frame, renders);

@@ -329,7 +329,8 @@ void TextureModality::update_quality() {
   // which nothing has confirmed: a wrong start pose would match itself perfectly. Texture
   // tells how the object moved since its keyframe, not where it is, so it only vouches once
   // the other cues have had a frame to confirm that pose.
-  quality_.abstained = n_points < params_.min_keyframe_points || frames_since_start_ == 0;
+  quality_.just_started = frames_since_start_ == 0;
+  quality_.abstained = n_points < params_.min_keyframe_points || quality_.just_started;
   quality_.sigma = sigma(last_corr_iter_);
 }
 

@@ -221,6 +221,11 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
     }
     r.reference_T_body = s->body->reference_T_body;
     r.quality = n_scored > 0 ? score_sum / n_scored : 0.0;
+    // Cues that only lifted their points at the given pose this frame (texture, flow) have
+    // nothing to judge yet: that is no evidence against the pose the caller gave.
+    const bool all_just_started = std::all_of(r.modalities.begin(), r.modalities.end(),
+                                              [](const ModalityQuality& q) { return q.just_started; });
+    if (n_scored == 0 && all_just_started && !r.modalities.empty()) r.quality = 1.0;
     r.tracked = r.quality >= params_.quality_threshold;
     results.push_back(std::move(r));
   }

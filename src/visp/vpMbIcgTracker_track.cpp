@@ -141,23 +141,12 @@ void vpMbIcgTracker::track_step(const vpImage<unsigned char>* grey, const std::s
   icgp::Body& body = d.tracker->body(Impl::kBody);
   const icgp::visp_detail::EndDepthReads end_depth_reads{d.assembler};
   guarded(call, [&] {
-    const bool starting = d.start_pending;
-    if (starting) {
+    if (d.start_pending) {
       body.reference_T_body = icgp::to_pose(m_cMo);
       d.tracker->start(frame);
       d.start_pending = false;
     }
     std::vector<icgp::BodyResult> results = d.tracker->track(frame);
-    icgp::BodyResult& object = results.front();  // the object, added first
-    // On the frame the cues start on, a cue may have nothing to measure yet (texture alone
-    // has only made its keyframe): that is no evidence against the pose the program gave,
-    // which testTracking() must not report lost.
-    const bool none_measured = std::all_of(object.modalities.begin(), object.modalities.end(),
-                                           [](const icgp::ModalityQuality& q) { return q.abstained; });
-    if (starting && none_measured) {
-      object.quality = 1.0;
-      object.tracked = true;
-    }
     d.recovery->after_track(frame, results);
     for (const icgp::BodyResult& r : results) d.body_results[r.body] = r;
     d.quality = results.front().quality;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "icgp/modality/frame_pyramids.h"
 #include "icgp/modality/modality.h"
 #include "icgp/modality/modality_params.h"
 #include "icgp/modality/rendered_scene.h"
@@ -68,9 +69,11 @@ class FlowModality : public Modality {
  private:
   const ColorImage& color_image(const Frame& frame) const;
   Pose camera_T_body() const;
-  /// Makes `grey` and its pyramid the current image; false when its size differs from the
-  /// last one's (the points then cannot be followed).
+  /// Makes `color` the current frame; false when its size differs from the last one's (the
+  /// points then cannot be followed).
   bool load_image(const ColorImage& color);
+  /// Where the body can be in the image at its current pose: the square around its sphere.
+  cv::Rect body_region() const;
   void track_points(const PixelMask& mask);
   void drop_turned_away_points();
   bool renewal_due() const;
@@ -88,8 +91,7 @@ class FlowModality : public Modality {
   Sphere sphere_;  ///< the body's bounding sphere: where corners are looked for
   Intrinsics intrinsics_;
   Pose camera_T_reference_;
-  cv::Mat grey_;
-  std::vector<cv::Mat> pyramid_, previous_pyramid_;
+  FramePyramids frames_;
   std::vector<Match> matches_;
   /// Points at the last renewal; kNeverLifted while the body was never in front of the camera.
   static constexpr int kNeverLifted = -1;

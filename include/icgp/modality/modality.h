@@ -29,6 +29,10 @@ struct ModalityQuality {
   /// The standard deviation the last iteration weighed the cue with, in the cue's units
   /// (pixels; depth: metres at 1 m): its noise estimate or its schedule (ResidualNoise).
   double sigma = 0.0;
+  /// It abstained because it started on this frame and made its points at the pose it would
+  /// judge (texture keyframes, flow corners): no evidence either way. A body whose cues all
+  /// just started keeps the pose it was given (quality 1).
+  bool just_started = false;
 };
 
 /// Where a cue measured something in one camera's image, for display (ViSP's

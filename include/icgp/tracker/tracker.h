@@ -20,7 +20,8 @@ struct TrackerParams {
   double tikhonov_rotation = 1000.0;      ///< λ_r
   double tikhonov_translation = 30000.0;  ///< λ_t
   /// A body whose combined quality (the mean of the scores of its modalities that had
-  /// something to measure, ModalityQuality::abstained) is below this is reported lost.
+  /// something to measure, ModalityQuality::abstained) is below this is reported lost. A
+  /// body whose cues all just started (ModalityQuality::just_started) has quality 1.
   double quality_threshold = 0.5;
 };
 
