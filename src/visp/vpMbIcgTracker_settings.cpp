@@ -67,7 +67,7 @@ vpKltOpencv visp_default_klt() {
 }
 
 /// The flow cue's parameters with a KLT tracker's corner and flow settings, which have the
-/// same meaning (FlowParams). vpKltOpencv has no getter of its Harris switch: it stays as set.
+/// same meaning (FlowParams). vpKltOpencv has no getter of its Harris switch: the flow's stays.
 icgp::FlowParams with_klt_settings(icgp::FlowParams flow, const vpKltOpencv& klt) {
   flow.max_features = klt.getMaxFeatures();
   flow.quality = klt.getQuality();

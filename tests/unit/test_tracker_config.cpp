@@ -170,7 +170,7 @@ flow:
   quality: 0.02
   min_distance: 8.0
   block_size: 5
-  use_harris: false
+  use_harris: true
   harris_k: 0.04
   window_size: 9
   pyramid_levels: 2
