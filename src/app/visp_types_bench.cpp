@@ -77,7 +77,8 @@ TrackingSummary run_class(const std::vector<Frame>& frames, const SequenceObject
   tracker.loadConfigFile(xml_settings(types, files), false);
   // ViSP's RGB-D XML files ask for PCL's plane estimation of depth normals, which ViSP built
   // without PCL (Debian's) refuses at the first frame: both classes get ViSP's own method.
-  if (types.depth & kNormal) tracker.setDepthNormalFeatureEstimationMethod(vpMbtFaceDepthNormal::ROBUST_FEATURE_ESTIMATION);
+  if (types.depth & kNormal)
+    tracker.setDepthNormalFeatureEstimationMethod(vpMbtFaceDepthNormal::ROBUST_FEATURE_ESTIMATION);
   const vpHomogeneousMatrix cMo0 = to_homogeneous_matrix(*frames.front().truth(object.name));
   return summarise(frames, object.name, mesh, track_visp_sequence(tracker, frames, files, cMo0, types, colour));
 }

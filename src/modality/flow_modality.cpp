@@ -235,8 +235,8 @@ void FlowModality::renew_points(const Frame& frame, const Renders& renders) {
   cv::Mat mask = body_mask(render, body_id, roi);
   if (!color.mask.all_pixels()) mask &= color.mask.mask(roi) != 0;
   std::vector<cv::Point2f> corners;
-  cv::goodFeaturesToTrack(frames_.grey()(roi), corners, params_.max_features, params_.quality, params_.min_distance, mask,
-                          params_.block_size, params_.use_harris, params_.harris_k);
+  cv::goodFeaturesToTrack(frames_.grey()(roi), corners, params_.max_features, params_.quality, params_.min_distance,
+                          mask, params_.block_size, params_.use_harris, params_.harris_k);
   for (cv::Point2f& p : corners) p += cv::Point2f(static_cast<float>(roi.x), static_cast<float>(roi.y));
 
   const bool measure = params_.occlusion.measure && !depth_camera_.empty();

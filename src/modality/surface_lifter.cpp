@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/modality/surface_lifter.h"
 
+#include <cmath>
 #include <optional>
 
 #include "icgp/geometry/rounding.h"
@@ -8,8 +9,12 @@
 namespace icgp {
 namespace {
 
+/// A neighbour further off the fitted plane than this share of its distance (about 3°)
+/// shows a crease, where the render gives no one normal.
+constexpr float kMaxCreaseSlope = 0.05f;
+
 /// The camera-frame normal of the render's surface at (row, col), from its depth at the
-/// pixel's four neighbours; zero unless all of them show the body.
+/// pixel's four neighbours; zero unless all of them show the body on one plane.
 Eigen::Vector3f render_normal(const FocusedRender& render, std::uint8_t body_id, int row, int col) {
   if (row < 1 || col < 1 || row + 1 >= render.depth.rows || col + 1 >= render.depth.cols)
     return Eigen::Vector3f::Zero();
@@ -18,12 +23,18 @@ Eigen::Vector3f render_normal(const FocusedRender& render, std::uint8_t body_id,
     if (z <= 0.f || render.ids.at<std::uint8_t>(r, c) != body_id) return std::nullopt;
     return render.intrinsics.back_project<float>(static_cast<float>(c), static_cast<float>(r), z);
   };
-  const auto left = at(row, col - 1), right = at(row, col + 1), up = at(row - 1, col), down = at(row + 1, col);
-  if (!left || !right || !up || !down) return Eigen::Vector3f::Zero();
+  const auto centre = at(row, col), left = at(row, col - 1), right = at(row, col + 1), up = at(row - 1, col),
+             down = at(row + 1, col);
+  if (!centre || !left || !right || !up || !down) return Eigen::Vector3f::Zero();
   // Towards the camera: (right − left) × (down − up) points away from it in a frame of x
   // right and y down, so the order is reversed.
   const Eigen::Vector3f n = (*down - *up).cross(*right - *left);
-  return n.norm() > 0.f ? Eigen::Vector3f(n.normalized()) : Eigen::Vector3f::Zero();
+  if (!(n.norm() > 0.f)) return Eigen::Vector3f::Zero();
+  const Eigen::Vector3f unit = n.normalized();
+  // On a crease the four neighbours lie on two faces: their plane is neither face's.
+  for (const Eigen::Vector3f* p : {&*left, &*right, &*up, &*down})
+    if (std::abs(unit.dot(*p - *centre)) > kMaxCreaseSlope * (*p - *centre).norm()) return Eigen::Vector3f::Zero();
+  return unit;
 }
 
 }  // namespace

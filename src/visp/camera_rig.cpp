@@ -94,7 +94,8 @@ std::vector<CameraCues> CameraRig::cues(const std::vector<CueKind>& modalities) 
   for (const auto& [name, camera] : cameras_) {
     CameraCues c{name};
     c.region = (camera.types & kEdge) && has_cue(modalities, CueKind::kRegion);
-    c.texture = (camera.types & kKlt) && (has_cue(modalities, CueKind::kTexture) || has_cue(modalities, CueKind::kFlow));
+    const bool point_cues = has_cue(modalities, CueKind::kTexture) || has_cue(modalities, CueKind::kFlow);
+    c.texture = (camera.types & kKlt) && point_cues;
     c.depth = is_depth_camera(name) && has_cue(modalities, CueKind::kDepth);
     c.occlusion_depth_camera = is_depth_camera(name) ? name : first_depth_camera;
     c.dense_depth_step = (camera.types & kDepthDense) ? camera.dense_step : camera.normal_step;
