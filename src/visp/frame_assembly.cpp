@@ -163,6 +163,7 @@ void FrameAssembler::set_no_depth(const std::string& camera) {
 
 void FrameAssembler::end_depth_reads() {
   for (DepthImage& d : frame_.depths) d.source.drop_reader();
+  for (auto& [camera, reader] : vector_cloud_readers_) reader.end_frame();
 }
 
 }  // namespace icgp

@@ -14,6 +14,7 @@
 #include <visp3/core/vpRGBa.h>
 
 #include "icgp/base/frame.h"
+#include "vector_cloud_reader.h"
 
 namespace icgp {
 
@@ -58,11 +59,16 @@ class FrameAssembler {
   void set_depth_points(const std::string& camera, unsigned int width, unsigned int height,
                         const vpCameraParameters& parameters, bool camera_set,
                         const vpHomogeneousMatrix& camera_M_reference, PointReader read);
+  /// The reader of the camera's ViSP clouds, kept from frame to frame (it reads ahead what
+  /// the last frame read), for the readers given to set_depth or set_depth_points.
+  /// end_depth_reads() ends its frame.
+  VectorCloudReader& vector_cloud_reader(const std::string& camera) { return vector_cloud_readers_[camera]; }
   /// The depth camera delivers nothing this frame (DepthImage::delivered); the depth cue
   /// reading it sits the frame out.
   void set_no_depth(const std::string& camera);
-  /// Drops the readers of set_depth (which usually refer to the caller's clouds): pixels
-  /// not read so far read as "no measurement" from now on.
+  /// Drops the readers of set_depth (which usually refer to the caller's clouds), and ends
+  /// the frames of the cloud readers: pixels not read so far read as "no measurement" from
+  /// now on.
   void end_depth_reads();
 
   /// ViSP's setMask: the pixels every camera's cues may use (true), for every image of the
@@ -86,6 +92,7 @@ class FrameAssembler {
   Frame frame_;
   std::map<std::string, ColorImage> color_slots_;  ///< buffers kept across frames
   std::map<std::string, cv::Mat> depth_buffers_, ray_buffers_;
+  std::map<std::string, VectorCloudReader> vector_cloud_readers_;
   cv::Mat mask_;
   std::set<std::string> cameras_without_mask_;  ///< already told their size differs
   vpImage<unsigned char> grey_;

@@ -206,21 +206,9 @@ void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfC
   track_frame(mapOfColorImages, {}, "track");
 }
 
-namespace {
-
-/// The point of a ViSP organised cloud's pixel, ViSP's zero-length vectors included (as no
-/// measurement).
-Eigen::Vector3f cloud_point(const std::vector<vpColVector>& cloud, unsigned int width, int row, int col) {
-  const vpColVector& point = cloud[static_cast<std::size_t>(row) * width + col];
-  if (point.size() < 3) return Eigen::Vector3f::Zero();
-  return {static_cast<float>(point[0]), static_cast<float>(point[1]), static_cast<float>(point[2])};
-}
-
-}  // namespace
-
 std::vector<vpMbIcgTracker::DepthInput> vpMbIcgTracker::cloud_depth_inputs(
     const std::map<std::string, const std::vector<vpColVector>*>& clouds,
-    std::map<std::string, unsigned int>& widths, std::map<std::string, unsigned int>& heights) const {
+    std::map<std::string, unsigned int>& widths, std::map<std::string, unsigned int>& heights) {
   std::vector<DepthInput> depths;
   for (const auto& [name, cloud] : clouds) {
     const icgp::CameraRig::Camera& camera = impl_->rig.at(name, "track");
@@ -241,11 +229,9 @@ std::vector<vpMbIcgTracker::DepthInput> vpMbIcgTracker::cloud_depth_inputs(
                                                    std::to_string(depth.width) + " x " +
                                                    std::to_string(depth.height) +
                                                    " (an organised cloud has one point per pixel)");
-    const unsigned int width = depth.width;
-    // Init-captures: C++17 does not let a lambda capture a structured binding (clang refuses).
-    icgp::visp_detail::read_cloud(
-        depth, [cloud = cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); },
-        camera.parameters);
+    icgp::VectorCloudReader& reader = impl_->assembler.vector_cloud_reader(name);
+    reader.start_frame(*cloud, depth.width, depth.height);
+    icgp::visp_detail::read_cloud(depth, [&reader](int row, int col) { return reader(row, col); }, camera.parameters);
     depths.push_back(std::move(depth));
   }
   return depths;
