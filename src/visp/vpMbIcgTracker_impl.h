@@ -160,12 +160,12 @@ bool any_grid_pixel(unsigned int width, unsigned int height, Predicate predicate
 /// sensor's cloud de-projected with its distortion). The grid of any_grid_pixel, corners
 /// and edges included where distortion is largest, decides; 0.05 px is far below what lens
 /// distortion moves an edge pixel. Points with a non-finite coordinate are no measurement.
+/// `cloud_point(row, col)` is the cloud's point of a pixel: a callable, not a std::function,
+/// so that each pixel the cues read goes through one std::function, not a chain of them.
 /// `depth` is not empty (require_depth_size).
-inline void read_cloud(DepthInput& depth, const FrameAssembler::PointReader& cloud_point,
-                       const vpCameraParameters& camera) {
-  FrameAssembler::PointReader point_at = [cloud_point](int row, int col) {
-    return measured_point(cloud_point(row, col));
-  };
+template <typename CloudPoint>
+void read_cloud(DepthInput& depth, CloudPoint cloud_point, const vpCameraParameters& camera) {
+  const auto point_at = [cloud_point](int row, int col) { return measured_point(cloud_point(row, col)); };
   const bool off_ray = any_grid_pixel(depth.width, depth.height, [&](int row, int col) {
     const Eigen::Vector3f P = point_at(row, col);
     if (!(P.z() > 0.f)) return false;
@@ -174,7 +174,7 @@ inline void read_cloud(DepthInput& depth, const FrameAssembler::PointReader& clo
     return !(std::abs(u - col) <= 0.05 && std::abs(v - row) <= 0.05);
   });
   if (off_ray)
-    depth.points = std::move(point_at);
+    depth.points = point_at;
   else
     depth.depth = [point_at](int row, int col) { return point_at(row, col).z(); };
 }
