@@ -49,16 +49,18 @@ class FrameAssembler {
   /// A measured point at (row, col) in the camera frame (metres), for clouds whose points
   /// are not on the pinhole rays of their pixels.
   using PointReader = std::function<Eigen::Vector3f(int row, int col)>;
+  /// Reads together pixels the cues are about to read (DepthImage::read_soon); may be empty.
+  using ReadSoon = LazyDepthSource::ReadSoon;
   /// The camera's depth image, converted from `read` on first read of each pixel (see
   /// DepthImage::source): the cues read a few thousand pixels, and reading a whole cloud
   /// of ViSP's vpColVectors would cost as much as tracking. `read` is used until
   /// end_depth_reads().
   void set_depth(const std::string& camera, unsigned int width, unsigned int height,
                  const vpCameraParameters& parameters, bool camera_set, const vpHomogeneousMatrix& camera_M_reference,
-                 DepthReader read);
+                 DepthReader read, ReadSoon read_soon);
   void set_depth_points(const std::string& camera, unsigned int width, unsigned int height,
                         const vpCameraParameters& parameters, bool camera_set,
-                        const vpHomogeneousMatrix& camera_M_reference, PointReader read);
+                        const vpHomogeneousMatrix& camera_M_reference, PointReader read, ReadSoon read_soon);
   /// The reader of the camera's ViSP clouds, kept from frame to frame (it reads ahead what
   /// the last frame read), for the readers given to set_depth or set_depth_points.
   /// end_depth_reads() ends its frame.

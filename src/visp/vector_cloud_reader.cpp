@@ -21,13 +21,29 @@ void VectorCloudReader::start_frame(const std::vector<vpColVector>& cloud, unsig
     ahead_slot_[ahead_[slot]] = slot;
     ahead_points_[slot] = point(ahead_[slot]);
   }
+  n_carried_ = ahead_.size();
+}
+
+void VectorCloudReader::read_soon(const std::vector<cv::Point>& pixels) {
+  for (const cv::Point& p : pixels) {
+    const std::uint32_t pixel = static_cast<std::uint32_t>(p.y) * width_ + static_cast<std::uint32_t>(p.x);
+    std::uint32_t slot = 0;
+    if (read_ahead(pixel, slot)) continue;
+    ahead_slot_[pixel] = static_cast<std::uint32_t>(ahead_.size());
+    ahead_.push_back(pixel);
+    ahead_points_.push_back(point(pixel));
+  }
 }
 
 Eigen::Vector3f VectorCloudReader::operator()(int row, int col) {
   const std::uint32_t pixel = static_cast<std::uint32_t>(row) * width_ + static_cast<std::uint32_t>(col);
-  read_.push_back(pixel);
   std::uint32_t slot = 0;
-  return read_ahead(pixel, slot) ? ahead_points_[slot] : point(pixel);
+  if (!read_ahead(pixel, slot)) {
+    read_.push_back(pixel);
+    return point(pixel);
+  }
+  if (slot < n_carried_) read_.push_back(pixel);
+  return ahead_points_[slot];
 }
 
 Eigen::Vector3f VectorCloudReader::point(std::uint32_t pixel) const {

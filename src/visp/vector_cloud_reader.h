@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <opencv2/core/types.hpp>
 #include <vector>
 #include <visp3/core/vpColVector.h>
 
@@ -29,8 +30,13 @@ class VectorCloudReader {
 
   /// The point of pixel (row, col) in the frame's cloud; a vpColVector of fewer than 3
   /// values (ViSP's zero-length vectors) is no measurement, 0. The pixel is read ahead in
-  /// the next frame.
+  /// the next frame, unless it came through read_soon.
   Eigen::Vector3f operator()(int row, int col);
+
+  /// Reads now, in one loop, the points of `pixels` (inside the cloud) that are not read
+  /// yet, which the cues are about to read (DepthImage::read_soon): pixels that move with
+  /// the body, so they are not read ahead in the next frame.
+  void read_soon(const std::vector<cv::Point>& pixels);
 
   /// Forgets the frame's cloud, which is the caller's.
   void end_frame() { cloud_ = nullptr; }
@@ -45,10 +51,12 @@ class VectorCloudReader {
 
   const std::vector<vpColVector>* cloud_ = nullptr;
   unsigned int width_ = 0, height_ = 0;
-  /// Row-major pixel indices: those read ahead in this frame with their points, and those
-  /// read in this frame (ahead or not).
+  /// Row-major pixel indices: those read ahead in this frame with their points (the first
+  /// n_carried_ when the frame started, the others through read_soon), and those read in
+  /// this frame to read ahead in the next.
   std::vector<std::uint32_t> ahead_, read_;
   std::vector<Eigen::Vector3f> ahead_points_;
+  std::size_t n_carried_ = 0;
   /// Per pixel, its index in ahead_ if it is there (read_ahead checks; a stale index is
   /// harmless, so it is never cleared).
   std::vector<std::uint32_t> ahead_slot_;

@@ -89,10 +89,10 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     d.depth_without_measurement.erase(depth.camera);
     if (depth.points)
       d.assembler.set_depth_points(depth.camera, depth.width, depth.height, camera.parameters,
-                                   camera.parameters_set, camera.camera_M_reference, depth.points);
+                                   camera.parameters_set, camera.camera_M_reference, depth.points, depth.read_soon);
     else
       d.assembler.set_depth(depth.camera, depth.width, depth.height, camera.parameters, camera.parameters_set,
-                            camera.camera_M_reference, depth.depth);
+                            camera.camera_M_reference, depth.depth, depth.read_soon);
     any_depth = any_depth || d.cues_of(depth.camera).depth;
   }
   bool any_color = false;
@@ -232,6 +232,7 @@ std::vector<vpMbIcgTracker::DepthInput> vpMbIcgTracker::cloud_depth_inputs(
     icgp::VectorCloudReader& reader = impl_->assembler.vector_cloud_reader(name);
     reader.start_frame(*cloud, depth.width, depth.height);
     icgp::visp_detail::read_cloud(depth, [&reader](int row, int col) { return reader(row, col); }, camera.parameters);
+    depth.read_soon = [&reader](const std::vector<cv::Point>& pixels) { reader.read_soon(pixels); };
     depths.push_back(std::move(depth));
   }
   return depths;
