@@ -50,6 +50,9 @@ struct vpMbIcgTracker::Impl {
   std::map<std::string, int> image_channels;
   double quality = 0.0;
   std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
+  /// The last frame's residuals and weights (m_error, m_w), kept for their capacity: every
+  /// frame gathers several hundred.
+  std::vector<double> residuals, weights;
   /// Further bodies (config.bodies): poses (cMb) and joint values set by the program, applied
   /// when the tracker is (re)initialised, and each body's result on the last frame.
   std::map<std::string, icgp::Pose> body_poses;

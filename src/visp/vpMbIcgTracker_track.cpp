@@ -334,7 +334,10 @@ void vpMbIcgTracker::computeVVSInit() {
 
 void vpMbIcgTracker::computeVVSInteractionMatrixAndResidu() {
   if (!impl_->tracker) return;
-  std::vector<double> residuals, weights;
+  std::vector<double>& residuals = impl_->residuals;
+  std::vector<double>& weights = impl_->weights;
+  residuals.clear();
+  weights.clear();
   impl_->tracker->residuals(Impl::kBody, residuals, weights);
   m_error.resize(static_cast<unsigned int>(residuals.size()), false);
   m_w.resize(static_cast<unsigned int>(weights.size()), false);
