@@ -29,11 +29,13 @@ void require_camera(bool set, const std::string& camera) {
 
 }  // namespace
 
-void require_image_size(const std::string& call, const std::string& what, unsigned int width, unsigned int height) {
+void require_image_size(const std::string& call, const std::function<std::string()>& what, unsigned int width,
+                        unsigned int height) {
   if (width == 0 || height == 0 || width > kMaxImageSide || height > kMaxImageSide)
-    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": " + what + " is " + std::to_string(width) +
-                                                 " x " + std::to_string(height) + " pixels; width and height must be "
-                                                 "in [1, " + std::to_string(kMaxImageSide) + "]");
+    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": " + what() + " is " +
+                                                 std::to_string(width) + " x " + std::to_string(height) +
+                                                 " pixels; width and height must be in [1, " +
+                                                 std::to_string(kMaxImageSide) + "]");
 }
 
 void FrameAssembler::begin_frame() {

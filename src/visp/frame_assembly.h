@@ -23,9 +23,11 @@ namespace icgp {
 /// texture limit on llvmpipe and on most GPUs; a larger side is a corrupt size, not a camera.
 inline constexpr unsigned int kMaxImageSide = 16384;
 
-/// Refuses, with vpException::badValue naming `call`, `what` (e.g. "the depth of camera
-/// 'Camera2'") and the size, a width or height of 0 or above kMaxImageSide.
-void require_image_size(const std::string& call, const std::string& what, unsigned int width, unsigned int height);
+/// Refuses, with vpException::badValue naming `call`, `what()` (e.g. "the depth of camera
+/// 'Camera2'") and the size, a width or height of 0 or above kMaxImageSide. `what` makes its
+/// text only for a size it refuses: track() checks every image of every frame.
+void require_image_size(const std::string& call, const std::function<std::string()>& what, unsigned int width,
+                        unsigned int height);
 
 /// Builds the icgp::Frame a tracker reads from what ViSP users hold, camera by camera:
 /// vpImage colour or grey images, organised point clouds, raw depth images. Buffers are

@@ -187,8 +187,9 @@ void read_cloud(DepthInput& depth, CloudPoint cloud_point, const vpCameraParamet
 /// [1, kMaxImageSide] on both sides, before anything is read or allocated for it.
 inline void require_depth_size(const std::string& call, const DepthInput& depth) {
   if (depth.width == 0 && depth.height == 0) return;
-  require_image_size(call, "the depth of camera '" + depth.camera + "' (0 x 0: none this frame)", depth.width,
-                     depth.height);
+  require_image_size(
+      call, [&depth] { return "the depth of camera '" + depth.camera + "' (0 x 0: none this frame)"; }, depth.width,
+      depth.height);
 }
 
 /// Whether any pixel of `depth` holds a measurement (Z > 0 and finite). The grid that

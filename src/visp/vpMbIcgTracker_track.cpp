@@ -63,7 +63,8 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     // ViSP programs also pass a depth camera's image: only colour cues read one.
     const icgp::CameraCues& cues = d.cues_of(name);
     if (!image || !(cues.region || cues.texture)) continue;
-    icgp::require_image_size(call, "the image of camera '" + name + "'", image->getWidth(), image->getHeight());
+    icgp::require_image_size(
+        call, [&name = name] { return "the image of camera '" + name + "'"; }, image->getWidth(), image->getHeight());
     d.assembler.set_color(name, *image, camera.parameters, camera.parameters_set, camera.camera_M_reference);
     const int channels = std::is_same_v<Image, vpImage<unsigned char>> ? 1 : 3;
     const auto [last, first_image] = d.image_channels.emplace(name, channels);
