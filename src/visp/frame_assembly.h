@@ -55,8 +55,8 @@ class FrameAssembler {
   using ReadSoon = LazyDepthSource::ReadSoon;
   /// The camera's depth image, converted from `read` on first read of each pixel (see
   /// DepthImage::source): the cues read a few thousand pixels, and reading a whole cloud
-  /// of ViSP's vpColVectors would cost as much as tracking. `read` is used until
-  /// end_depth_reads().
+  /// of ViSP's vpColVectors would cost as much as tracking. `read_soon`, if not empty, is
+  /// told the pixels a cue is about to read. Both are used until end_depth_reads().
   void set_depth(const std::string& camera, unsigned int width, unsigned int height,
                  const vpCameraParameters& parameters, bool camera_set, const vpHomogeneousMatrix& camera_M_reference,
                  DepthReader read, ReadSoon read_soon);
