@@ -10,6 +10,16 @@
 #include "icgp/modality/iteration_value.h"
 
 namespace icgp {
+namespace {
+
+/// The pixel (row, col) nearest to `projection`; false outside the image.
+bool nearest_pixel(const DepthImage& depth, const Eigen::Vector2f& projection, int& row, int& col) {
+  row = round_to_int(projection.y());
+  col = round_to_int(projection.x());
+  return row >= 0 && row < depth.depth.rows && col >= 0 && col < depth.depth.cols;
+}
+
+}  // namespace
 
 DepthModality::DepthModality(Body& body, std::shared_ptr<const ViewpointModel> model, DepthParams params,
                              Sampling sampling)
@@ -118,10 +128,9 @@ bool DepthModality::find_closest_measurement(const DepthImage& depth, const Eige
       found = true;
     }
   };
-  if (search.projected_pixel) {
-    const int row = round_to_int(centre.y()), col = round_to_int(centre.x());
-    if (row >= 0 && row < depth.depth.rows && col >= 0 && col < depth.depth.cols) consider(row, col);
-  }
+  int projected_row = 0, projected_col = 0;
+  if (search.projected_pixel && nearest_pixel(depth, centre, projected_row, projected_col))
+    consider(projected_row, projected_col);
   const int step = search.step;
   const int row_min = std::max(0, lattice_ceil(centre.y() - half, step));
   const int row_max = std::min(depth.depth.rows - 1, static_cast<int>(std::floor(centre.y() + half)));
@@ -206,6 +215,18 @@ void DepthModality::model_point_correspondences(const DepthImage& depth, const R
       return occlusion_.occluded(depth, depth_T_body_now * points[p].position,
                                  model_->depth_offsets(view, p)[occlusion_offset_index_]);
     });
+  // The last pass's searches start at the pixel each point projects to: scattered pixels
+  // that move with the body, which a depth converted on read had not read before.
+  if (search.projected_pixel && depth.takes_read_soon()) {
+    projected_pixels_.clear();
+    for (int p = 0; p < n_considered_; ++p) {
+      const Eigen::Vector3f X = depth_T_body_now * points[p].position;
+      int row = 0, col = 0;
+      if (X.z() > 0.f && nearest_pixel(depth, depth.intrinsics.project<float>(X), row, col))
+        projected_pixels_.emplace_back(col, row);
+    }
+    depth.read_soon(projected_pixels_);
+  }
   auto collect = [&](bool with_occlusion_test) {
     correspondences_.clear();
     saw_depth_ = false;

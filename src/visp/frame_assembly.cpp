@@ -29,11 +29,13 @@ void require_camera(bool set, const std::string& camera) {
 
 }  // namespace
 
-void require_image_size(const std::string& call, const std::string& what, unsigned int width, unsigned int height) {
+void require_image_size(const std::string& call, const std::function<std::string()>& what, unsigned int width,
+                        unsigned int height) {
   if (width == 0 || height == 0 || width > kMaxImageSide || height > kMaxImageSide)
-    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": " + what + " is " + std::to_string(width) +
-                                                 " x " + std::to_string(height) + " pixels; width and height must be "
-                                                 "in [1, " + std::to_string(kMaxImageSide) + "]");
+    throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": " + what() + " is " +
+                                                 std::to_string(width) + " x " + std::to_string(height) +
+                                                 " pixels; width and height must be in [1, " +
+                                                 std::to_string(kMaxImageSide) + "]");
 }
 
 void FrameAssembler::begin_frame() {
@@ -140,19 +142,20 @@ DepthImage& FrameAssembler::depth_slot(const std::string& camera, const vpCamera
 
 void FrameAssembler::set_depth(const std::string& camera, unsigned int width, unsigned int height,
                                const vpCameraParameters& parameters, bool camera_set,
-                               const vpHomogeneousMatrix& camera_M_reference, DepthReader read) {
+                               const vpHomogeneousMatrix& camera_M_reference, DepthReader read, ReadSoon read_soon) {
   DepthImage& d = depth_slot(camera, parameters, camera_set, camera_M_reference, width, height);
-  d.source.set_reader(std::move(read));
+  d.source.set_reader(std::move(read), std::move(read_soon));
 }
 
 void FrameAssembler::set_depth_points(const std::string& camera, unsigned int width, unsigned int height,
                                       const vpCameraParameters& parameters, bool camera_set,
-                                      const vpHomogeneousMatrix& camera_M_reference, PointReader read) {
+                                      const vpHomogeneousMatrix& camera_M_reference, PointReader read,
+                                      ReadSoon read_soon) {
   DepthImage& d = depth_slot(camera, parameters, camera_set, camera_M_reference, width, height);
   cv::Mat& rays = ray_buffers_[camera];
   rays.create(d.depth.size(), CV_32FC2);  // read only where the depth is converted
   d.rays = rays;
-  d.source.set_point_reader(std::move(read));
+  d.source.set_point_reader(std::move(read), std::move(read_soon));
 }
 
 void FrameAssembler::set_no_depth(const std::string& camera) {
@@ -163,6 +166,7 @@ void FrameAssembler::set_no_depth(const std::string& camera) {
 
 void FrameAssembler::end_depth_reads() {
   for (DepthImage& d : frame_.depths) d.source.drop_reader();
+  for (auto& [camera, reader] : vector_cloud_readers_) reader.end_frame();
 }
 
 }  // namespace icgp

@@ -16,7 +16,7 @@ std::vector<std::vector<double>> vpMbIcgTracker::getModelForDisplay(unsigned int
   if (d.mesh.parts.empty())
     throw vpTrackingException(vpTrackingException::initializationError,
                               "vpMbIcgTracker::getModelForDisplay: no model to display");
-  icgp::require_image_size("getModelForDisplay", "the image", width, height);
+  icgp::require_image_size("getModelForDisplay", [] { return std::string("the image"); }, width, height);
   return guarded("getModelForDisplay", [&] {
     if (!d.edges) d.edges = std::make_unique<icgp::ModelEdges>(d.mesh);
     const icgp::Intrinsics k = icgp::to_intrinsics(cam, static_cast<int>(width), static_cast<int>(height));

@@ -58,6 +58,9 @@ struct vpMbIcgTracker::Impl {
   std::map<std::string, int> image_channels;
   double quality = 0.0;
   std::optional<icgp::Mat66> hessian;  ///< of the last update's data terms
+  /// The last frame's residuals and weights (m_error, m_w), kept for their capacity: every
+  /// frame gathers several hundred.
+  std::vector<double> residuals, weights;
   /// Further bodies (config.bodies): poses (cMb) and joint values set by the program, applied
   /// when the tracker is (re)initialised, and each body's result on the last frame.
   std::map<std::string, icgp::Pose> body_poses;
@@ -139,6 +142,7 @@ struct DepthInput {
   unsigned int width = 0, height = 0;
   FrameAssembler::DepthReader depth;   ///< Z per pixel, or
   FrameAssembler::PointReader points;  ///< the point per pixel (organised clouds)
+  FrameAssembler::ReadSoon read_soon;  ///< for sources that read scattered pixels faster together
 };
 
 /// A point of a cloud as a measurement: one with a coordinate that is NaN or infinite is
@@ -147,54 +151,69 @@ inline Eigen::Vector3f measured_point(const Eigen::Vector3f& P) {
   return P.allFinite() ? P : Eigen::Vector3f::Zero();
 }
 
+/// Whether `predicate(row, col)` holds for a pixel of a 9 x 9 grid over a width x height
+/// image, corners and edges included; stops at the first that does. read_cloud and
+/// has_measurement both probe this grid, so the second finds its points in the cache.
+template <typename Predicate>
+bool any_grid_pixel(unsigned int width, unsigned int height, Predicate predicate) {
+  constexpr int kGrid = 9;
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j) {
+      const int row = static_cast<int>((height - 1) * i / (kGrid - 1));
+      const int col = static_cast<int>((width - 1) * j / (kGrid - 1));
+      if (predicate(row, col)) return true;
+    }
+  return false;
+}
+
 /// An organised cloud as a camera's depth: Z alone when its points lie on the pinhole
 /// rays of their pixels (a cloud de-projected without distortion, or made from a depth
 /// image), so that the depth cue's search may prune by rays; its points otherwise (a real
-/// sensor's cloud de-projected with its distortion). A 9 x 9 grid of pixels, corners and
-/// edges included where distortion is largest, decides; 0.05 px is far below what lens
+/// sensor's cloud de-projected with its distortion). The grid of any_grid_pixel, corners
+/// and edges included where distortion is largest, decides; 0.05 px is far below what lens
 /// distortion moves an edge pixel. Points with a non-finite coordinate are no measurement.
+/// `cloud_point(row, col)` is the cloud's point of a pixel: a callable, not a std::function,
+/// so that each pixel the cues read goes through one std::function, not a chain of them.
 /// `depth` is not empty (require_depth_size).
-inline void read_cloud(DepthInput& depth, const FrameAssembler::PointReader& cloud_point,
-                       const vpCameraParameters& camera) {
-  FrameAssembler::PointReader point_at = [cloud_point](int row, int col) {
-    return measured_point(cloud_point(row, col));
-  };
-  constexpr int kGrid = 9;
-  bool pinhole = true;
-  for (int i = 0; i < kGrid && pinhole; ++i)
-    for (int j = 0; j < kGrid && pinhole; ++j) {
-      const int row = static_cast<int>((depth.height - 1) * i / (kGrid - 1));
-      const int col = static_cast<int>((depth.width - 1) * j / (kGrid - 1));
-      const Eigen::Vector3f P = point_at(row, col);
-      if (!(P.z() > 0.f)) continue;
-      const double u = camera.get_px() * P.x() / P.z() + camera.get_u0();
-      const double v = camera.get_py() * P.y() / P.z() + camera.get_v0();
-      pinhole = std::abs(u - col) <= 0.05 && std::abs(v - row) <= 0.05;
-    }
-  if (pinhole)
-    depth.depth = [point_at](int row, int col) { return point_at(row, col).z(); };
+template <typename CloudPoint>
+void read_cloud(DepthInput& depth, CloudPoint cloud_point, const vpCameraParameters& camera) {
+  const auto point_at = [cloud_point](int row, int col) { return measured_point(cloud_point(row, col)); };
+  const bool off_ray = any_grid_pixel(depth.width, depth.height, [&](int row, int col) {
+    const Eigen::Vector3f P = point_at(row, col);
+    if (!(P.z() > 0.f)) return false;
+    const double u = camera.get_px() * P.x() / P.z() + camera.get_u0();
+    const double v = camera.get_py() * P.y() / P.z() + camera.get_v0();
+    return !(std::abs(u - col) <= 0.05 && std::abs(v - row) <= 0.05);
+  });
+  if (off_ray)
+    depth.points = point_at;
   else
-    depth.points = std::move(point_at);
+    depth.depth = [point_at](int row, int col) { return point_at(row, col).z(); };
 }
 
 /// Refuses a depth size that is neither 0 x 0 (ViSP's "no depth this frame") nor within
 /// [1, kMaxImageSide] on both sides, before anything is read or allocated for it.
 inline void require_depth_size(const std::string& call, const DepthInput& depth) {
   if (depth.width == 0 && depth.height == 0) return;
-  require_image_size(call, "the depth of camera '" + depth.camera + "' (0 x 0: none this frame)", depth.width,
-                     depth.height);
+  require_image_size(
+      call, [&depth] { return "the depth of camera '" + depth.camera + "' (0 x 0: none this frame)"; }, depth.width,
+      depth.height);
 }
 
-/// Whether any pixel of `depth` holds a measurement (Z > 0 and finite). Every 8th pixel of
-/// every 8th row first, which finds one at once in a sensor's frame; only a depth without
-/// any is read whole.
+/// Whether any pixel of `depth` holds a measurement (Z > 0 and finite). The grid that
+/// read_cloud has just read first, which finds an object that fills a fair part of the image
+/// (a rendered depth measures nothing but the object); then every 8th pixel of every 8th
+/// row, which finds one at once in a sensor's frame; only a depth without any is read whole.
 inline bool has_measurement(const DepthInput& depth) {
+  const auto measured = [&depth](int row, int col) {
+    const float z = depth.depth ? depth.depth(row, col) : depth.points(row, col).z();
+    return z > 0.f && std::isfinite(z);
+  };
+  if (any_grid_pixel(depth.width, depth.height, measured)) return true;
   for (const int step : {8, 1})
     for (int row = 0; row < static_cast<int>(depth.height); row += step)
-      for (int col = 0; col < static_cast<int>(depth.width); col += step) {
-        const float z = depth.depth ? depth.depth(row, col) : depth.points(row, col).z();
-        if (z > 0.f && std::isfinite(z)) return true;
-      }
+      for (int col = 0; col < static_cast<int>(depth.width); col += step)
+        if (measured(row, col)) return true;
   return false;
 }
 

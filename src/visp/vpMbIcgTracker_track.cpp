@@ -63,7 +63,8 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     // ViSP programs also pass a depth camera's image: only colour cues read one.
     const icgp::CameraCues& cues = d.cues_of(name);
     if (!image || !(cues.region || cues.texture)) continue;
-    icgp::require_image_size(call, "the image of camera '" + name + "'", image->getWidth(), image->getHeight());
+    icgp::require_image_size(
+        call, [&name = name] { return "the image of camera '" + name + "'"; }, image->getWidth(), image->getHeight());
     d.assembler.set_color(name, *image, camera.parameters, camera.parameters_set, camera.camera_M_reference);
     const int channels = std::is_same_v<Image, vpImage<unsigned char>> ? 1 : 3;
     const auto [last, first_image] = d.image_channels.emplace(name, channels);
@@ -89,10 +90,10 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     d.depth_without_measurement.erase(depth.camera);
     if (depth.points)
       d.assembler.set_depth_points(depth.camera, depth.width, depth.height, camera.parameters,
-                                   camera.parameters_set, camera.camera_M_reference, depth.points);
+                                   camera.parameters_set, camera.camera_M_reference, depth.points, depth.read_soon);
     else
       d.assembler.set_depth(depth.camera, depth.width, depth.height, camera.parameters, camera.parameters_set,
-                            camera.camera_M_reference, depth.depth);
+                            camera.camera_M_reference, depth.depth, depth.read_soon);
     any_depth = any_depth || d.cues_of(depth.camera).depth;
   }
   bool any_color = false;
@@ -195,21 +196,9 @@ void vpMbIcgTracker::track(std::map<std::string, const vpImage<vpRGBa>*>& mapOfC
   track_frame(mapOfColorImages, {}, "track");
 }
 
-namespace {
-
-/// The point of a ViSP organised cloud's pixel, ViSP's zero-length vectors included (as no
-/// measurement).
-Eigen::Vector3f cloud_point(const std::vector<vpColVector>& cloud, unsigned int width, int row, int col) {
-  const vpColVector& point = cloud[static_cast<std::size_t>(row) * width + col];
-  if (point.size() < 3) return Eigen::Vector3f::Zero();
-  return {static_cast<float>(point[0]), static_cast<float>(point[1]), static_cast<float>(point[2])};
-}
-
-}  // namespace
-
 std::vector<vpMbIcgTracker::DepthInput> vpMbIcgTracker::cloud_depth_inputs(
     const std::map<std::string, const std::vector<vpColVector>*>& clouds,
-    std::map<std::string, unsigned int>& widths, std::map<std::string, unsigned int>& heights) const {
+    std::map<std::string, unsigned int>& widths, std::map<std::string, unsigned int>& heights) {
   std::vector<DepthInput> depths;
   for (const auto& [name, cloud] : clouds) {
     const icgp::CameraRig::Camera& camera = impl_->rig.at(name, "track");
@@ -230,11 +219,10 @@ std::vector<vpMbIcgTracker::DepthInput> vpMbIcgTracker::cloud_depth_inputs(
                                                    std::to_string(depth.width) + " x " +
                                                    std::to_string(depth.height) +
                                                    " (an organised cloud has one point per pixel)");
-    const unsigned int width = depth.width;
-    // Init-captures: C++17 does not let a lambda capture a structured binding (clang refuses).
-    icgp::visp_detail::read_cloud(
-        depth, [cloud = cloud, width](int row, int col) { return cloud_point(*cloud, width, row, col); },
-        camera.parameters);
+    icgp::VectorCloudReader& reader = impl_->assembler.vector_cloud_reader(name);
+    reader.start_frame(*cloud, depth.width, depth.height);
+    icgp::visp_detail::read_cloud(depth, [&reader](int row, int col) { return reader(row, col); }, camera.parameters);
+    depth.read_soon = [&reader](const std::vector<cv::Point>& pixels) { reader.read_soon(pixels); };
     depths.push_back(std::move(depth));
   }
   return depths;
@@ -336,7 +324,10 @@ void vpMbIcgTracker::computeVVSInit() {
 
 void vpMbIcgTracker::computeVVSInteractionMatrixAndResidu() {
   if (!impl_->tracker) return;
-  std::vector<double> residuals, weights;
+  std::vector<double>& residuals = impl_->residuals;
+  std::vector<double>& weights = impl_->weights;
+  residuals.clear();
+  weights.clear();
   impl_->tracker->residuals(Impl::kBody, residuals, weights);
   m_error.resize(static_cast<unsigned int>(residuals.size()), false);
   m_w.resize(static_cast<unsigned int>(weights.size()), false);

@@ -46,22 +46,34 @@ struct ColorImage {
 class LazyDepthSource {
  public:
   static constexpr float kNotConverted = -1.f;
+  /// Told the pixels the cues are about to read (DepthImage::read_soon).
+  using ReadSoon = std::function<void(const std::vector<cv::Point>& pixels)>;
 
   /// `read`: the measured depth at (row, col) in metres; 0, negative or not finite: none.
-  void set_reader(std::function<float(int row, int col)> read) {
+  /// `read_soon`, if any: see DepthImage::read_soon.
+  void set_reader(std::function<float(int row, int col)> read, ReadSoon read_soon = nullptr) {
     read_ = std::move(read);
     read_point_ = nullptr;
+    read_soon_ = std::move(read_soon);
   }
   /// `read`: the measured point at (row, col) in the camera frame, metres; Z 0, negative or
   /// not finite: none. Its ray (X/Z, Y/Z) is written to the `rays` of convert().
-  void set_point_reader(std::function<Eigen::Vector3f(int row, int col)> read) {
+  void set_point_reader(std::function<Eigen::Vector3f(int row, int col)> read, ReadSoon read_soon = nullptr) {
     read_point_ = std::move(read);
     read_ = nullptr;
+    read_soon_ = std::move(read_soon);
   }
   /// Pixels not converted so far read as no measurement from now on.
   void drop_reader() {
     read_ = nullptr;
     read_point_ = nullptr;
+    read_soon_ = nullptr;
+  }
+
+  /// DepthImage::takes_read_soon and DepthImage::read_soon.
+  bool takes_read_soon() const { return static_cast<bool>(read_soon_); }
+  void read_soon(const std::vector<cv::Point>& pixels) const {
+    if (read_soon_) read_soon_(pixels);
   }
 
   /// The depth of kNotConverted pixel (row, col) of `depth`, which is written there (and
@@ -92,6 +104,7 @@ class LazyDepthSource {
  private:
   std::function<float(int row, int col)> read_;
   std::function<Eigen::Vector3f(int row, int col)> read_point_;
+  ReadSoon read_soon_;
   std::vector<cv::Point> converted_;
 };
 
@@ -126,6 +139,13 @@ struct DepthImage {
     const float z = depth.ptr<float>(row)[col];
     return z != kNotConverted ? z : source.convert(const_cast<cv::Mat&>(depth), const_cast<cv::Mat&>(rays), row, col);
   }
+  /// Whether read_soon() may help: the depth is converted on read from a source that reads
+  /// scattered pixels faster together, so that gathering them is worth a cue's while.
+  bool takes_read_soon() const { return source.takes_read_soon(); }
+  /// Tells the source that a cue is about to read `pixels` (inside the image), one at a time
+  /// between its own computations: a source whose reads wait on memory (ViSP's clouds) reads
+  /// them now, together. at() gives the same values either way.
+  void read_soon(const std::vector<cv::Point>& pixels) const { source.read_soon(pixels); }
   /// The measured point at (row, col), given its depth z = at(row, col) > 0.
   Eigen::Vector3f point(int row, int col, float z) const {
     if (rays.empty())

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <opencv2/core/types.hpp>
 #include <optional>
 #include <vector>
 
@@ -96,6 +97,7 @@ class DepthModality : public Modality {
   int n_hidden_by_bodies_ = 0;  ///< of those, hidden by other bodies: not expected to find data
   int last_corr_iter_ = 0;
   bool saw_depth_ = false;  ///< any valid depth where the last correspondences searched
+  std::vector<cv::Point> projected_pixels_;  ///< kept for its capacity
   int frames_since_start_ = 0;
   ModalityQuality quality_;
 };

@@ -600,10 +600,11 @@ class vpMbIcgTracker : public vpMbTracker {
   vpHomogeneousMatrix reference_pose(const std::string& camera, const vpHomogeneousMatrix& cMo,
                                      const std::string& call) const;
   void track_step(const vpImage<unsigned char>* grey, const std::string& call);
-  /// The depth inputs of ViSP's maps of organised clouds (checked: sizes, null clouds).
+  /// The depth inputs of ViSP's maps of organised clouds (checked: sizes, null clouds),
+  /// read through the cameras' cloud readers, whose frames this starts.
   std::vector<DepthInput> cloud_depth_inputs(const std::map<std::string, const std::vector<vpColVector>*>& clouds,
                                              std::map<std::string, unsigned int>& widths,
-                                             std::map<std::string, unsigned int>& heights) const;
+                                             std::map<std::string, unsigned int>& heights);
   /// The depth input of a raw depth image (metres = raw * depthScale) of the raw-depth camera.
   DepthInput raw_depth_input(const vpImage<uint16_t>& I_depth_raw, double depthScale, const std::string& call) const;
   /// initFromDetection: the frame assembled as track() does, then detected.
