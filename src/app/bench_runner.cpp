@@ -41,6 +41,17 @@ TrackingEvaluation evaluate_icgp(const std::vector<Frame>& frames, const std::st
       });
 }
 
+TrackingSummary summarise_visp_run(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                                   const RgbdRun& run) {
+  TrackingEvaluation evaluation(mesh);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const Pose* truth = frames[i].truth(body);
+    evaluation.add(frames[i].index, run.poses[i], truth ? std::optional<Pose>(*truth) : std::nullopt, true,
+                   run.track_ms[i]);
+  }
+  return evaluation.summary();
+}
+
 void throw_if_failed(const std::vector<std::string>& failures) {
   if (failures.empty()) return;
   std::string names;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "icgp/eval/metrics.h"
+#include "icgp/visp/rgbd_tracking_loop.h"
 #include "timed_icg_tracker.h"
 
 namespace icgp::app {
@@ -33,6 +34,11 @@ TrackingSummary run_icgp(const std::vector<Frame>& frames, const std::string& bo
 /// evaluate_configuration for icgp's tracker built from `config`.
 TrackingEvaluation evaluate_icgp(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
                                  const TrackerConfig& config);
+
+/// Errors against the ground truth and timing of the track() calls of a run through the
+/// ViSP API (track_visp_sequence), every frame counted as tracked.
+TrackingSummary summarise_visp_run(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                                   const RgbdRun& run);
 
 /// After the table: throws naming the configurations that failed, if any.
 void throw_if_failed(const std::vector<std::string>& failures);

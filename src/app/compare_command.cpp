@@ -61,18 +61,6 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
-/// Errors against the ground truth and timing of the track() calls of a run.
-TrackingSummary summarise(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
-                          const RgbdRun& run) {
-  TrackingEvaluation evaluation(mesh);
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    const Pose* truth = frames[i].truth(body);
-    evaluation.add(frames[i].index, run.poses[i], truth ? std::optional<Pose>(*truth) : std::nullopt, true,
-                   run.track_ms[i]);
-  }
-  return evaluation.summary();
-}
-
 void print_table(const std::vector<TimedRow>& rows, const std::vector<RowName>& names, int rounds) {
   const TimedRow* reference = find_row(rows, RowName{kVispTracker, kReferenceConfig}.name());
   std::printf("\n%-20s %-26s %8s %8s %9s %9s %10s %8s %14s\n", "tracker", "configuration", "mean mm", "max mm",
@@ -127,7 +115,7 @@ void run_compare(const CompareOptions& o) {
     add_job({kVispTracker, name}, [&, name] {
                       const std::unique_ptr<vpMbGenericTracker> tracker =
                           make_visp_tracker(visp_reference_configuration(name), visp_files);
-                      return summarise(frames, object.name, mesh,
+                      return summarise_visp_run(frames, object.name, mesh,
                                        track_rgbd_sequence(*tracker, frames, visp_files, cMo0));
     });
   }
@@ -135,7 +123,7 @@ void run_compare(const CompareOptions& o) {
     vpMbIcgTracker tracker(kRgbdTrackerTypes);
     tracker.setTrackerConfig(icgp_config);
     icg_run = track_rgbd_sequence(tracker, frames, visp_files, cMo0);
-    return summarise(frames, object.name, mesh, icg_run);
+    return summarise_visp_run(frames, object.name, mesh, icg_run);
   });
   // icgp's own Tracker, timed as `icgp bench` does: on the grey image the ViSP-API code
   // gives vpMbIcgTracker (the baseline of the layer's overhead), and on the colour image.

@@ -59,17 +59,6 @@ std::map<std::string, std::string> xml_settings(const VispCameraTypes& types, co
   return settings;
 }
 
-TrackingSummary summarise(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
-                          const RgbdRun& run) {
-  TrackingEvaluation evaluation(mesh);
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    const Pose* truth = frames[i].truth(body);
-    evaluation.add(frames[i].index, run.poses[i], truth ? std::optional<Pose>(*truth) : std::nullopt, true,
-                   run.track_ms[i]);
-  }
-  return evaluation.summary();
-}
-
 template <class TrackerT>
 TrackingSummary run_class(const std::vector<Frame>& frames, const SequenceObject& object, const Mesh& mesh,
                           const VispModelFiles& files, const VispCameraTypes& types, bool colour) {
@@ -80,7 +69,7 @@ TrackingSummary run_class(const std::vector<Frame>& frames, const SequenceObject
   if (types.depth & kNormal)
     tracker.setDepthNormalFeatureEstimationMethod(vpMbtFaceDepthNormal::ROBUST_FEATURE_ESTIMATION);
   const vpHomogeneousMatrix cMo0 = to_homogeneous_matrix(*frames.front().truth(object.name));
-  return summarise(frames, object.name, mesh, track_visp_sequence(tracker, frames, files, cMo0, types, colour));
+  return summarise_visp_run(frames, object.name, mesh, track_visp_sequence(tracker, frames, files, cMo0, types, colour));
 }
 
 struct ResultRow {

@@ -19,6 +19,8 @@ constexpr int kMaxAreaRatio = 4;
 bool FramePyramids::load(const cv::Mat& image) {
   std::swap(previous_grey_, grey_);
   std::swap(previous_pyramid_, pyramid_);
+  previous_built_ = built_;
+  built_ = false;
   previous_region_ = region_;
   // A copy, not a view: the caller may reuse the image's buffer for its next frame while
   // this one is still the previous.
@@ -26,7 +28,6 @@ bool FramePyramids::load(const cv::Mat& image) {
     cv::cvtColor(image, grey_, cv::COLOR_BGR2GRAY);
   else
     image.copyTo(grey_);
-  pyramid_.clear();
   return !previous_grey_.empty() && previous_grey_.size() == grey_.size();
 }
 
@@ -41,12 +42,14 @@ void FramePyramids::focus(const cv::Rect& wanted) {
   }
   if (region_.empty()) return;
   cv::buildOpticalFlowPyramid(grey_(region_), pyramid_, window_, levels_, true);
+  built_ = true;
   const bool previous_fits = !previous_grey_.empty() && previous_grey_.size() == grey_.size();
-  if (previous_fits && (previous_pyramid_.empty() || previous_region_ != region_)) {
+  if (previous_fits && (!previous_built_ || previous_region_ != region_)) {
     cv::buildOpticalFlowPyramid(previous_grey_(region_), previous_pyramid_, window_, levels_, true);
     previous_region_ = region_;
+    previous_built_ = true;
   }
-  if (!previous_fits) previous_pyramid_.clear();
+  if (!previous_fits) previous_built_ = false;
 }
 
 }  // namespace icgp

@@ -250,16 +250,7 @@ void TextureModality::correspondences(const Frame& frame, const Renders& renders
 }
 
 void TextureModality::estimate_noise() {
-  noise_.estimate([&](auto add) {
-    const Posef T = camera_T_body().cast<float>();
-    for (const Match& m : matches_) {
-      const Eigen::Vector3f X = T * m.body_point;
-      if (X.z() <= 0.f) continue;
-      const Eigen::Vector2f e = intrinsics_.project<float>(X) - m.image_point;
-      add(e.x());
-      add(e.y());
-    }
-  });
+  estimate_reprojection_noise(noise_, matches_, camera_T_body().cast<float>(), intrinsics_);
 }
 
 double TextureModality::sigma(int corr_iter) const {

@@ -28,12 +28,12 @@ class FramePyramids {
   /// Forgets the previous frame (after a restart: nothing is followed from before it).
   void forget_previous() {
     previous_grey_.release();
-    previous_pyramid_.clear();
+    previous_built_ = false;
   }
 
   const cv::Mat& grey() const { return grey_; }
   /// Whether both pyramids exist over region().
-  bool ready() const { return !previous_pyramid_.empty() && !pyramid_.empty(); }
+  bool ready() const { return previous_built_ && built_; }
   const cv::Rect& region() const { return region_; }
   const std::vector<cv::Mat>& previous() const { return previous_pyramid_; }
   const std::vector<cv::Mat>& current() const { return pyramid_; }
@@ -45,7 +45,10 @@ class FramePyramids {
   int levels_;
   cv::Mat grey_, previous_grey_;
   cv::Rect region_, previous_region_;  ///< of pyramid_ and of previous_pyramid_
+  /// The two pyramids swap their buffers from frame to frame; these say which hold this
+  /// frame pair's images.
   std::vector<cv::Mat> pyramid_, previous_pyramid_;
+  bool built_ = false, previous_built_ = false;
 };
 
 }  // namespace icgp

@@ -7,6 +7,7 @@
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
 #include "icgp/modality/modality.h"
+#include "icgp/modality/residual_noise.h"
 
 namespace icgp {
 
@@ -48,6 +49,22 @@ double reprojection_log_likelihood(const std::vector<Match>& matches, const Pose
            (sigma * sigma);
   }
   return sum;
+}
+
+/// Estimates `noise` from the u and v reprojection errors of the matches in front of the
+/// camera (ResidualNoise::estimate).
+template <typename Match>
+void estimate_reprojection_noise(ResidualNoise& noise, const std::vector<Match>& matches, const Posef& camera_T_body,
+                                 const Intrinsics& k) {
+  noise.estimate([&](auto add) {
+    for (const Match& m : matches) {
+      const Eigen::Vector3f X = camera_T_body * m.body_point;
+      if (X.z() <= 0.f) continue;
+      const Eigen::Vector2f e = k.project<float>(X) - m.image_point;
+      add(e.x());
+      add(e.y());
+    }
+  });
 }
 
 /// Appends the u and v reprojection errors of the matches in front of the camera, each with
