@@ -9,6 +9,7 @@
 #include "icgp/model/model_cache.h"
 #include "icgp/modality/cue_kind.h"
 #include "icgp/modality/depth_modality.h"
+#include "icgp/modality/edge_modality.h"
 #include "icgp/modality/flow_modality.h"
 #include "icgp/modality/region_modality.h"
 #include "icgp/modality/texture_modality.h"
@@ -35,12 +36,12 @@ std::vector<ViewpointModel> multi_region_models(const TrackerConfig& config, con
 
 /// Which cues the configuration and the rig ask for.
 struct CueSelection {
-  bool region, depth, texture, flow;
-  bool depth_alone() const { return depth && !region && !texture && !flow; }
+  bool region, depth, texture, flow, edge;
+  bool depth_alone() const { return depth && !region && !texture && !flow && !edge; }
 };
 
 /// Adds the cues of one tracked body: its region model(s) and depth model from the cache
-/// (`region_models` given: a multi-region body's), then its texture and flow cues per camera.
+/// (`region_models` given: a multi-region body's), then its texture, flow and edge cues per camera.
 void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const std::vector<CameraCues>& cameras,
               const CueSelection& cues, std::vector<ViewpointModel> region_models) {
   std::vector<ModelRequest> requests;
@@ -94,6 +95,9 @@ void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const s
       if (camera.texture)
         tracker.add_modality(
             std::make_unique<FlowModality>(body, config.flow, camera.camera, camera.occlusion_depth_camera));
+  if (cues.edge)
+    for (const CameraCues& camera : cameras)
+      if (camera.region) tracker.add_modality(std::make_unique<EdgeModality>(body, config.edge, camera.camera));
 }
 
 /// The mesh of a configured body, with the body named in any error.
@@ -121,7 +125,7 @@ std::vector<CameraCues> configured_cameras(const TrackerConfig& config) {
   camera(config.texture.color_camera).occlusion_depth_camera = config.texture.depth_camera;
   camera(config.region.color_camera).occlusion_depth_camera =
       region_on ? config.region.depth_camera : config.texture.depth_camera;
-  camera(config.region.color_camera).region = true;
+  camera(config.region.color_camera).region = true;  // and the edge cue's
   camera(config.texture.color_camera).texture = true;
   camera(config.depth.depth_camera).depth = true;
   return cameras;
@@ -149,7 +153,8 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   const CueSelection cues{has_cue(config.modalities, CueKind::kRegion) && any_camera(&CameraCues::region),
                           has_cue(config.modalities, CueKind::kDepth) && any_camera(&CameraCues::depth),
                           has_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture),
-                          has_cue(config.modalities, CueKind::kFlow) && any_camera(&CameraCues::texture)};
+                          has_cue(config.modalities, CueKind::kFlow) && any_camera(&CameraCues::texture),
+                          has_cue(config.modalities, CueKind::kEdge) && any_camera(&CameraCues::region)};
 
   auto tracker = std::make_unique<Tracker>(config.tracker, std::move(renderer));
   Body& body = tracker->add_body({body_name, mesh, Pose()});

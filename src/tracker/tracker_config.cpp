@@ -286,6 +286,20 @@ const Fields<FlowParams> kFlowFields = {
     field("occlusion_threshold", &FlowParams::occlusion, &OcclusionParams::threshold, kNonNegative),
 };
 
+const Fields<EdgeParams> kEdgeFields = {
+    field("crease_angle_deg", &EdgeParams::crease_angle_deg, Rule<double>{"a number of degrees in (0, 180)", [](const double& v) {
+            return std::isfinite(v) && v > 0.0 && v < 180.0;
+          }}),
+    field("sample_step", &EdgeParams::sample_step, kPositive),
+    field("n_points_max", &EdgeParams::n_points_max, int_range<1, 100000>()),
+    field("search_ranges", &EdgeParams::search_ranges, kScales),
+    field("min_contrast", &EdgeParams::min_contrast, kNonNegative),
+    field("min_points", &EdgeParams::min_points, int_range<0, 100000>()),
+    field("standard_deviations", &EdgeParams::standard_deviations, kPositives),
+    section("noise", &EdgeParams::noise, kNoiseFields),
+    field("render_size", &EdgeParams::render_size, int_range<16, 2048>()),
+};
+
 bool known_preset(const std::string& name) {
   const std::vector<std::string>& names = tracker_config_presets();
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -314,6 +328,7 @@ const Fields<TrackerConfig> kConfigFields = {
     section("depth", &TrackerConfig::depth, kDepthFields),
     section("texture", &TrackerConfig::texture, kTextureFields),
     section("flow", &TrackerConfig::flow, kFlowFields),
+    section("edge", &TrackerConfig::edge, kEdgeFields),
     field("regions", &TrackerConfig::regions,
           Rule<std::vector<std::string>>{"a list of region mesh files",
                                          [](const std::vector<std::string>& files) {

@@ -93,7 +93,8 @@ std::vector<CameraCues> CameraRig::cues(const std::vector<CueKind>& modalities) 
   std::vector<CameraCues> out;
   for (const auto& [name, camera] : cameras_) {
     CameraCues c{name};
-    c.region = (camera.types & kEdge) && has_cue(modalities, CueKind::kRegion);
+    const bool contour_cues = has_cue(modalities, CueKind::kRegion) || has_cue(modalities, CueKind::kEdge);
+    c.region = (camera.types & kEdge) && contour_cues;
     const bool point_cues = has_cue(modalities, CueKind::kTexture) || has_cue(modalities, CueKind::kFlow);
     c.texture = (camera.types & kKlt) && point_cues;
     c.depth = is_depth_camera(name) && has_cue(modalities, CueKind::kDepth);

@@ -30,11 +30,14 @@ struct vpMbIcgTracker::Impl {
 
   explicit Impl(icgp::CameraRig rig) : rig(std::move(rig)) {}
 
-  /// icgp's defaults with the flow cue too: a program that asks for KLT_TRACKER expects
-  /// corners tracked from frame to frame, as ViSP's KLT does. YAML files are read over them.
+  /// icgp's defaults with the flow and edge cues too: a program that asks for KLT_TRACKER
+  /// expects corners tracked from frame to frame, as ViSP's KLT does, and one that asks for
+  /// EDGE_TRACKER expects the object's creases followed, as ViSP's moving edges do. YAML
+  /// files are read over them.
   static icgp::TrackerConfig default_config() {
     icgp::TrackerConfig config;
     config.modalities.push_back(icgp::CueKind::kFlow);
+    config.modalities.push_back(icgp::CueKind::kEdge);
     return config;
   }
 

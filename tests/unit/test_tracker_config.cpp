@@ -415,7 +415,7 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
   };
   const Case cases[] = {
       {"regoin: {}", "regoin: unknown key (valid keys: preset, tracker, modalities, region_model, depth_model, region, depth, "
-                     "texture, flow, regions, bodies, detection, cache_dir)"},
+                     "texture, flow, edge, regions, bodies, detection, cache_dir)"},
       {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
       {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
       {"- tracker\n- region\n", "expected a map with the keys preset, tracker, modalities,"},

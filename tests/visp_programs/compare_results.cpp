@@ -5,9 +5,13 @@
 //   compare_results accuracy <visp errors> <icgp errors>
 //     fails unless icgp's mean translation AND mean rotation errors are <= ViSP's;
 //   compare_results agreement <visp pose> <icgp pose> <max mm> <max deg>
-//     fails unless the two final poses (4x4 cMo files) agree within the bounds.
+//     fails unless the two final poses (4x4 cMo files) agree within the bounds;
+//   compare_results track-agreement <visp poses> <icgp poses> <max mean mm> <max mean deg>
+//     fails unless the poses of every frame (lines "frame r11 r12 r13 tx ... r33 tz") differ
+//     by at most the bounds on average, over the frames both files hold.
 //
 // The error files hold "key value" lines (mean_translation_mm, mean_rotation_deg, ...).
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -80,12 +84,74 @@ int accuracy(const std::string &visp_file, const std::string &icgp_file)
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 
+//! Per-frame poses: lines "frame" followed by the first three rows of cMo.
+std::map<int, vpHomogeneousMatrix> read_poses(const std::string &path)
+{
+  std::ifstream f(path.c_str());
+  if (!f.is_open())
+    throw std::runtime_error("cannot read " + path);
+  std::map<int, vpHomogeneousMatrix> poses;
+  std::string line;
+  while (std::getline(f, line)) {
+    std::istringstream ss(line);
+    int frame = 0;
+    vpHomogeneousMatrix M;
+    bool ok = static_cast<bool>(ss >> frame);
+    for (unsigned int i = 0; ok && i < 3; i++)
+      for (unsigned int j = 0; ok && j < 4; j++)
+        ok = static_cast<bool>(ss >> M[i][j]);
+    if (!ok)
+      throw std::runtime_error(path + ": expected lines of a frame number and 12 numbers, got '" + line + "'");
+    poses[frame] = M;
+  }
+  return poses;
+}
+
+//! The distance between the translations (mm) and the angle between the rotations (deg).
+void difference(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b, double &t_mm, double &r_deg)
+{
+  t_mm = 1000.0 * (a.getTranslationVector() - b.getTranslationVector()).frobeniusNorm();
+  const vpThetaUVector tu(a.getRotationMatrix() * b.getRotationMatrix().t());
+  r_deg = vpMath::deg(std::sqrt(tu.sumSquare()));
+}
+
+int track_agreement(const std::string &visp_file, const std::string &icgp_file, double max_mm, double max_deg)
+{
+  const std::map<int, vpHomogeneousMatrix> visp = read_poses(visp_file), icgp = read_poses(icgp_file);
+  double sum_mm = 0.0, sum_deg = 0.0, worst_mm = 0.0, worst_deg = 0.0;
+  int n = 0;
+  for (std::map<int, vpHomogeneousMatrix>::const_iterator it = visp.begin(); it != visp.end(); ++it) {
+    const std::map<int, vpHomogeneousMatrix>::const_iterator other = icgp.find(it->first);
+    if (other == icgp.end())
+      continue;
+    double t_mm = 0.0, r_deg = 0.0;
+    difference(it->second, other->second, t_mm, r_deg);
+    sum_mm += t_mm;
+    sum_deg += r_deg;
+    worst_mm = std::max(worst_mm, t_mm);
+    worst_deg = std::max(worst_deg, r_deg);
+    n++;
+  }
+  if (n == 0 || n < static_cast<int>(visp.size())) {
+    std::cout << "FAIL: vpMbIcgTracker's poses cover " << n << " of the " << visp.size() << " frames" << std::endl;
+    return EXIT_FAILURE;
+  }
+  const double mean_mm = sum_mm / n, mean_deg = sum_deg / n;
+  std::cout << "over " << n << " frames the two trackers' poses differ by " << mean_mm << " mm and " << mean_deg
+            << " deg on average (bounds " << max_mm << " mm, " << max_deg << " deg), at most " << worst_mm
+            << " mm and " << worst_deg << " deg" << std::endl;
+  if (!(mean_mm <= max_mm && mean_deg <= max_deg)) {
+    std::cout << "FAIL: the two trackers' poses disagree" << std::endl;
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}
+
 int agreement(const std::string &visp_file, const std::string &icgp_file, double max_mm, double max_deg)
 {
   const vpHomogeneousMatrix visp = read_pose(visp_file), icgp = read_pose(icgp_file);
-  const double t_mm = 1000.0 * (visp.getTranslationVector() - icgp.getTranslationVector()).frobeniusNorm();
-  const vpThetaUVector tu(visp.getRotationMatrix() * icgp.getRotationMatrix().t());
-  const double r_deg = vpMath::deg(std::sqrt(tu.sumSquare()));
+  double t_mm = 0.0, r_deg = 0.0;
+  difference(visp, icgp, t_mm, r_deg);
   std::cout << "final poses of vpMbGenericTracker and vpMbIcgTracker differ by " << t_mm << " mm and " << r_deg
             << " deg (bounds " << max_mm << " mm, " << max_deg << " deg)" << std::endl;
   if (!(t_mm <= max_mm && r_deg <= max_deg)) {
@@ -104,8 +170,12 @@ int main(int argc, char *argv[])
       return accuracy(argv[2], argv[3]);
     if (mode == "agreement" && argc == 6)
       return agreement(argv[2], argv[3], std::atof(argv[4]), std::atof(argv[5]));
+    if (mode == "track-agreement" && argc == 6)
+      return track_agreement(argv[2], argv[3], std::atof(argv[4]), std::atof(argv[5]));
     std::cerr << "Usage: " << argv[0] << " accuracy <visp errors> <icgp errors>\n"
-              << "       " << argv[0] << " agreement <visp pose> <icgp pose> <max mm> <max deg>" << std::endl;
+              << "       " << argv[0] << " agreement <visp pose> <icgp pose> <max mm> <max deg>\n"
+              << "       " << argv[0] << " track-agreement <visp poses> <icgp poses> <max mean mm> <max mean deg>"
+              << std::endl;
   } catch (const std::exception &e) {
     std::cerr << "compare_results: " << e.what() << std::endl;
   }

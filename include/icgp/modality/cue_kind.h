@@ -11,17 +11,19 @@
 
 namespace icgp {
 
-/// The built-in cues. Their names ("region", "depth", "texture", "flow") are what configuration
+/// The built-in cues. Their names ("region", "depth", "texture", "flow", "edge") are what configuration
 /// files, scenarios and vpMbIcgTracker::setModalities select them by, and what the built-in
 /// modalities' Modality::name() returns (a cue written elsewhere may name itself freely).
 /// kFlow is ViSP's KLT tracker in ICG+'s step (FlowModality); it reads the texture cue's cameras.
-enum class CueKind { kRegion, kDepth, kTexture, kFlow };
+/// kEdge is ViSP's moving edges on the model's creases (EdgeModality); it reads the region
+/// cue's cameras.
+enum class CueKind { kRegion, kDepth, kTexture, kFlow, kEdge };
 
-inline constexpr std::array<CueKind, 4> kCueKinds = {CueKind::kRegion, CueKind::kDepth, CueKind::kTexture,
-                                                     CueKind::kFlow};
+inline constexpr std::array<CueKind, 5> kCueKinds = {CueKind::kRegion, CueKind::kDepth, CueKind::kTexture,
+                                                     CueKind::kFlow, CueKind::kEdge};
 
 inline const std::string& to_string(CueKind kind) {
-  static const std::array<std::string, 4> names = {"region", "depth", "texture", "flow"};
+  static const std::array<std::string, 5> names = {"region", "depth", "texture", "flow", "edge"};
   return names[static_cast<std::size_t>(kind)];
 }
 
@@ -32,7 +34,7 @@ inline std::optional<CueKind> parse_cue_kind(const std::string& name) {
   return std::nullopt;
 }
 
-/// "region, depth, texture, flow".
+/// "region, depth, texture, flow, edge".
 inline std::string cue_kind_names() {
   std::string names;
   for (const CueKind kind : kCueKinds) names += (names.empty() ? "" : ", ") + to_string(kind);
@@ -52,7 +54,7 @@ inline bool valid_cue_list(const std::vector<std::string>& names) {
 }
 
 /// The cues `names` names, in order. Throws std::invalid_argument for the first name that
-/// is none: "modality 'x' is not available (available: region, depth, texture, flow)".
+/// is none: "modality 'x' is not available (available: region, depth, texture, flow, edge)".
 inline std::vector<CueKind> parse_cue_list(const std::vector<std::string>& names) {
   std::vector<CueKind> cues;
   for (const std::string& name : names) {
@@ -71,7 +73,7 @@ inline std::vector<std::string> cue_names(const std::vector<CueKind>& cues) {
 }
 
 /// What valid_cue_list accepts, completing "expected …" in the messages of the files that
-/// select cues: "a non-empty list of distinct names from region, depth, texture, flow".
+/// select cues: "a non-empty list of distinct names from region, depth, texture, flow, edge".
 inline const char* cue_list_expected() {
   static const std::string text = "a non-empty list of distinct names from " + cue_kind_names();
   return text.c_str();

@@ -32,6 +32,10 @@ inline constexpr NoiseParams kTextureNoise{true, false, 0.5};
 /// on the estimated scale drop points the flow lost (a jump to a look-alike, a highlight
 /// sliding over the surface) however few the others are.
 inline constexpr NoiseParams kFlowNoise{true, true, 0.1};
+/// Edge: floor 0.25 px, about where a smoothed gradient's peak can be told on a clean step.
+/// Tukey weights on the estimated scale drop samples that took another edge of the image
+/// (texture, background clutter) for the model's.
+inline constexpr NoiseParams kEdgeNoise{true, true, 0.25};
 
 /// Measured occlusions (ALGORITHMS.md §7): a point of a cue is hidden when a measurement of
 /// the cue's depth camera within `radius` of its projection is closer by more than
@@ -223,6 +227,33 @@ struct FlowParams {
   std::vector<double> standard_deviations = {15.0, 5.0};  ///< pixels; the noise estimate's ceiling
   NoiseParams noise = kFlowNoise;
   OcclusionParams occlusion;  ///< measured occlusions of corners when they are lifted
+};
+
+/// Parameters of the edge cue (ViSP's moving edges, in ICG+'s Newton step): the model's
+/// creases, sampled along their projection and matched along their normal to the strongest
+/// step of brightness near them. The cameras are the region cue's. Pixel values refer to the
+/// full colour image.
+struct EdgeParams {
+  /// Faces that meet at more than this angle make a crease the cue follows (a border or an
+  /// edge of more than two faces always does).
+  double crease_angle_deg = 30.0;
+  /// Pixels between samples along a projected crease (vpMe's sample step)...
+  double sample_step = 5.0;
+  /// ...widened so that the visible creases get at most this many samples.
+  int n_points_max = 300;
+  /// Pixels searched either side of a sample along its normal (vpMe's range), per
+  /// correspondence iteration.
+  std::vector<int> search_ranges = {12, 8, 4, 3, 2};
+  /// The smallest brightness step a match must show: grey levels per pixel of the smoothed
+  /// gradient along the normal.
+  double min_contrast = 4.0;
+  /// With fewer visible samples than this, the cue abstains from the body's quality.
+  int min_points = 20;
+  std::vector<double> standard_deviations = {10.0, 5.0, 3.0, 2.0, 1.5};  ///< pixels; the noise estimate's ceiling
+  NoiseParams noise = kEdgeNoise;
+  /// Side of the focused render that decides which samples are hidden, when the body may
+  /// hide parts of itself (not convex) or another body may cover it.
+  int render_size = 200;
 };
 
 }  // namespace icgp

@@ -8,6 +8,7 @@
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
 #include "icgp/base/mesh.h"
+#include "icgp/geometry/mesh_edges.h"
 
 namespace icgp {
 
@@ -32,15 +33,10 @@ class ModelEdges {
                                     const cv::Mat& rendered_depth, double step = 2.0) const;
 
  private:
-  struct Edge {
-    Eigen::Vector3d a, b;
-    Eigen::Vector3d normal_1, normal_2;  ///< of the faces on either side (equal on a border)
-    bool crease;
-  };
-  void visible_parts(const Intrinsics& k, const Pose& camera_T_body, const cv::Mat& depth, const Edge& edge,
+  void visible_parts(const Intrinsics& k, const Pose& camera_T_body, const cv::Mat& depth, const MeshEdge& edge,
                      double step, std::vector<ImageSegment>& out) const;
 
-  std::vector<Edge> edges_;  ///< every edge between two faces or on a border
+  std::vector<MeshEdge> edges_;  ///< every edge between two faces or on a border
 };
 
 }  // namespace icgp

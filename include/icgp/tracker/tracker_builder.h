@@ -16,8 +16,9 @@ namespace icgp {
 
 /// One camera of a rig and the cues that read it. The colour cues (region, texture, flow)
 /// test their lines and points for measured occlusion in `occlusion_depth_camera`'s depth
-/// (empty: none). `texture` marks the camera of the point cues: texture and flow, as the
-/// configuration selects them (ViSP's KLT_TRACKER).
+/// (empty: none). `region` marks the camera of the contour cues: region and edge (ViSP's
+/// EDGE_TRACKER); `texture` that of the point cues: texture and flow (ViSP's KLT_TRACKER),
+/// as the configuration selects them.
 struct CameraCues {
   std::string camera;
   bool region = false;

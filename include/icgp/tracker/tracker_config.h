@@ -30,6 +30,8 @@ struct TrackerConfig {
   TextureParams texture;
   /// The flow cue's parameters (`modalities` names it "flow"; it reads the texture cue's cameras).
   FlowParams flow;
+  /// The edge cue's parameters (`modalities` names it "edge"; it reads the region cue's cameras).
+  EdgeParams edge;
   /// Multi-region tracking (paper §III-D): one mesh file per colour region of the object,
   /// all in the object's frame; each gets its own region model and modality with its own
   /// colour statistics. Empty: one region modality on the whole object. Relative paths in a
