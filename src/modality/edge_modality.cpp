@@ -18,8 +18,9 @@ constexpr double kMinViewCosine = 0.087;
 /// Gaussian smoothing of the image before its gradient: a sample's step of brightness is
 /// then a smooth peak whose sub-pixel place a parabola finds.
 constexpr double kSmoothingSigma = 1.0;
-/// Samples nearer than this to the image's border cannot search it.
-constexpr float kBorder = 2.f;
+/// The visible samples are chosen anew when the camera came this much nearer or farther
+/// (in log of the distance) since they were chosen: their spacing in the image then changed.
+constexpr double kResampleDistanceChange = 0.1;
 
 Eigen::Vector2f perpendicular(const Eigen::Vector2f& d) { return {-d.y(), d.x()}; }
 
@@ -60,13 +61,25 @@ std::optional<RenderRequest> EdgeModality::visibility_render(const ColorImage& c
                                 sphere_, params_.render_size);
 }
 
+bool EdgeModality::resampling_due(const Pose& camera_T_body) const {
+  if (!sampled_) return true;
+  const Eigen::Vector3d from = camera_T_body.inverse().translation() - sphere_.centre;
+  const Eigen::Vector3d before = sampled_from_ - sphere_.centre;
+  const double cos_turned = from.normalized().dot(before.normalized());
+  return cos_turned < std::cos(deg_to_rad(params_.resample_angle_deg)) ||
+         std::abs(std::log(from.norm() / before.norm())) > kResampleDistanceChange;
+}
+
 std::vector<RenderRequest> EdgeModality::render_requests(const Frame& frame, Stage stage) const {
   if (stage.kind != Stage::kCorrespondences || stage.corr_iter != 0) return {};
   bool others = false;
   if (stage.scene)
     for (const BodyExtent& b : *stage.scene) others = others || b.name != body().name;
-  if (convex_ && !others) return {};
-  if (std::optional<RenderRequest> request = visibility_render(color_image(frame))) return {*request};
+  // Another body may have moved over this one whatever this one did: render every frame.
+  const ColorImage& color = color_image(frame);
+  const bool render = others || (!convex_ && resampling_due(color.camera_T_reference * body().reference_T_body));
+  if (!render) return {};
+  if (std::optional<RenderRequest> request = visibility_render(color)) return {*request};
   return {};
 }
 
@@ -74,6 +87,7 @@ void EdgeModality::start(const Frame&, const Renders&) {
   noise_.reset();
   quality_ = {};
   samples_.clear();
+  sampled_ = false;
   std::fill(polarity_.begin(), polarity_.end(), 0.f);
 }
 
@@ -113,9 +127,11 @@ std::optional<Eigen::Vector2f> EdgeModality::gradient_at(const Eigen::Vector2f& 
   return Eigen::Vector2f(bilinear(gradient_u_), bilinear(gradient_v_));
 }
 
-void EdgeModality::sample_creases(const ColorImage& color, const FocusedRender* render) {
+void EdgeModality::sample_creases(const FocusedRender* render) {
   samples_.clear();
   const Pose T = camera_T_body();
+  sampled_ = true;
+  sampled_from_ = T.inverse().translation();
   const Eigen::Vector3d camera_in_body = T.inverse().translation();
   struct Visible {
     int edge;
@@ -144,10 +160,6 @@ void EdgeModality::sample_creases(const ColorImage& color, const FocusedRender* 
     for (int k = 0; k < n; ++k) {
       const double s = (k + 0.5) / n;
       const Eigen::Vector3d X = (1.0 - s) * v.a + s * v.b;
-      const Eigen::Vector2d x = intrinsics_.project<double>(X);
-      if (x.x() < kBorder || x.y() < kBorder || x.x() > intrinsics_.width - 1 - kBorder ||
-          x.y() > intrinsics_.height - 1 - kBorder || !color.mask.usable(x.cast<float>()))
-        continue;
       if (render) {
         // Hidden when a surface is clearly in front of the sample anywhere in its 3 x 3
         // render neighbourhood (the faces that meet at the crease are at its depth).
@@ -173,7 +185,7 @@ void EdgeModality::sample_creases(const ColorImage& color, const FocusedRender* 
   }
 }
 
-void EdgeModality::match(int range, double prior_sigma) {
+void EdgeModality::match(const PixelMask& mask, int range, double prior_sigma) {
   const Posef T = camera_T_body().cast<float>();
   const float inverse_prior = static_cast<float>(0.5 / (prior_sigma * prior_sigma));
   const float min_contrast = static_cast<float>(params_.min_contrast);
@@ -185,6 +197,7 @@ void EdgeModality::match(int range, double prior_sigma) {
     const Eigen::Vector3f D = T.rotation() * s.body_direction;
     if (X.z() <= 0.f) continue;
     const Eigen::Vector2f x = intrinsics_.project<float>(X);
+    if (!mask.usable(x)) continue;
     const Eigen::Vector2f tangent = intrinsics_.projection_jacobian<float>(X) * D;
     if (!(tangent.norm() > 0.f)) continue;
     s.normal = perpendicular(tangent.normalized());
@@ -233,9 +246,9 @@ void EdgeModality::correspondences(const Frame& frame, const Renders& renders, i
     compute_gradient(color);
     const std::optional<RenderRequest> request = visibility_render(color);
     const FocusedRender* render = request ? renders.find(*request) : nullptr;
-    sample_creases(color, render);
+    if (render || resampling_due(camera_T_body())) sample_creases(render);
   }
-  match(iteration_value(params_.search_ranges, corr_iter),
+  match(color.mask, iteration_value(params_.search_ranges, corr_iter),
         iteration_value(params_.standard_deviations, corr_iter));
   const Posef T = camera_T_body().cast<float>();
   noise_.estimate([&](auto add) {

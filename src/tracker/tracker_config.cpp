@@ -297,6 +297,7 @@ const Fields<EdgeParams> kEdgeFields = {
     field("min_points", &EdgeParams::min_points, int_range<0, 100000>()),
     field("standard_deviations", &EdgeParams::standard_deviations, kPositives),
     section("noise", &EdgeParams::noise, kNoiseFields),
+    field("resample_angle_deg", &EdgeParams::resample_angle_deg, kNonNegative),
     field("render_size", &EdgeParams::render_size, int_range<16, 2048>()),
 };
 

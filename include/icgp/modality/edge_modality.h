@@ -24,9 +24,11 @@ namespace icgp {
 /// background have alike colours, or the object is many-coloured, the creases between its
 /// faces still show as the strongest gradients of the image.
 ///
-/// Which samples are visible is decided once per frame at the predicted pose: creases with a
-/// face towards the camera, and, when the body may hide parts of itself (not convex) or
-/// another body may cover it, the samples a focused render shows unhidden. Each crease keeps
+/// Which samples are visible is decided at the predicted pose of a frame: creases with a face
+/// towards the camera, and, when the body may hide parts of itself (not convex) or another
+/// body may cover it, the samples a focused render shows unhidden. They are kept from frame to
+/// frame until the camera has moved around the body by EdgeParams::resample_angle_deg, so
+/// that a render is rarely needed on smooth motion. Each crease keeps
 /// the sign of its step from frame to frame (its polarity, as moving edges keep their
 /// contrast), so that a sample does not take a step of the opposite sign for its crease.
 ///
@@ -73,12 +75,16 @@ class EdgeModality : public Modality {
   /// The smoothed brightness gradient over the square around the body, with room for the
   /// widest search.
   void compute_gradient(const ColorImage& color);
+  /// Whether the camera moved around the body enough since the samples were chosen that
+  /// others may show (EdgeParams::resample_angle_deg).
+  bool resampling_due(const Pose& camera_T_body) const;
   /// Samples the creases visible at the current pose (`render`, if any, hides samples).
-  void sample_creases(const ColorImage& color, const FocusedRender* render);
+  void sample_creases(const FocusedRender* render);
   /// The gradient (du, dv) at image point `x`, bilinear; nullopt outside the computed region.
   std::optional<Eigen::Vector2f> gradient_at(const Eigen::Vector2f& x) const;
-  /// Looks for each sample's step of brightness along its normal within `range` pixels.
-  void match(int range, double prior_sigma);
+  /// Looks for each sample's step of brightness along its normal within `range` pixels,
+  /// where `mask` lets it.
+  void match(const PixelMask& mask, int range, double prior_sigma);
   /// n·(π(T X) − x_found) of a matched sample: its distance from the matched step along
   /// the normal it was matched on.
   float residual(const Sample& s, const Posef& camera_T_body) const;
@@ -95,6 +101,8 @@ class EdgeModality : public Modality {
   cv::Mat gradient_u_, gradient_v_;  ///< CV_32FC1 over gradient_region_
   cv::Rect gradient_region_;
   std::vector<Sample> samples_;
+  bool sampled_ = false;
+  Eigen::Vector3d sampled_from_;  ///< the camera's centre in the body frame when samples_ were chosen
   /// Per crease: the sign of its step of brightness along the image normal that points to
   /// the crease's first end's left (0: not yet known).
   std::vector<float> polarity_;

@@ -251,6 +251,9 @@ struct EdgeParams {
   int min_points = 20;
   std::vector<double> standard_deviations = {10.0, 5.0, 3.0, 2.0, 1.5};  ///< pixels; the noise estimate's ceiling
   NoiseParams noise = kEdgeNoise;
+  /// The visible samples are chosen anew when the camera has moved around the body by this
+  /// angle since they were chosen (or came 10 % nearer or farther).
+  double resample_angle_deg = 2.0;
   /// Side of the focused render that decides which samples are hidden, when the body may
   /// hide parts of itself (not convex) or another body may cover it.
   int render_size = 200;
