@@ -15,9 +15,9 @@ namespace {
 
 /// A face seen at more than about 85° from its normal shows its crease as a sliver.
 constexpr double kMinViewCosine = 0.087;
-/// Gaussian smoothing of the image before its gradient: a sample's step of brightness is
-/// then a smooth peak whose sub-pixel place a parabola finds.
-constexpr double kSmoothingSigma = 1.0;
+/// Gaussian smoothing (3 x 3) of the image before its gradient: a sample's step of brightness
+/// is then a smooth peak whose sub-pixel place a parabola finds.
+constexpr double kSmoothingSigma = 0.8;
 /// The visible samples are chosen anew when the camera came this much nearer or farther
 /// (in log of the distance) since they were chosen: their spacing in the image then changed.
 constexpr double kResampleDistanceChange = 0.1;
@@ -107,10 +107,9 @@ void EdgeModality::compute_gradient(const ColorImage& color) {
     cv::cvtColor(roi, scratch_grey_, cv::COLOR_BGR2GRAY);
   else
     roi.copyTo(scratch_grey_);
-  cv::GaussianBlur(scratch_grey_, scratch_grey_, cv::Size(5, 5), kSmoothingSigma);
-  // Sobel's 3 x 3 kernels sum to 8 times the central difference: /8 gives grey levels per pixel.
-  cv::Sobel(scratch_grey_, gradient_u_, CV_32F, 1, 0, 3, 1.0 / 8.0);
-  cv::Sobel(scratch_grey_, gradient_v_, CV_32F, 0, 1, 3, 1.0 / 8.0);
+  cv::GaussianBlur(scratch_grey_, scratch_grey_, cv::Size(3, 3), kSmoothingSigma);
+  // Both Sobel derivatives in one pass, in integers: a third of two float passes' time.
+  cv::spatialGradient(scratch_grey_, gradient_u_, gradient_v_, 3);
 }
 
 std::optional<Eigen::Vector2f> EdgeModality::gradient_at(const Eigen::Vector2f& x) const {
@@ -120,11 +119,12 @@ std::optional<Eigen::Vector2f> EdgeModality::gradient_at(const Eigen::Vector2f& 
   if (c < 0 || r < 0 || c + 1 >= gradient_u_.cols || r + 1 >= gradient_u_.rows) return std::nullopt;
   const float a = u - static_cast<float>(c), b = v - static_cast<float>(r);
   auto bilinear = [&](const cv::Mat& m) {
-    const float* row0 = m.ptr<float>(r);
-    const float* row1 = m.ptr<float>(r + 1);
+    const std::int16_t* row0 = m.ptr<std::int16_t>(r);
+    const std::int16_t* row1 = m.ptr<std::int16_t>(r + 1);
     return (1.f - b) * ((1.f - a) * row0[c] + a * row0[c + 1]) + b * ((1.f - a) * row1[c] + a * row1[c + 1]);
   };
-  return Eigen::Vector2f(bilinear(gradient_u_), bilinear(gradient_v_));
+  // Sobel's 3 x 3 kernels sum to 8 times the central difference: /8 gives grey levels per pixel.
+  return Eigen::Vector2f(bilinear(gradient_u_), bilinear(gradient_v_)) * 0.125f;
 }
 
 void EdgeModality::sample_creases(const FocusedRender* render) {

@@ -98,7 +98,7 @@ class EdgeModality : public Modality {
   Sphere sphere_;
   Intrinsics intrinsics_;
   Pose camera_T_reference_;
-  cv::Mat gradient_u_, gradient_v_;  ///< CV_32FC1 over gradient_region_
+  cv::Mat gradient_u_, gradient_v_;  ///< CV_16SC1 Sobel derivatives over gradient_region_
   cv::Rect gradient_region_;
   std::vector<Sample> samples_;
   bool sampled_ = false;

@@ -252,8 +252,13 @@ struct EdgeParams {
   std::vector<double> standard_deviations = {10.0, 5.0, 3.0, 2.0, 1.5};  ///< pixels; the noise estimate's ceiling
   NoiseParams noise = kEdgeNoise;
   /// The visible samples are chosen anew when the camera has moved around the body by this
-  /// angle since they were chosen (or came 10 % nearer or farther).
-  double resample_angle_deg = 2.0;
+  /// angle since they were chosen (or came 10 % nearer or farther): about the spacing of the
+  /// region and depth models' views (4.1° at 2562 views), which decide their visible points by
+  /// the nearest view. Samples a turn hides or shows meanwhile are few, and the robust
+  /// weights drop the hidden ones. On ViSP's castle (not convex: a render per choice), 2°
+  /// rendered nearly every frame (1.04 ms median for the edge cue alone), 5° 0.67 ms, with
+  /// the same errors.
+  double resample_angle_deg = 5.0;
   /// Side of the focused render that decides which samples are hidden, when the body may
   /// hide parts of itself (not convex) or another body may cover it.
   int render_size = 200;
