@@ -13,11 +13,18 @@
 namespace icgp {
 namespace {
 
-/// A face seen at more than about 85° from its normal shows its crease as a sliver.
-constexpr double kMinViewCosine = 0.087;
 /// Gaussian smoothing (3 x 3) of the image before its gradient: a sample's step of brightness
 /// is then a smooth peak whose sub-pixel place a parabola finds.
 constexpr double kSmoothingSigma = 0.8;
+/// A step of brightness counts for a crease when its gradient is within about 25° of the
+/// crease's normal (cos² 25°).
+constexpr float kMinAlignment2 = 0.82f;
+/// Pixels searched either side of a sample on the start frame, at the pose given as right:
+/// the antialiased or blurred width of a step.
+constexpr int kStartRange = 2;
+/// 1 / (2 s²) for the spread s of the log of a step's size between frames: s = 0.5 allows a
+/// factor of about 1.6 per standard deviation (shading changes as the object turns).
+constexpr float kInverseContrastSpread = 2.f;
 /// The visible samples are chosen anew when the camera came this much nearer or farther
 /// (in log of the distance) since they were chosen: their spacing in the image then changed.
 constexpr double kResampleDistanceChange = 0.1;
@@ -71,24 +78,35 @@ bool EdgeModality::resampling_due(const Pose& camera_T_body) const {
 }
 
 std::vector<RenderRequest> EdgeModality::render_requests(const Frame& frame, Stage stage) const {
-  if (stage.kind != Stage::kCorrespondences || stage.corr_iter != 0) return {};
+  const bool samples = stage.kind == Stage::kStart || (stage.kind == Stage::kCorrespondences && stage.corr_iter == 0);
+  if (!samples) return {};
   bool others = false;
   if (stage.scene)
     for (const BodyExtent& b : *stage.scene) others = others || b.name != body().name;
   // Another body may have moved over this one whatever this one did: render every frame.
   const ColorImage& color = color_image(frame);
-  const bool render = others || (!convex_ && resampling_due(color.camera_T_reference * body().reference_T_body));
+  const bool render = others || (!convex_ && (stage.kind == Stage::kStart ||
+                                             resampling_due(color.camera_T_reference * body().reference_T_body)));
   if (!render) return {};
   if (std::optional<RenderRequest> request = visibility_render(color)) return {*request};
   return {};
 }
 
-void EdgeModality::start(const Frame&, const Renders&) {
+void EdgeModality::start(const Frame& frame, const Renders& renders) {
   noise_.reset();
   quality_ = {};
-  samples_.clear();
-  sampled_ = false;
   std::fill(polarity_.begin(), polarity_.end(), 0.f);
+  // The given pose is taken as right, as the texture and flow cues take it when they lift
+  // their points: each sample learns the step its crease shows there, so that the first
+  // tracked frame already looks for steps like its creases' and not the strongest nearby.
+  const ColorImage& color = color_image(frame);
+  intrinsics_ = color.intrinsics;
+  camera_T_reference_ = color.camera_T_reference;
+  compute_gradient(color);
+  const std::optional<RenderRequest> request = visibility_render(color);
+  sample_creases(request ? renders.find(*request) : nullptr);
+  match(color.mask, kStartRange, 1.0);
+  learn_contrasts();
 }
 
 void EdgeModality::compute_gradient(const ColorImage& color) {
@@ -133,6 +151,7 @@ void EdgeModality::sample_creases(const FocusedRender* render) {
   sampled_ = true;
   sampled_from_ = T.inverse().translation();
   const Eigen::Vector3d camera_in_body = T.inverse().translation();
+  const double min_view_cosine = std::cos(deg_to_rad(params_.max_view_angle_deg));
   struct Visible {
     int edge;
     Eigen::Vector3d a, b;  ///< camera frame
@@ -143,7 +162,7 @@ void EdgeModality::sample_creases(const FocusedRender* render) {
   for (std::size_t i = 0; i < creases_.size(); ++i) {
     const MeshEdge& e = creases_[i];
     const Eigen::Vector3d to_camera = (camera_in_body - 0.5 * (e.a + e.b)).normalized();
-    if (e.normal_1.dot(to_camera) < kMinViewCosine && e.normal_2.dot(to_camera) < kMinViewCosine) continue;
+    if (e.normal_1.dot(to_camera) < min_view_cosine && e.normal_2.dot(to_camera) < min_view_cosine) continue;
     const Eigen::Vector3d a = T * e.a, b = T * e.b;
     if (a.z() <= 0.0 || b.z() <= 0.0) continue;
     const double length = (intrinsics_.project<double>(a) - intrinsics_.project<double>(b)).norm();
@@ -205,10 +224,14 @@ void EdgeModality::match(const PixelMask& mask, int range, double prior_sigma) {
     for (int k = -range; k <= range && inside; ++k) {
       const std::optional<Eigen::Vector2f> g = gradient_at(x + static_cast<float>(k) * s.normal);
       inside = g.has_value();
-      if (inside) along[static_cast<std::size_t>(k + range)] = g->dot(s.normal);
+      if (!inside) break;
+      // A step across the crease: the gradient points along its normal. Texture and clutter
+      // edges at other angles do not count (moving edges' oriented masks do the same).
+      const float across = g->dot(s.normal);
+      along[static_cast<std::size_t>(k + range)] = across * across >= kMinAlignment2 * g->squaredNorm() ? across : 0.f;
     }
     if (!inside) continue;
-    const float known = polarity_[static_cast<std::size_t>(s.edge)];
+    const float known = s.contrast != 0.f ? s.contrast : polarity_[static_cast<std::size_t>(s.edge)];
     int best = -1;
     float best_score = 0.f;
     for (int i = 1; i + 1 < static_cast<int>(along.size()); ++i) {
@@ -217,7 +240,14 @@ void EdgeModality::match(const PixelMask& mask, int range, double prior_sigma) {
       if (magnitude < min_contrast || magnitude < std::abs(along[i - 1]) || magnitude < std::abs(along[i + 1])) continue;
       if (known != 0.f && g * known < 0.f) continue;
       const float d = static_cast<float>(i - range);
-      const float score = magnitude * std::exp(-d * d * inverse_prior);
+      // With the step the sample matched last, the likeliest candidate has a step of that
+      // size (as moving edges compare contrasts); without, the strongest.
+      float likelihood = magnitude;
+      if (s.contrast != 0.f) {
+        const float log_ratio = std::log(magnitude / std::abs(s.contrast));
+        likelihood = std::exp(-log_ratio * log_ratio * kInverseContrastSpread);
+      }
+      const float score = likelihood * std::exp(-d * d * inverse_prior);
       if (score > best_score) {
         best_score = score;
         best = i;
@@ -230,6 +260,7 @@ void EdgeModality::match(const PixelMask& mask, int range, double prior_sigma) {
     const float offset = curvature < 0.f ? std::clamp(0.5f * (l - r) / curvature, -0.5f, 0.5f) : 0.f;
     s.found = x + (static_cast<float>(best - range) + offset) * s.normal;
     s.polarity = along[best] > 0.f ? 1.f : -1.f;
+    s.step = along[best];
     s.weight = 1.f;
   }
 }
@@ -292,12 +323,13 @@ CueTerms EdgeModality::gradient_hessian(int corr_iter, int) {
 }
 
 double EdgeModality::log_likelihood(int corr_iter) const {
-  const Posef T = camera_T_body().cast<float>();
+  const Pose T = camera_T_body();
   const double s = sigma(corr_iter);
   double sum = 0.0;
   for (const Sample& sample : samples_) {
     if (sample.weight <= 0.f) continue;
-    const double r = residual(sample, T);
+    const Eigen::Vector2d x = intrinsics_.project<double>(T * sample.body_point.cast<double>());
+    const double r = sample.normal.cast<double>().dot(x - sample.found.cast<double>());
     sum -= 0.5 * sample.weight * r * r / (s * s);
   }
   return sum;
@@ -317,19 +349,28 @@ void EdgeModality::append_image_features(std::vector<ImageFeature>& features) co
     if (s.polarity != 0.f) features.push_back({s.found.cast<double>(), s.weight});
 }
 
-void EdgeModality::finish(const Frame&, const Renders&) {
-  // Each crease keeps the sign its samples agreed on, weighted by their trust; a crease that
-  // found nothing forgets its sign (it was hidden, or its faces' brightness changed).
+void EdgeModality::learn_contrasts() {
   std::vector<float> votes(creases_.size(), 0.f);
+  for (Sample& s : samples_) {
+    if (s.polarity == 0.f || s.weight <= 0.f) continue;
+    s.contrast = s.step;
+    votes[static_cast<std::size_t>(s.edge)] += s.weight * s.polarity;
+  }
+  for (std::size_t i = 0; i < creases_.size(); ++i)
+    polarity_[i] = votes[i] > 0.f ? 1.f : votes[i] < 0.f ? -1.f : 0.f;
+}
+
+void EdgeModality::finish(const Frame&, const Renders&) {
+  // Each sample keeps the step it matched with trust; each crease the sign its samples agreed
+  // on, for samples chosen later. A crease that found nothing forgets its sign (it was
+  // hidden, or its faces' brightness changed).
+  learn_contrasts();
   int n_matched = 0, n_inliers = 0;
   for (const Sample& s : samples_) {
     if (s.polarity == 0.f) continue;
     ++n_matched;
     if (s.weight > 0.f) ++n_inliers;
-    votes[static_cast<std::size_t>(s.edge)] += s.weight * s.polarity;
   }
-  for (std::size_t i = 0; i < creases_.size(); ++i)
-    polarity_[i] = votes[i] > 0.f ? 1.f : votes[i] < 0.f ? -1.f : 0.f;
   const int n = static_cast<int>(samples_.size());
   quality_.n_valid = n_inliers;
   quality_.valid_fraction = n > 0 ? static_cast<double>(n_matched) / n : 0.0;

@@ -290,6 +290,9 @@ const Fields<EdgeParams> kEdgeFields = {
     field("crease_angle_deg", &EdgeParams::crease_angle_deg, Rule<double>{"a number of degrees in (0, 180)", [](const double& v) {
             return std::isfinite(v) && v > 0.0 && v < 180.0;
           }}),
+    field("max_view_angle_deg", &EdgeParams::max_view_angle_deg, Rule<double>{"a number of degrees in (0, 90]", [](const double& v) {
+            return std::isfinite(v) && v > 0.0 && v <= 90.0;
+          }}),
     field("sample_step", &EdgeParams::sample_step, kPositive),
     field("n_points_max", &EdgeParams::n_points_max, int_range<1, 100000>()),
     field("search_ranges", &EdgeParams::search_ranges, kScales),

@@ -29,8 +29,9 @@ namespace icgp {
 /// body may cover it, the samples a focused render shows unhidden. They are kept from frame to
 /// frame until the camera has moved around the body by EdgeParams::resample_angle_deg, so
 /// that a render is rarely needed on smooth motion. Each crease keeps
-/// the sign of its step from frame to frame (its polarity, as moving edges keep their
-/// contrast), so that a sample does not take a step of the opposite sign for its crease.
+/// the sign of its step from frame to frame (its polarity), and each sample the size of its
+/// step too, as moving edges keep their contrast: a sample then takes the step that looks
+/// like its crease's, not the strongest texture or clutter nearby.
 ///
 /// Quality: score is the share of visible samples matched with a non-zero robust weight,
 /// valid_fraction the share matched at all. The cue abstains with fewer than
@@ -45,6 +46,10 @@ class EdgeModality : public Modality {
     Eigen::Vector2f normal;          ///< unit image normal at the last search
     Eigen::Vector2f found;           ///< the matched step of brightness (when matched)
     float polarity = 0.f;            ///< sign of the matched gradient along the normal; 0: unmatched
+    float step = 0.f;                ///< the matched gradient along the normal, grey levels per pixel
+    /// The step it matched at the last converged pose with a non-zero weight (0: none yet):
+    /// the next frame looks for a step of that sign and about that size.
+    float contrast = 0.f;
     float weight = 0.f;              ///< robust weight; 0 when unmatched
   };
 
@@ -88,6 +93,9 @@ class EdgeModality : public Modality {
   /// n·(π(T X) − x_found) of a matched sample: its distance from the matched step along
   /// the normal it was matched on.
   float residual(const Sample& s, const Posef& camera_T_body) const;
+  /// Each matched sample with a weight keeps its step (Sample::contrast); each crease the
+  /// sign its samples' weighted steps agree on.
+  void learn_contrasts();
   void update_weights(int corr_iter);
   double sigma(int corr_iter) const;
 

@@ -237,6 +237,12 @@ struct EdgeParams {
   /// Faces that meet at more than this angle make a crease the cue follows (a border or an
   /// edge of more than two faces always does).
   double crease_angle_deg = 30.0;
+  /// A crease is followed when one of its faces is seen at most this far from its normal
+  /// (ViSP's angle_disappear of its examples' files). A face seen more obliquely is a
+  /// sliver whose two creases project a few pixels apart, and each would take the other's
+  /// step: on a rendered box whose top face was seen at about 85°, its far crease pulled the
+  /// edges-alone pose 1.6° off.
+  double max_view_angle_deg = 75.0;
   /// Pixels between samples along a projected crease (vpMe's sample step)...
   double sample_step = 5.0;
   /// ...widened so that the visible creases get at most this many samples.
