@@ -6,7 +6,6 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
-#include "icgp/geometry/rounding.h"
 #include "icgp/modality/iteration_value.h"
 #include "icgp/render/renderer.h"
 
@@ -111,7 +110,10 @@ void EdgeModality::start(const Frame& frame, const Renders& renders) {
 
 void EdgeModality::compute_gradient(const ColorImage& color) {
   const Eigen::Vector3d centre = camera_T_body() * sphere_.centre;
+  // Without a region this frame, no gradient of an earlier frame may be read.
   gradient_region_ = {};
+  gradient_u_.release();
+  gradient_v_.release();
   if (!(centre.z() > sphere_.radius)) return;
   const ImageSquare square = square_around_sphere(intrinsics_, centre, sphere_.radius);
   const int margin = *std::max_element(params_.search_ranges.begin(), params_.search_ranges.end()) + 4;
@@ -131,6 +133,7 @@ void EdgeModality::compute_gradient(const ColorImage& color) {
 }
 
 std::optional<Eigen::Vector2f> EdgeModality::gradient_at(const Eigen::Vector2f& x) const {
+  if (!x.allFinite()) return std::nullopt;
   const float u = x.x() - static_cast<float>(gradient_region_.x);
   const float v = x.y() - static_cast<float>(gradient_region_.y);
   const int c = static_cast<int>(std::floor(u)), r = static_cast<int>(std::floor(v));

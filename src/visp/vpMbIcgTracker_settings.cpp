@@ -11,8 +11,8 @@
 namespace {
 
 const char* const kVisibility = "the cues' visibility comes from the viewpoint models rendered from the mesh";
-const char* const kMovingEdges = "icgp's region cue replaces the moving edges: its correspondence lines and "
-                                 "scales are set in the YAML parameters (region:)";
+const char* const kMovingEdges = "icgp's region and edge cues replace the moving edges: their correspondence lines, "
+                                 "search ranges and sampling are set in the YAML parameters (region:, edge:)";
 const char* const kKlt = "icgp's flow and texture cues replace the KLT tracker (flow: and texture: in the YAML "
                          "parameters)";
 const char* const kDepthFeatures = "icgp's depth cue pairs the model's sparse viewpoint points, or with depth as "

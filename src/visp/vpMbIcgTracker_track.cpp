@@ -354,6 +354,16 @@ std::vector<const icgp::Modality*> vpMbIcgTracker::klt_cues(const std::string& c
   return out;
 }
 
+std::vector<const icgp::Modality*> vpMbIcgTracker::edge_cues(const std::string& camera) const {
+  std::vector<const icgp::Modality*> out = cues(to_string(CueKind::kRegion), camera);
+  for (const icgp::Modality* m : cues(to_string(CueKind::kEdge), camera)) out.push_back(m);
+  return out;
+}
+
+unsigned int vpMbIcgTracker::edge_count(const std::string& camera) const {
+  return correspondence_count(to_string(CueKind::kRegion), camera) + correspondence_count(to_string(CueKind::kEdge), camera);
+}
+
 unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const std::string& camera,
                                                   int depth_type) const {
   if (!impl_->tracker) return 0;
@@ -375,7 +385,7 @@ unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const
   return n;
 }
 
-unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return correspondence_count(to_string(CueKind::kRegion)); }
+unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return edge_count(); }
 unsigned int vpMbIcgTracker::getNbFeaturesKlt() const {
   return correspondence_count(to_string(CueKind::kTexture)) + correspondence_count(to_string(CueKind::kFlow));
 }
@@ -387,20 +397,20 @@ unsigned int vpMbIcgTracker::getNbFeaturesDepthDense() const {
 }
 
 unsigned int vpMbIcgTracker::getNbPoints(unsigned int) const {
-  return correspondence_count(to_string(CueKind::kRegion), impl_->rig.reference());
+  return edge_count(impl_->rig.reference());
 }
 
 void vpMbIcgTracker::getNbPoints(std::map<std::string, unsigned int>& mapOfNbPoints, unsigned int) const {
   mapOfNbPoints.clear();
   for (const std::string& name : impl_->rig.names())
-    mapOfNbPoints[name] = correspondence_count(to_string(CueKind::kRegion), name);
+    mapOfNbPoints[name] = edge_count(name);
 }
 
 std::vector<std::vector<double>> vpMbIcgTracker::features_for_display(const std::string& camera) const {
   std::vector<std::vector<double>> out;
   constexpr double kFullWeight = 0.0, kDownWeighted = 4.0;  // vpMeSite::NO_SUPPRESSION, M_ESTIMATOR
   std::vector<icgp::ImageFeature> features;
-  for (const icgp::Modality* m : cues(to_string(CueKind::kRegion), camera)) m->append_image_features(features);
+  for (const icgp::Modality* m : edge_cues(camera)) m->append_image_features(features);
   for (const icgp::ImageFeature& f : features)
     out.push_back({0.0, f.pixel.y(), f.pixel.x(), f.weight >= 0.5 ? kFullWeight : kDownWeighted});
   features.clear();

@@ -616,10 +616,14 @@ class vpMbIcgTracker : public vpMbTracker {
   /// The camera a raw depth image belongs to: the reference camera if it has a depth type,
   /// else the first camera that has one.
   std::string depth_camera_of_raw_depth() const;
-  /// The tracker's cues called `name` ("region", "depth", "texture", "flow"), of `camera` or all.
+  /// The tracker's cues called `name` ("region", "depth", "texture", "flow", "edge"), of `camera` or all.
   std::vector<const icgp::Modality*> cues(const std::string& name, const std::string& camera = "") const;
   /// The cues that replace ViSP's KLT tracker (texture, then flow) of `camera`.
   std::vector<const icgp::Modality*> klt_cues(const std::string& camera) const;
+  /// The cues that replace ViSP's moving edges (region, then edge) of `camera`.
+  std::vector<const icgp::Modality*> edge_cues(const std::string& camera) const;
+  /// The correspondences of the region and edge cues in the last update, of `camera` or all.
+  unsigned int edge_count(const std::string& camera = "") const;
   /// The correspondences the cues called `name` summed over in the last update, of `camera`
   /// or all; for "depth", of the cameras whose types count them as `depth_type` (0: all).
   unsigned int correspondence_count(const std::string& name, const std::string& camera = "", int depth_type = 0) const;
