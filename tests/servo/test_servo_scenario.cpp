@@ -301,9 +301,9 @@ TEST_CASE("scenario errors name the file and the field") {
     CHECK_THAT(error(kMinimal + "control: {law: vvs}\n"), Contains(file + ": control.law: expected one of pbvs, ibvs"));
     CHECK_THAT(error(kMinimal + "tracker: {visp_configuration: edge}\n"),
                Contains(file + ": tracker.visp_configuration: expected one of edge + dense depth, KLT + dense depth"));
-    CHECK_THAT(error(kMinimal + "tracker: {modalities: [region, edge]}\n"),
+    CHECK_THAT(error(kMinimal + "tracker: {modalities: [region, edges]}\n"),
                Contains(file + ": tracker.modalities: expected a non-empty list") &&
-                   Contains("got ['region', 'edge']"));
+                   Contains("got ['region', 'edges']"));
     CHECK_THAT(error(kMinimal + "tracker: {modalities: []}\n"), Contains(file + ": tracker.modalities: expected"));
   }
   SECTION("missing required keys") {

@@ -189,6 +189,23 @@ flow:
   measure_occlusions: false
   occlusion_radius: 0.02
   occlusion_threshold: 0.05
+edge:
+  crease_angle_deg: 45.0
+  max_view_angle_deg: 80.0
+  sample_step: 4.0
+  n_points_max: 200
+  search_ranges: [6, 3]
+  min_contrast: 8.0
+  min_points: 10
+  standard_deviations: [4.0, 1.0]
+  noise:
+    estimate: false
+    robust: false
+    floor: 0.5
+    min_residuals: 30
+    tukey_constant: 3.0
+  resample_angle_deg: 3.0
+  render_size: 100
 regions: [/models/a/body.obj, /models/a/lid.obj]
 bodies:
   - name: lid
