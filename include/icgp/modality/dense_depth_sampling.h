@@ -26,8 +26,10 @@ class DenseDepthSampling {
 
   /// The render a correspondence iteration reads: depth, normals and ids on the sampling
   /// lattice over the image of the body's bounding sphere (the whole image when the sphere
-  /// reaches the camera's plane). None in other stages, or when the sphere's image misses
-  /// the image.
+  /// reaches the camera's plane). None in other stages, when the sphere's image misses the
+  /// image, and in a later iteration of a frame when the body has moved by less than a
+  /// quarter of a sampling step since the last pairs were made: re-pairing would find the
+  /// same pixels on the same surfaces.
   std::optional<RenderRequest> request(const Stage& stage, const DepthImage& depth) const;
 
   /// What one pass over the samples found.
@@ -40,7 +42,9 @@ class DenseDepthSampling {
   /// `considered_distance` (metres) from the rendered surface point is left out: an
   /// occluder, or the background behind an edge of the silhouette.
   Counts collect(const Renders& renders, const DepthImage& depth, float considered_distance,
-                 std::vector<DepthCorrespondence>& out) const;
+                 std::vector<DepthCorrespondence>& out);
+  /// Whether `renders` holds the render request() asked for (else the last pairs stand).
+  bool rendered(const Renders& renders, const DepthImage& depth) const;
 
  private:
   /// The sampled pixels (columns col0 + k·step_x, rows row0 + k·step_y, inside the image)
@@ -54,10 +58,15 @@ class DenseDepthSampling {
   Lattice lattice(const DepthImage& depth) const;
   RenderRequest request_of(const Lattice& lattice, const DepthImage& depth) const;
 
+  /// How far (metres) the body's sphere has moved in the depth camera since the last pairs,
+  /// its turn counted at its radius.
+  double moved_since_paired(const DepthImage& depth) const;
+
   const Body* body_;
   std::string camera_;
   DenseDepthParams params_;
   Sphere sphere_;
+  Pose paired_depth_T_body_;  ///< the pose the last pairs were made at
 };
 
 }  // namespace icgp
