@@ -6,7 +6,9 @@
 //! the type given and a dense-depth camera "Camera2" 5 cm beside it, chateau.xml and
 //! chateau_depth.xml, the castle as .wrl (Coin3D) and .cao plus a cube loaded beside it with a
 //! transformation, initFromPose at the first frame's truth. Without --depth 1 the depth
-//! camera gets empty clouds. The error of a frame is ViSP's test's: the norms of the
+//! camera gets empty clouds. --tracker 0 is ViSP's depth-only test instead: one camera
+//! "Camera" with DEPTH_DENSE_TRACKER alone, chateau_depth.xml, the castle as .cao plus the
+//! cube, its pose the depth camera's. The error of a frame is ViSP's test's: the norms of the
 //! differences of the translation and theta-u vectors. Fails when a frame's error exceeds
 //! the bounds given (ViSP's CI thresholds for the type), and writes the errors' statistics.
 //!
@@ -88,7 +90,7 @@ int main(int argc, char *argv[])
            .add("--max_rotation_deg", max_rotation_deg)
            .add("--errors", errors_file)
            .parse(argc, argv,
-                  "[--input_directory <Castle-simu folder>] [--tracker <1: EDGE, 2: KLT, 3: EDGE+KLT>]"
+                  "[--input_directory <Castle-simu folder>] [--tracker <0: none (depth alone), 1: EDGE, 2: KLT, 3: EDGE+KLT>]"
                   " [--depth <0|1: dense depth too>] [--max_translation_mm <bound>] [--max_rotation_deg <bound>]"
                   " [--errors <output file>]"))
     return EXIT_SUCCESS;
@@ -97,12 +99,19 @@ int main(int argc, char *argv[])
             << std::endl;
 
   return program::run([&] {
+    const bool depth_alone = tracker_type == 0;
     std::vector<int> types;
-    types.push_back(static_cast<int>(tracker_type));
+    if (!depth_alone)
+      types.push_back(static_cast<int>(tracker_type));
     types.push_back(Tracker::DEPTH_DENSE_TRACKER);
     Tracker tracker(types);
-    tracker.loadConfigFile(input_directory + "/Config/chateau.xml", input_directory + "/Config/chateau_depth.xml");
-    tracker.loadModel(input_directory + "/Models/chateau.wrl", input_directory + "/Models/chateau.cao");
+    if (depth_alone) {
+      tracker.loadConfigFile(input_directory + "/Config/chateau_depth.xml");
+      tracker.loadModel(input_directory + "/Models/chateau.cao");
+    } else {
+      tracker.loadConfigFile(input_directory + "/Config/chateau.xml", input_directory + "/Config/chateau_depth.xml");
+      tracker.loadModel(input_directory + "/Models/chateau.wrl", input_directory + "/Models/chateau.cao");
+    }
     // The cube beside the castle, as ViSP's test places it.
     vpHomogeneousMatrix T;
     T[0][0] = -1;
@@ -115,10 +124,16 @@ int main(int argc, char *argv[])
     T[2][3] = -0.15;
     tracker.loadModel(input_directory + "/Models/cube.cao", false, T);
     vpCameraParameters cam_color, cam_depth;
-    tracker.getCameraParameters(cam_color, cam_depth);
+    if (depth_alone)
+      tracker.getCameraParameters(cam_depth);
+    else
+      tracker.getCameraParameters(cam_color, cam_depth);
     vpHomogeneousMatrix depth_M_color;
     depth_M_color[0][3] = -0.05;
-    tracker.setCameraTransformationMatrix("Camera2", depth_M_color);
+    if (!depth_alone)
+      tracker.setCameraTransformationMatrix("Camera2", depth_M_color);
+    // The pose the tracker estimates: the colour camera's, or the depth camera's alone.
+    const vpHomogeneousMatrix tracked_M_color = depth_alone ? depth_M_color : vpHomogeneousMatrix();
 
     vpImage<unsigned char> I;
     std::vector<vpColVector> pointcloud;
@@ -129,7 +144,7 @@ int main(int argc, char *argv[])
                 << std::endl;
       return EXIT_FAILURE;
     }
-    tracker.initFromPose(I, cMo_truth);
+    tracker.initFromPose(I, tracked_M_color * cMo_truth);
 
     std::vector<double> errors_t, errors_r, times;
     bool within_bounds = true;
@@ -138,16 +153,18 @@ int main(int argc, char *argv[])
       std::map<std::string, const vpImage<unsigned char> *> images;
       std::map<std::string, const std::vector<vpColVector> *> clouds;
       std::map<std::string, unsigned int> widths, heights;
-      images["Camera1"] = &I;
-      clouds["Camera2"] = &pointcloud;
-      widths["Camera2"] = use_depth ? width : 0;
-      heights["Camera2"] = use_depth ? height : 0;
+      const std::string depth_camera = depth_alone ? "Camera" : "Camera2";
+      if (!depth_alone)
+        images["Camera1"] = &I;
+      clouds[depth_camera] = &pointcloud;
+      widths[depth_camera] = use_depth || depth_alone ? width : 0;
+      heights[depth_camera] = use_depth || depth_alone ? height : 0;
       const double t0 = vpTime::measureTimeMs();
       tracker.track(images, clouds, widths, heights);
       const vpHomogeneousMatrix cMo = tracker.getPose();
       times.push_back(vpTime::measureTimeMs() - t0);
 
-      const vpPoseVector estimate(cMo), truth(cMo_truth);
+      const vpPoseVector estimate(cMo), truth(tracked_M_color * cMo_truth);
       double t2 = 0.0, r2 = 0.0;
       for (unsigned int i = 0; i < 3; i++) {
         t2 += vpMath::sqr(estimate[i] - truth[i]);
