@@ -13,11 +13,11 @@
 namespace icgp {
 namespace {
 
-/// Within a frame, pairs are made anew when the body has moved by this share of a sampling
-/// step since the last ones. On teabox-blender (depth alone) the third to fifth iterations
-/// then mostly keep their pairs, at the same errors; a box sliding along a face seen at a
-/// grazing angle still re-pairs while it slides (tests/unit/test_dense_depth.cpp).
-constexpr double kRepairFraction = 0.25;
+/// The body is rendered again when it has moved by this share of a sampling step since the
+/// kept surface was rendered: less moves each sample by less than a quarter pixel on the
+/// surface. A box sliding along a face seen at a grazing angle is still rendered while it
+/// slides (tests/unit/test_dense_depth.cpp).
+constexpr double kRenewFraction = 0.25;
 
 }  // namespace
 
@@ -76,48 +76,40 @@ RenderRequest DenseDepthSampling::request_of(const Lattice& l, const DepthImage&
                        kRenderDepth | kRenderNormals | kRenderIds};
 }
 
-double DenseDepthSampling::moved_since_paired(const DepthImage& depth) const {
+bool DenseDepthSampling::surface_stands(const Stage& stage, const Lattice& l, const DepthImage& depth) const {
+  if (surface_.empty() || depth.intrinsics.width != rendered_width_ || depth.intrinsics.height != rendered_height_)
+    return false;
+  // Another body may have moved over this one whatever this one did.
+  if (stage.scene)
+    for (const BodyExtent& other : *stage.scene)
+      if (other.name != body_->name) return false;
+  // How far the body's sphere has moved in the camera since the render, its turn counted at
+  // its radius, against the sampling step in metres at the body's depth.
   const Pose now = depth.camera_T_reference * body_->reference_T_body;
-  const double turned = rotation_angle_between(now.rotation(), paired_depth_T_body_.rotation());
-  return (now * sphere_.centre - paired_depth_T_body_ * sphere_.centre).norm() + turned * sphere_.radius;
+  const double turned = rotation_angle_between(now.rotation(), rendered_depth_T_body_.rotation());
+  const double moved = (now * sphere_.centre - rendered_depth_T_body_ * sphere_.centre).norm() + turned * sphere_.radius;
+  const double z = std::max((now * sphere_.centre).z(), 1e-3);
+  return moved < kRenewFraction * std::min(l.step_x, l.step_y) * z / depth.intrinsics.fu;
 }
 
 std::optional<RenderRequest> DenseDepthSampling::request(const Stage& stage, const DepthImage& depth) const {
   if (stage.kind != Stage::kCorrespondences) return std::nullopt;
   const Lattice l = lattice(depth);
-  if (l.size == 0) return std::nullopt;
-  if (stage.corr_iter > 0) {
-    // A new frame always pairs its new measurements; within a frame, pairs are made anew
-    // only while the pose still moves by a good part of a sampling step (the step in metres
-    // at the body's depth): a sliding face changes which surface a pixel sees.
-    const Eigen::Vector3d centre = depth.camera_T_reference * body_->reference_T_body * sphere_.centre;
-    const double step_metres = std::min(l.step_x, l.step_y) * std::max(centre.z(), 1e-3) / depth.intrinsics.fu;
-    if (moved_since_paired(depth) < kRepairFraction * step_metres) return std::nullopt;
-  }
+  if (l.size == 0 || surface_stands(stage, l, depth)) return std::nullopt;
   return request_of(l, depth);
 }
 
-bool DenseDepthSampling::rendered(const Renders& renders, const DepthImage& depth) const {
-  const Lattice l = lattice(depth);
-  return l.size > 0 && renders.find(request_of(l, depth)) != nullptr;
-}
-
-DenseDepthSampling::Counts DenseDepthSampling::collect(const Renders& renders, const DepthImage& depth,
-                                                       float considered_distance,
-                                                       std::vector<DepthCorrespondence>& out) {
-  out.clear();
-  Counts counts;
-  const Lattice l = lattice(depth);
-  if (l.size == 0) return counts;
-  paired_depth_T_body_ = depth.camera_T_reference * body_->reference_T_body;
-  const FocusedRender& render = renders.at(request_of(l, depth));
-  const std::uint8_t id = renders.id(body_->name);
-  const Posef body_T_depth = (depth.camera_T_reference * body_->reference_T_body).inverse().cast<float>();
+void DenseDepthSampling::keep_surface(const FocusedRender& render, std::uint8_t id, const Lattice& l,
+                                      const DepthImage& depth) {
+  surface_.clear();
+  rendered_depth_T_body_ = depth.camera_T_reference * body_->reference_T_body;
+  rendered_width_ = depth.intrinsics.width;
+  rendered_height_ = depth.intrinsics.height;
+  const Posef body_T_depth = rendered_depth_T_body_.inverse().cast<float>();
   const Eigen::Matrix3f body_R_depth = body_T_depth.rotation();
   const Intrinsics& k = depth.intrinsics;
   const float ifu = static_cast<float>(1.0 / k.fu), ifv = static_cast<float>(1.0 / k.fv);
   const float pu = static_cast<float>(k.pu), pv = static_cast<float>(k.pv);
-  const float gate = considered_distance * considered_distance;
   // Every step_x / render_step-th render column and step_y / render_step-th row is a sample.
   const int skip_x = l.step_x / l.render_step, skip_y = l.step_y / l.render_step;
   for (int i = 0; i < l.size; i += skip_y) {
@@ -129,18 +121,35 @@ DenseDepthSampling::Counts DenseDepthSampling::collect(const Renders& renders, c
     for (int j = 0; j < l.size; j += skip_x) {
       const int col = l.col0 + j * l.render_step;
       if (col >= k.width) break;
-      if (ids[j] != id || !depth.mask.usable(row, col)) continue;
-      ++counts.n_on_body;
-      const float z = depth.at(row, col);
-      if (!(z > 0.f && z < std::numeric_limits<float>::infinity())) continue;
-      counts.saw_depth = true;
-      const Eigen::Vector3f measured = depth.point(row, col, z);
+      if (ids[j] != id) continue;
       const float zr = rendered_z[j];
       const Eigen::Vector3f surface((col - pu) * ifu * zr, (row - pv) * ifv * zr, zr);
-      if ((surface - measured).squaredNorm() >= gate) continue;
       const cv::Vec3f& n = normals[j];
-      out.push_back({body_T_depth * surface, body_R_depth * Eigen::Vector3f(n[0], n[1], n[2]), measured});
+      surface_.push_back({row, col, body_T_depth * surface, body_R_depth * Eigen::Vector3f(n[0], n[1], n[2])});
     }
+  }
+}
+
+DenseDepthSampling::Counts DenseDepthSampling::collect(const Renders& renders, const DepthImage& depth,
+                                                       float considered_distance,
+                                                       std::vector<DepthCorrespondence>& out) {
+  out.clear();
+  Counts counts;
+  const Lattice l = lattice(depth);
+  if (l.size == 0) return counts;
+  if (const FocusedRender* render = renders.find(request_of(l, depth)))
+    keep_surface(*render, renders.id(body_->name), l, depth);
+  const Posef depth_T_body = (depth.camera_T_reference * body_->reference_T_body).cast<float>();
+  const float gate = considered_distance * considered_distance;
+  for (const SurfaceSample& s : surface_) {
+    if (!depth.mask.usable(s.row, s.col)) continue;
+    ++counts.n_on_body;
+    const float z = depth.at(s.row, s.col);
+    if (!(z > 0.f && z < std::numeric_limits<float>::infinity())) continue;
+    counts.saw_depth = true;
+    const Eigen::Vector3f measured = depth.point(s.row, s.col, z);
+    if ((depth_T_body * s.body_point - measured).squaredNorm() >= gate) continue;
+    out.push_back({s.body_point, s.body_normal, measured});
   }
   return counts;
 }

@@ -62,6 +62,7 @@ void DepthModality::start(const Frame&, const Renders&) {
   occlusions_.reset();
   hidden_by_bodies_.reset();
   scene_ = {};
+  if (dense_) dense_->forget();
 }
 
 std::vector<RenderRequest> DepthModality::render_requests(const Frame& frame, Stage stage) const {
@@ -188,17 +189,6 @@ void DepthModality::correspondences(const Frame& frame, const Renders& renders, 
 
 void DepthModality::dense_correspondences(const DepthImage& depth, const Renders& renders, int corr_iter) {
   const auto considered_distance = static_cast<float>(iteration_value(params_.considered_distances, corr_iter));
-  if (corr_iter > 0 && !dense_->rendered(renders, depth)) {
-    // The body hardly moved since the last pairs: they stand, gated at the current pose.
-    const Posef T = depth_T_body();
-    const float gate = considered_distance * considered_distance;
-    correspondences_.erase(std::remove_if(correspondences_.begin(), correspondences_.end(),
-                                          [&](const DepthCorrespondence& c) {
-                                            return (T * c.body_point - c.measured).squaredNorm() >= gate;
-                                          }),
-                           correspondences_.end());
-    return;
-  }
   const DenseDepthSampling::Counts counts = dense_->collect(renders, depth, considered_distance, correspondences_);
   n_considered_ = counts.n_on_body;
   n_hidden_by_bodies_ = 0;  // pixels another body covers show that body in the render: not counted

@@ -110,10 +110,9 @@ void EdgeModality::start(const Frame& frame, const Renders& renders) {
 
 void EdgeModality::compute_gradient(const ColorImage& color) {
   const Eigen::Vector3d centre = camera_T_body() * sphere_.centre;
-  // Without a region this frame, no gradient of an earlier frame may be read.
+  // Without a region this frame, no gradient of an earlier frame may be read (gradient_at
+  // reads nothing outside the region; the buffers are kept for the next frame).
   gradient_region_ = {};
-  gradient_u_.release();
-  gradient_v_.release();
   if (!(centre.z() > sphere_.radius)) return;
   const ImageSquare square = square_around_sphere(intrinsics_, centre, sphere_.radius);
   const int margin = *std::max_element(params_.search_ranges.begin(), params_.search_ranges.end()) + 4;
@@ -137,7 +136,7 @@ std::optional<Eigen::Vector2f> EdgeModality::gradient_at(const Eigen::Vector2f& 
   const float u = x.x() - static_cast<float>(gradient_region_.x);
   const float v = x.y() - static_cast<float>(gradient_region_.y);
   const int c = static_cast<int>(std::floor(u)), r = static_cast<int>(std::floor(v));
-  if (c < 0 || r < 0 || c + 1 >= gradient_u_.cols || r + 1 >= gradient_u_.rows) return std::nullopt;
+  if (c < 0 || r < 0 || c + 1 >= gradient_region_.width || r + 1 >= gradient_region_.height) return std::nullopt;
   const float a = u - static_cast<float>(c), b = v - static_cast<float>(r);
   auto bilinear = [&](const cv::Mat& m) {
     const std::int16_t* row0 = m.ptr<std::int16_t>(r);

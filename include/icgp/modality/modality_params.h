@@ -101,9 +101,9 @@ struct RegionParams {
 
 /// Dense depth correspondences (docs/configuration.md): when depth is a body's only cue, a
 /// model's ~200 sparse points pin its pose less well than its visible surface can. The
-/// cue then renders the body's depth and normals at the current pose in the correspondence
-/// iterations where the pose still moves (DenseDepthSampling::request) and pairs each
-/// sampled measured pixel inside the rendered
+/// cue then renders the body's depth and normals at the current pose whenever it has moved
+/// enough since the last render (DenseDepthSampling) and pairs each sampled measured pixel
+/// inside the rendered
 /// silhouette with the rendered surface at that pixel, point-to-plane, as ViSP's dense
 /// depth features do.
 struct DenseDepthParams {
