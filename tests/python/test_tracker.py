@@ -241,3 +241,19 @@ def test_detect_reports_why_nothing_is_found_in_a_blank_frame(teabox):
     assert not found["found"]
     assert found["pose"] is None
     assert found["why_not"]
+
+
+def test_the_edge_cue_alone_follows_the_grey_teabox(teabox):
+    """The creases alone, from Python, on grey images without depth: ViSP's moving edges."""
+    tracker = icgp.Tracker(teabox.objects[0]["model"], COARSE, modalities=["edge"], edge={"n_points_max": 200})
+    assert "edge:" in tracker.config and "n_points_max: 200" in tracker.config
+    tracker.set_pose(teabox[0].truth())
+    errors = []
+    for i in range(30):
+        grey = teabox[i].color.mean(axis=2).astype(np.uint8)
+        result = tracker.track(grey, None, teabox.K_color)
+        assert result.cues[0]["cue"] == "edge" and result.cues[0]["n_valid"] >= 50
+        errors.append(np.linalg.norm(result.pose[:3, 3] - teabox[i].truth()[:3, 3]))
+    # A frozen pose would be this far off by the last frame.
+    frozen = np.linalg.norm(teabox[0].truth()[:3, 3] - teabox[29].truth()[:3, 3])
+    assert max(errors) < 5e-3 < frozen
