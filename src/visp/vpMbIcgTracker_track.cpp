@@ -387,7 +387,8 @@ unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const
 
 unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return edge_count(); }
 unsigned int vpMbIcgTracker::getNbFeaturesKlt() const {
-  return correspondence_count(to_string(CueKind::kTexture)) + correspondence_count(to_string(CueKind::kFlow));
+  // ViSP counts the rows of its KLT error vector: x and y of each point, as getError() here.
+  return 2 * (correspondence_count(to_string(CueKind::kTexture)) + correspondence_count(to_string(CueKind::kFlow)));
 }
 unsigned int vpMbIcgTracker::getNbFeaturesDepthNormal() const {
   return correspondence_count(to_string(CueKind::kDepth), "", DEPTH_NORMAL_TRACKER);

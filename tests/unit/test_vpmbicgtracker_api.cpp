@@ -1229,7 +1229,7 @@ TEST_CASE("every track form, and the features, counts, model and display of a tr
   CHECK(edges > 0);
   CHECK(klts > 0);
   CHECK(t.getNbFeaturesEdge() == edges);  // one colour camera: all edges are the reference camera's
-  CHECK(t.getNbFeaturesKlt() == klts);
+  CHECK(t.getNbFeaturesKlt() == 2 * klts);  // ViSP's count: x and y of each point
   CHECK(t.getNbFeaturesDepthDense() > 0);
   CHECK(t.getNbFeaturesDepthNormal() == 0);  // no camera is DEPTH_NORMAL_TRACKER
   std::map<std::string, std::vector<std::vector<double>>> features_of;

@@ -261,6 +261,6 @@ TEST_CASE("vpMbIcgTracker with KLT_TRACKER alone follows corners from frame to f
   CHECK(max_mm < 2.0);
   CHECK(max_deg < 0.5);
   CHECK(max_mm < 0.5 * translation_error_mm(first, last));
-  CHECK(fewest >= 50);
-  CHECK(tracker.getKltNbPoints() == static_cast<int>(tracker.getNbFeaturesKlt()));
+  CHECK(fewest >= 100);  // 50 points: ViSP counts x and y of each
+  CHECK(2 * tracker.getKltNbPoints() == static_cast<int>(tracker.getNbFeaturesKlt()));
 }
