@@ -241,8 +241,7 @@ struct EdgeParams {
   /// A crease is followed when one of its faces is seen at most this far from its normal
   /// (ViSP's angle_disappear of its examples' files). A face seen more obliquely is a
   /// sliver whose two creases project a few pixels apart, and each would take the other's
-  /// step: on a rendered box whose top face was seen at about 85°, its far crease pulled the
-  /// edges-alone pose 1.6° off.
+  /// step.
   double max_view_angle_deg = 75.0;
   /// Pixels between samples along a projected crease (vpMe's sample step)...
   double sample_step = 5.0;
@@ -256,7 +255,9 @@ struct EdgeParams {
   double min_contrast = 4.0;
   /// With fewer visible samples than this, the cue abstains from the body's quality.
   int min_points = 20;
-  std::vector<double> standard_deviations = {10.0, 5.0, 3.0, 2.0, 1.5};  ///< pixels; the noise estimate's ceiling
+  /// Pixels: the noise estimate's ceiling, and the spread of the search's prior on a step's
+  /// distance from the prediction.
+  std::vector<double> standard_deviations = {10.0, 5.0, 3.0, 2.0, 1.5};
   NoiseParams noise = kEdgeNoise;
   /// The visible samples are chosen anew when the camera has moved around the body by this
   /// angle since they were chosen (or came 10 % nearer or farther): about the spacing of the
