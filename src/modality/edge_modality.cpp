@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "icgp/modality/cue_images.h"
 #include "icgp/modality/iteration_value.h"
 #include "icgp/render/renderer.h"
 
@@ -50,14 +51,7 @@ EdgeModality::EdgeModality(Body& body, EdgeParams params, std::string color_came
 }
 
 const ColorImage& EdgeModality::color_image(const Frame& frame) const {
-  const ColorImage* color = frame.find_color(color_camera_);
-  if (!color)
-    throw std::invalid_argument("edge modality of '" + body().name + "': the frame has no colour camera '" +
-                                color_camera_ + "'");
-  if ((color->image.type() != CV_8UC3 && color->image.type() != CV_8UC1) || color->image.empty())
-    throw std::invalid_argument("edge modality of '" + body().name + "': camera '" + color_camera_ +
-                                "' must give a CV_8UC3 or CV_8UC1 image");
-  return *color;
+  return cue_color_image(frame, color_camera_, name(), body());
 }
 
 Pose EdgeModality::camera_T_body() const { return camera_T_reference_ * body().reference_T_body; }

@@ -12,6 +12,7 @@
 #include "icgp/features/hamming_matching.h"
 #include "icgp/features/oriented_brief.h"
 #include "icgp/geometry/rounding.h"
+#include "icgp/modality/cue_images.h"
 #include "icgp/modality/iteration_value.h"
 #include "icgp/modality/reprojection_terms.h"
 
@@ -110,14 +111,7 @@ TextureModality::TextureModality(Body& body, TextureParams params)
       noise_(params_.noise) {}
 
 const ColorImage& TextureModality::color_image(const Frame& frame) const {
-  const ColorImage* color = frame.find_color(params_.color_camera);
-  if (!color)
-    throw std::invalid_argument("texture modality of '" + body().name + "': the frame has no colour camera '" +
-                                params_.color_camera + "'");
-  if ((color->image.type() != CV_8UC3 && color->image.type() != CV_8UC1) || color->image.empty())
-    throw std::invalid_argument("texture modality of '" + body().name + "': camera '" + params_.color_camera +
-                                "' must give a CV_8UC3 or CV_8UC1 image");
-  return *color;
+  return cue_color_image(frame, params_.color_camera, name(), body());
 }
 
 Pose TextureModality::camera_T_body() const { return camera_T_reference_ * body().reference_T_body; }
