@@ -7,7 +7,6 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "icgp/io/mesh_loader.h"
 #include "icgp/modality/flow_modality.h"
 #include "icgp/tracker/tracker.h"
 #include "test_gradients.h"
@@ -17,22 +16,7 @@ using namespace icgp;
 
 namespace {
 
-struct Scene {
-  Mesh mesh = load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj");
-  Intrinsics color_k{650.0, 648.0, 321.3, 238.9, 640, 480};
-  Intrinsics depth_k{580.0, 580.0, 318.2, 243.1, 640, 480};
-  Pose depth_T_color{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.05, 0.002, 0.001)};
-  Pose start = Pose::from_rotation_vector(Eigen::Vector3d(0.5, -0.6, 0.3), Eigen::Vector3d(0.01, -0.015, 0.45));
-  test::SceneRenderer renderer{mesh, color_k, depth_k, depth_T_color};
-
-  /// The pose of frame i of a smooth motion: 1 mm and 0.6° more per frame.
-  Pose at(int i) const {
-    const Eigen::Vector3d axis = Eigen::Vector3d(0.2, 0.9, -0.4).normalized();
-    const Eigen::Vector3d direction = Eigen::Vector3d(0.7, -0.3, 0.65).normalized();
-    return Pose(exp_so3<double>(axis * 0.6 * i * M_PI / 180.0) * start.rotation(),
-                start.translation() + direction * 1e-3 * i);
-  }
-};
+using Scene = test::MovingTexturedBox;
 
 void start_cue(FlowModality& flow, const Frame& frame) {
   icgp::SceneRenderer renderer;

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "icgp/base/frame.h"
+#include "icgp/io/mesh_loader.h"
 #include "icgp/render/renderer.h"
 
 namespace icgp::test {
@@ -63,6 +64,25 @@ class SceneRenderer {
   Intrinsics color_, depth_;
   Pose depth_T_color_;
   double background_distance_;
+};
+
+/// models/textured_box seen by a colour and a depth camera in front of clutter, moving
+/// smoothly from `start`: the frames of the cues that follow points and edges over time.
+struct MovingTexturedBox {
+  Mesh mesh = load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj");
+  Intrinsics color_k{650.0, 648.0, 321.3, 238.9, 640, 480};
+  Intrinsics depth_k{580.0, 580.0, 318.2, 243.1, 640, 480};
+  Pose depth_T_color{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.05, 0.002, 0.001)};
+  Pose start = Pose::from_rotation_vector(Eigen::Vector3d(0.5, -0.6, 0.3), Eigen::Vector3d(0.01, -0.015, 0.45));
+  SceneRenderer renderer{mesh, color_k, depth_k, depth_T_color};
+
+  /// The pose of frame i of a smooth motion: 1 mm and 0.6° more per frame.
+  Pose at(int i) const {
+    const Eigen::Vector3d axis = Eigen::Vector3d(0.2, 0.9, -0.4).normalized();
+    const Eigen::Vector3d direction = Eigen::Vector3d(0.7, -0.3, 0.65).normalized();
+    return Pose(exp_so3<double>(axis * 0.6 * i * M_PI / 180.0) * start.rotation(),
+                start.translation() + direction * 1e-3 * i);
+  }
 };
 
 }  // namespace icgp::test
