@@ -204,7 +204,8 @@ void EdgeModality::match(const PixelMask& mask, int range, double prior_sigma) {
   const Posef T = camera_T_body().cast<float>();
   const float inverse_prior = static_cast<float>(0.5 / (prior_sigma * prior_sigma));
   const float min_contrast = static_cast<float>(params_.min_contrast);
-  std::vector<float> along(static_cast<std::size_t>(2 * range + 1));
+  std::vector<float>& along = scratch_along_;  // kept from call to call: no allocation per frame
+  along.resize(static_cast<std::size_t>(2 * range + 1));
   for (Sample& s : samples_) {
     s.polarity = 0.f;
     s.weight = 0.f;
@@ -346,14 +347,14 @@ void EdgeModality::append_image_features(std::vector<ImageFeature>& features) co
 }
 
 void EdgeModality::learn_contrasts() {
-  std::vector<float> votes(creases_.size(), 0.f);
+  // The samples' weighted votes are summed in polarity_ itself, then reduced to their sign.
+  std::fill(polarity_.begin(), polarity_.end(), 0.f);
   for (Sample& s : samples_) {
     if (s.polarity == 0.f || s.weight <= 0.f) continue;
     s.contrast = s.step;
-    votes[static_cast<std::size_t>(s.edge)] += s.weight * s.polarity;
+    polarity_[static_cast<std::size_t>(s.edge)] += s.weight * s.polarity;
   }
-  for (std::size_t i = 0; i < creases_.size(); ++i)
-    polarity_[i] = votes[i] > 0.f ? 1.f : votes[i] < 0.f ? -1.f : 0.f;
+  for (float& p : polarity_) p = p > 0.f ? 1.f : p < 0.f ? -1.f : 0.f;
 }
 
 void EdgeModality::finish(const Frame&, const Renders&) {

@@ -118,6 +118,7 @@ class EdgeModality : public Modality {
   int last_corr_iter_ = 0;
   ModalityQuality quality_;
   cv::Mat scratch_grey_;
+  std::vector<float> scratch_along_;  ///< match(): the gradient across one sample's search line
 };
 
 }  // namespace icgp
