@@ -81,6 +81,10 @@ int main(int argc, char *argv[])
   std::string init_pose_file = "cube_init_cMo.txt";
   std::string final_pose_file;
   unsigned int first_frame = 0, nb_frames = 0; // 0: to the end of the sequence
+  // As ViSP's RealSense tutorial (tutorial-mb-generic-tracker-rgbd-realsense): which features
+  // the colour camera tracks, and whether the depth camera is used at all.
+  unsigned int use_edges = 1, use_klt = 1, use_depth = 1;
+  unsigned int min_klt_points = 0; // fail on a frame with fewer KLT points (getNbFeaturesKlt() / 2)
 
   if (!program::Options()
            .add("--input_directory", input_directory)
@@ -91,11 +95,16 @@ int main(int argc, char *argv[])
            .add("--init_pose", init_pose_file)
            .add("--final_pose", final_pose_file)
            .add("--frames", nb_frames)
+           .add("--use_edges", use_edges)
+           .add("--use_klt", use_klt)
+           .add("--use_depth", use_depth)
+           .add("--min_klt_points", min_klt_points)
            .parse(argc, argv,
                   "[--input_directory <folder of color_image_%04d.jpg, depth_image_%04d.bin, depth_M_color.txt>]"
                   " [--config_color <cube.xml>] [--config_depth <cube_depth.xml>]"
                   " [--model_color <cube.wrl>] [--model_depth <cube.cao>] [--init_pose <cMo 4x4 file>]"
-                  " [--frames <n> (default: all)] [--final_pose <output file>]"))
+                  " [--frames <n> (default: all)] [--final_pose <output file>]"
+                  " [--use_edges <0|1>] [--use_klt <0|1>] [--use_depth <0|1>] [--min_klt_points <n>]"))
     return EXIT_SUCCESS;
 
   std::cout << "Tracker: " << VP_STRINGIFY(TRACKER_CLASS) << std::endl;
@@ -103,27 +112,41 @@ int main(int argc, char *argv[])
   std::cout << "config: " << config_color << ", " << config_depth << std::endl;
   std::cout << "model: " << model_color << ", " << model_depth << std::endl;
 
+  if (!use_edges && !use_klt) {
+    std::cerr << "The colour camera needs edges or KLT (--use_edges 1 or --use_klt 1)" << std::endl;
+    return EXIT_FAILURE;
+  }
   return program::run([&] {
     std::vector<int> trackerTypes;
-    trackerTypes.push_back(Tracker::EDGE_TRACKER | Tracker::KLT_TRACKER);
-    trackerTypes.push_back(Tracker::DEPTH_DENSE_TRACKER);
+    trackerTypes.push_back((use_edges ? Tracker::EDGE_TRACKER : 0) | (use_klt ? Tracker::KLT_TRACKER : 0));
+    if (use_depth)
+      trackerTypes.push_back(Tracker::DEPTH_DENSE_TRACKER);
     Tracker tracker(trackerTypes);
-    tracker.loadConfigFile(config_color, config_depth);
-    tracker.loadModel(model_color, model_depth);
+    if (use_depth) {
+      tracker.loadConfigFile(config_color, config_depth);
+      tracker.loadModel(model_color, model_depth);
+    } else {
+      tracker.loadConfigFile(config_color);
+      tracker.loadModel(model_color);
+    }
     std::cout << "Model: " << tracker.getNbPolygon() << " faces" << std::endl;
 
     vpCameraParameters cam_color, cam_depth;
-    tracker.getCameraParameters(cam_color, cam_depth);
+    if (use_depth) {
+      tracker.getCameraParameters(cam_color, cam_depth);
+      vpHomogeneousMatrix depth_M_color;
+      if (!program::read_matrix(input_directory + "/depth_M_color.txt", depth_M_color))
+        return EXIT_FAILURE;
+      std::map<std::string, vpHomogeneousMatrix> mapOfCameraTransformations;
+      mapOfCameraTransformations["Camera1"] = vpHomogeneousMatrix();
+      mapOfCameraTransformations["Camera2"] = depth_M_color;
+      tracker.setCameraTransformationMatrix(mapOfCameraTransformations);
+    } else {
+      tracker.getCameraParameters(cam_color);
+      cam_depth = cam_color; // the frames' clouds are read, and not used
+    }
     std::cout << "cam_color:\n" << cam_color << std::endl;
     std::cout << "cam_depth:\n" << cam_depth << std::endl;
-
-    vpHomogeneousMatrix depth_M_color;
-    if (!program::read_matrix(input_directory + "/depth_M_color.txt", depth_M_color))
-      return EXIT_FAILURE;
-    std::map<std::string, vpHomogeneousMatrix> mapOfCameraTransformations;
-    mapOfCameraTransformations["Camera1"] = vpHomogeneousMatrix();
-    mapOfCameraTransformations["Camera2"] = depth_M_color;
-    tracker.setCameraTransformationMatrix(mapOfCameraTransformations);
 
     vpHomogeneousMatrix cMo_init;
     if (!program::read_matrix(init_pose_file, cMo_init))
@@ -148,11 +171,15 @@ int main(int argc, char *argv[])
       std::map<std::string, const std::vector<vpColVector> *> mapOfPointClouds;
       std::map<std::string, unsigned int> mapOfPointCloudWidths;
       std::map<std::string, unsigned int> mapOfPointCloudHeights;
-      mapOfImages["Camera1"] = &I;
-      mapOfPointClouds["Camera2"] = &pointcloud;
-      mapOfPointCloudWidths["Camera2"] = I_depth_raw.getWidth();
-      mapOfPointCloudHeights["Camera2"] = I_depth_raw.getHeight();
-      tracker.track(mapOfImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
+      if (use_depth) {
+        mapOfImages["Camera1"] = &I;
+        mapOfPointClouds["Camera2"] = &pointcloud;
+        mapOfPointCloudWidths["Camera2"] = I_depth_raw.getWidth();
+        mapOfPointCloudHeights["Camera2"] = I_depth_raw.getHeight();
+        tracker.track(mapOfImages, mapOfPointClouds, mapOfPointCloudWidths, mapOfPointCloudHeights);
+      } else {
+        tracker.track(I);
+      }
       tracker.testTracking();
 
       tracker.getPose(cMo);
@@ -161,6 +188,11 @@ int main(int argc, char *argv[])
                 << vpThetaUVector(cMo.getRotationMatrix()).t() << " rad; features: edge "
                 << tracker.getNbFeaturesEdge() << ", klt " << tracker.getNbFeaturesKlt() << ", depth "
                 << tracker.getNbFeaturesDepthDense() << std::endl;
+      if (use_klt && tracker.getNbFeaturesKlt() / 2 < min_klt_points) {
+        std::cerr << "Frame " << frame << ": " << tracker.getNbFeaturesKlt() / 2 << " KLT points, fewer than "
+                  << min_klt_points << std::endl;
+        return EXIT_FAILURE;
+      }
     }
     if (nb_tracked == 0) {
       std::cerr << "No frame tracked" << std::endl;
