@@ -132,6 +132,9 @@ GLuint link_program(const std::vector<GLuint>& shaders) {
   return program;
 }
 
+/// Pixels to which the sides of the framebuffers of render() are rounded up.
+constexpr int kFramebufferGranule = 64;
+
 /// Offscreen render targets of one image size; multisampled when `samples` > 0.
 struct Framebuffer {
   GLuint fbo = 0;
@@ -320,10 +323,17 @@ struct Renderer::Impl {
     glDeleteProgram(silhouette_program);
   }
 
+  /// A framebuffer of at least width x height, sides rounded up to kFramebufferGranule: the
+  /// focused renders' sizes change from frame to frame with the body's distance, and one
+  /// framebuffer per size would be allocated anew on most frames and all kept. Renders use
+  /// its bottom-left width x height (viewport, scissor and reads).
   Framebuffer& framebuffer(int width, int height) {
-    auto& fb = framebuffers[{width, height}];
-    if (!fb)
-      fb = std::make_unique<Framebuffer>(width, height, std::vector<GLenum>{GL_R32F, GL_RGBA32F, GL_R8UI, GL_RGBA8});
+    const auto round_up = [](int side) {
+      return (side + kFramebufferGranule - 1) / kFramebufferGranule * kFramebufferGranule;
+    };
+    const int W = round_up(width), H = round_up(height);
+    auto& fb = framebuffers[{W, H}];
+    if (!fb) fb = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_R32F, GL_RGBA32F, GL_R8UI, GL_RGBA8});
     return *fb;
   }
 
@@ -582,6 +592,8 @@ RenderOutput Renderer::render(const Intrinsics& intrinsics, const Pose& camera_T
   Framebuffer& fb = impl_->framebuffer(W, H);
   glBindFramebuffer(GL_FRAMEBUFFER, fb.fbo);
   glViewport(0, 0, W, H);
+  glEnable(GL_SCISSOR_TEST);  // clears stay in the image's part of a larger framebuffer
+  glScissor(0, 0, W, H);
   GLenum draw_buffers[kAttachmentCount];
   for (int i = 0; i < kAttachmentCount; ++i)
     draw_buffers[i] = (targets & (1u << i)) ? GL_COLOR_ATTACHMENT0 + i : GL_NONE;
@@ -595,6 +607,7 @@ RenderOutput Renderer::render(const Intrinsics& intrinsics, const Pose& camera_T
   if (targets & kRenderColor) glClearBufferfv(GL_COLOR, kColorAttachment, background.data());
   impl_->clear_depth_for_drawing();
   impl_->draw(intrinsics, camera_T_world, near, far);
+  glDisable(GL_SCISSOR_TEST);
 
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   auto read = [&](Attachment a, GLenum format, GLenum type, cv::Mat& m) {

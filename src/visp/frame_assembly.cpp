@@ -142,20 +142,23 @@ DepthImage& FrameAssembler::depth_slot(const std::string& camera, const vpCamera
 
 void FrameAssembler::set_depth(const std::string& camera, unsigned int width, unsigned int height,
                                const vpCameraParameters& parameters, bool camera_set,
-                               const vpHomogeneousMatrix& camera_M_reference, DepthReader read, ReadSoon read_soon) {
+                               const vpHomogeneousMatrix& camera_M_reference, DepthReader read,
+                               ManyPointsReader read_many) {
   DepthImage& d = depth_slot(camera, parameters, camera_set, camera_M_reference, width, height);
-  d.source.set_reader(std::move(read), std::move(read_soon));
+  d.source.set_reader(std::move(read), std::move(read_many));
+  d.source.read_ahead(d.depth, d.rays);
 }
 
 void FrameAssembler::set_depth_points(const std::string& camera, unsigned int width, unsigned int height,
                                       const vpCameraParameters& parameters, bool camera_set,
                                       const vpHomogeneousMatrix& camera_M_reference, PointReader read,
-                                      ReadSoon read_soon) {
+                                      ManyPointsReader read_many) {
   DepthImage& d = depth_slot(camera, parameters, camera_set, camera_M_reference, width, height);
   cv::Mat& rays = ray_buffers_[camera];
   rays.create(d.depth.size(), CV_32FC2);  // read only where the depth is converted
   d.rays = rays;
-  d.source.set_point_reader(std::move(read), std::move(read_soon));
+  d.source.set_point_reader(std::move(read), std::move(read_many));
+  d.source.read_ahead(d.depth, d.rays);
 }
 
 void FrameAssembler::set_no_depth(const std::string& camera) {
@@ -166,7 +169,6 @@ void FrameAssembler::set_no_depth(const std::string& camera) {
 
 void FrameAssembler::end_depth_reads() {
   for (DepthImage& d : frame_.depths) d.source.drop_reader();
-  for (auto& [camera, reader] : vector_cloud_readers_) reader.end_frame();
 }
 
 }  // namespace icgp

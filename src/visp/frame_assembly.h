@@ -14,7 +14,6 @@
 #include <visp3/core/vpRGBa.h>
 
 #include "icgp/base/frame.h"
-#include "vector_cloud_reader.h"
 
 namespace icgp {
 
@@ -51,28 +50,24 @@ class FrameAssembler {
   /// A measured point at (row, col) in the camera frame (metres), for clouds whose points
   /// are not on the pinhole rays of their pixels.
   using PointReader = std::function<Eigen::Vector3f(int row, int col)>;
-  /// Reads together pixels the cues are about to read (DepthImage::read_soon); may be empty.
-  using ReadSoon = LazyDepthSource::ReadSoon;
+  /// Reads the points of many pixels in one pass (LazyDepthSource::ManyPointsReader); may be empty.
+  using ManyPointsReader = LazyDepthSource::ManyPointsReader;
   /// The camera's depth image, converted from `read` on first read of each pixel (see
   /// DepthImage::source): the cues read a few thousand pixels, and reading a whole cloud
-  /// of ViSP's vpColVectors would cost as much as tracking. `read_soon`, if not empty, is
-  /// told the pixels a cue is about to read. Both are used until end_depth_reads().
+  /// of ViSP's vpColVectors would cost as much as tracking. With `read_many`, the pixels
+  /// the camera's last frame read are read ahead at once. Both are used until
+  /// end_depth_reads().
   void set_depth(const std::string& camera, unsigned int width, unsigned int height,
                  const vpCameraParameters& parameters, bool camera_set, const vpHomogeneousMatrix& camera_M_reference,
-                 DepthReader read, ReadSoon read_soon);
+                 DepthReader read, ManyPointsReader read_many);
   void set_depth_points(const std::string& camera, unsigned int width, unsigned int height,
                         const vpCameraParameters& parameters, bool camera_set,
-                        const vpHomogeneousMatrix& camera_M_reference, PointReader read, ReadSoon read_soon);
-  /// The reader of the camera's ViSP clouds, kept from frame to frame (it reads ahead what
-  /// the last frame read), for the readers given to set_depth or set_depth_points.
-  /// end_depth_reads() ends its frame.
-  VectorCloudReader& vector_cloud_reader(const std::string& camera) { return vector_cloud_readers_[camera]; }
+                        const vpHomogeneousMatrix& camera_M_reference, PointReader read, ManyPointsReader read_many);
   /// The depth camera delivers nothing this frame (DepthImage::delivered); the depth cue
   /// reading it sits the frame out.
   void set_no_depth(const std::string& camera);
-  /// Drops the readers of set_depth (which usually refer to the caller's clouds), and ends
-  /// the frames of the cloud readers: pixels not read so far read as "no measurement" from
-  /// now on.
+  /// Drops the readers of set_depth (which usually refer to the caller's clouds): pixels not
+  /// read so far read as "no measurement" from now on.
   void end_depth_reads();
 
   /// ViSP's setMask: the pixels every camera's cues may use (true), for every image of the
@@ -96,7 +91,6 @@ class FrameAssembler {
   Frame frame_;
   std::map<std::string, ColorImage> color_slots_;  ///< buffers kept across frames
   std::map<std::string, cv::Mat> depth_buffers_, ray_buffers_;
-  std::map<std::string, VectorCloudReader> vector_cloud_readers_;
   cv::Mat mask_;
   std::set<std::string> cameras_without_mask_;  ///< already told their size differs
   vpImage<unsigned char> grey_;

@@ -145,7 +145,7 @@ struct DepthInput {
   unsigned int width = 0, height = 0;
   FrameAssembler::DepthReader depth;   ///< Z per pixel, or
   FrameAssembler::PointReader points;  ///< the point per pixel (organised clouds)
-  FrameAssembler::ReadSoon read_soon;  ///< for sources that read scattered pixels faster together
+  FrameAssembler::ManyPointsReader read_many;  ///< for sources that read scattered pixels faster together
 };
 
 /// A point of a cloud as a measurement: one with a coordinate that is NaN or infinite is

@@ -10,6 +10,7 @@
 #include "icgp/optimizer/covariance.h"
 #include "icgp/visp/conversions.h"
 
+#include "vector_cloud_reader.h"
 #include "vpMbIcgTracker_impl.h"
 
 using icgp::CueKind;
@@ -90,10 +91,10 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     d.depth_without_measurement.erase(depth.camera);
     if (depth.points)
       d.assembler.set_depth_points(depth.camera, depth.width, depth.height, camera.parameters,
-                                   camera.parameters_set, camera.camera_M_reference, depth.points, depth.read_soon);
+                                   camera.parameters_set, camera.camera_M_reference, depth.points, depth.read_many);
     else
       d.assembler.set_depth(depth.camera, depth.width, depth.height, camera.parameters, camera.parameters_set,
-                            camera.camera_M_reference, depth.depth, depth.read_soon);
+                            camera.camera_M_reference, depth.depth, depth.read_many);
     any_depth = any_depth || d.cues_of(depth.camera).depth;
   }
   bool any_color = false;
@@ -219,10 +220,9 @@ std::vector<vpMbIcgTracker::DepthInput> vpMbIcgTracker::cloud_depth_inputs(
                                                    std::to_string(depth.width) + " x " +
                                                    std::to_string(depth.height) +
                                                    " (an organised cloud has one point per pixel)");
-    icgp::VectorCloudReader& reader = impl_->assembler.vector_cloud_reader(name);
-    reader.start_frame(*cloud, depth.width, depth.height);
-    icgp::visp_detail::read_cloud(depth, [&reader](int row, int col) { return reader(row, col); }, camera.parameters);
-    depth.read_soon = [&reader](const std::vector<cv::Point>& pixels) { reader.read_soon(pixels); };
+    const icgp::VectorCloudReader reader(*cloud, depth.width);
+    icgp::visp_detail::read_cloud(depth, reader, camera.parameters);
+    depth.read_many = reader;
     depths.push_back(std::move(depth));
   }
   return depths;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <opencv2/core/mat.hpp>
 #include <opencv2/core/types.hpp>
@@ -42,70 +43,77 @@ struct ColorImage {
 };
 
 /// Where the not yet converted pixels of a depth image get their depth (see DepthImage),
-/// and which pixels it has converted.
+/// which pixels it has converted, and which pixels a frame read, to read them ahead in the
+/// next frame.
+///
+/// A pixel of such an image holds its depth (>= 0: converted), kNotConverted (NaN), or,
+/// read ahead and not read yet this frame, its depth negated (kReadAheadZero for 0): one
+/// comparison with 0 tells a converted pixel, so reading one costs a load, and the first
+/// read of a pixel read ahead tells the source the pixel is still read.
 class LazyDepthSource {
  public:
-  static constexpr float kNotConverted = -1.f;
-  /// Told the pixels the cues are about to read (DepthImage::read_soon).
-  using ReadSoon = std::function<void(const std::vector<cv::Point>& pixels)>;
+  static constexpr float kNotConverted = std::numeric_limits<float>::quiet_NaN();
+  /// Reads the measured points of many pixels at once (see set_reader).
+  using ManyPointsReader = std::function<void(const std::vector<cv::Point>& pixels, std::vector<Eigen::Vector3f>& points)>;
 
   /// `read`: the measured depth at (row, col) in metres; 0, negative or not finite: none.
-  /// `read_soon`, if any: see DepthImage::read_soon.
-  void set_reader(std::function<float(int row, int col)> read, ReadSoon read_soon = nullptr) {
+  /// `read_many`, if any: the points of many pixels (their Z is the depth), read in one
+  /// pass whose memory reads overlap; with it, the pixels a frame read are read ahead in
+  /// the next (read_ahead) and DepthImage::read_soon is worth a cue's while.
+  void set_reader(std::function<float(int row, int col)> read, ManyPointsReader read_many = nullptr) {
     read_ = std::move(read);
     read_point_ = nullptr;
-    read_soon_ = std::move(read_soon);
+    read_many_ = std::move(read_many);
   }
   /// `read`: the measured point at (row, col) in the camera frame, metres; Z 0, negative or
-  /// not finite: none. Its ray (X/Z, Y/Z) is written to the `rays` of convert().
-  void set_point_reader(std::function<Eigen::Vector3f(int row, int col)> read, ReadSoon read_soon = nullptr) {
+  /// not finite: none. Its ray (X/Z, Y/Z) is written to the `rays` of the image.
+  void set_point_reader(std::function<Eigen::Vector3f(int row, int col)> read, ManyPointsReader read_many = nullptr) {
     read_point_ = std::move(read);
     read_ = nullptr;
-    read_soon_ = std::move(read_soon);
+    read_many_ = std::move(read_many);
   }
   /// Pixels not converted so far read as no measurement from now on.
   void drop_reader() {
     read_ = nullptr;
     read_point_ = nullptr;
-    read_soon_ = nullptr;
+    read_many_ = nullptr;
   }
 
-  /// DepthImage::takes_read_soon and DepthImage::read_soon.
-  bool takes_read_soon() const { return static_cast<bool>(read_soon_); }
-  void read_soon(const std::vector<cv::Point>& pixels) const {
-    if (read_soon_) read_soon_(pixels);
-  }
+  /// DepthImage::takes_read_soon.
+  bool takes_read_soon() const { return static_cast<bool>(read_many_); }
+  /// Converts, in one pass of the source, the pixels of `pixels` not converted yet
+  /// (DepthImage::read_soon).
+  void read_soon(cv::Mat& depth, cv::Mat& rays, const std::vector<cv::Point>& pixels);
+  /// With a source that reads many pixels at once, reads ahead the pixels the last frame
+  /// of this source read (inside `depth`), in one pass: called once the frame's reader is
+  /// set.
+  void read_ahead(cv::Mat& depth, cv::Mat& rays);
 
-  /// The depth of kNotConverted pixel (row, col) of `depth`, which is written there (and
-  /// the point's ray to `rays` when the source gives points).
-  float convert(cv::Mat& depth, cv::Mat& rays, int row, int col) {
-    float z = 0.f;
-    if (read_point_) {
-      const Eigen::Vector3f P = read_point_(row, col);
-      z = P.z();
-      if (z > 0.f && std::isfinite(z)) rays.ptr<cv::Vec2f>(row)[col] = cv::Vec2f(P.x() / z, P.y() / z);
-    } else if (read_) {
-      z = read_(row, col);
-    } else {
-      return 0.f;
-    }
-    if (!(z > 0.f) || !std::isfinite(z)) z = 0.f;
-    depth.ptr<float>(row)[col] = z;
-    converted_.emplace_back(col, row);
-    return z;
-  }
+  /// DepthImage::at of a pixel that holds no converted depth: reads it from the source,
+  /// or takes the depth read ahead; either way the frame read it. 0 without a source.
+  float resolve(cv::Mat& depth, cv::Mat& rays, int row, int col);
   /// Makes the pixels converted so far kNotConverted again, so that the next frame of the
   /// source is read without converting or clearing the whole image.
-  void unconvert(cv::Mat& depth) {
-    for (const cv::Point& p : converted_) depth.ptr<float>(p.y)[p.x] = kNotConverted;
-    converted_.clear();
-  }
+  void unconvert(cv::Mat& depth);
 
  private:
+  /// Stands for a depth of 0 read ahead: -0 would read as converted.
+  static constexpr float kReadAheadZero = std::numeric_limits<float>::min();
+  bool has_reader() const { return read_ || read_point_; }
+  /// Converts `pixels` (inside the image, not converted) in one pass; `read_ahead`: stored
+  /// negated, and recorded as read only when a cue reads them.
+  void read_many(cv::Mat& depth, cv::Mat& rays, const std::vector<cv::Point>& pixels, bool read_ahead);
+  /// A measured depth as the image holds it: 0 where there is no measurement.
+  static float sanitized(float z) { return z > 0.f && std::isfinite(z) ? z : 0.f; }
+
   std::function<float(int row, int col)> read_;
   std::function<Eigen::Vector3f(int row, int col)> read_point_;
-  ReadSoon read_soon_;
-  std::vector<cv::Point> converted_;
+  ManyPointsReader read_many_;
+  std::vector<cv::Point> converted_;  ///< this frame's, to unconvert
+  std::vector<cv::Point> read_now_;   ///< pixels this frame read, read ahead in the next
+  std::vector<cv::Point> read_last_;  ///< the last frame's
+  std::vector<cv::Point> pending_;    ///< scratch of read_many
+  std::vector<Eigen::Vector3f> points_;
 };
 
 /// One depth camera's image and calibration. Depth is Z along the optical axis.
@@ -137,7 +145,7 @@ struct DepthImage {
   /// The depth at (row, col), inside the image: metres, 0 where there is no measurement.
   float at(int row, int col) const {
     const float z = depth.ptr<float>(row)[col];
-    return z != kNotConverted ? z : source.convert(const_cast<cv::Mat&>(depth), const_cast<cv::Mat&>(rays), row, col);
+    return z >= 0.f ? z : source.resolve(const_cast<cv::Mat&>(depth), const_cast<cv::Mat&>(rays), row, col);
   }
   /// Whether read_soon() may help: the depth is converted on read from a source that reads
   /// scattered pixels faster together, so that gathering them is worth a cue's while.
@@ -145,7 +153,9 @@ struct DepthImage {
   /// Tells the source that a cue is about to read `pixels` (inside the image), one at a time
   /// between its own computations: a source whose reads wait on memory (ViSP's clouds) reads
   /// them now, together. at() gives the same values either way.
-  void read_soon(const std::vector<cv::Point>& pixels) const { source.read_soon(pixels); }
+  void read_soon(const std::vector<cv::Point>& pixels) const {
+    source.read_soon(const_cast<cv::Mat&>(depth), const_cast<cv::Mat&>(rays), pixels);
+  }
   /// The measured point at (row, col), given its depth z = at(row, col) > 0.
   Eigen::Vector3f point(int row, int col, float z) const {
     if (rays.empty())

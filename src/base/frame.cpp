@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "icgp/base/frame.h"
+
+#include <utility>
+
+namespace icgp {
+
+void LazyDepthSource::read_many(cv::Mat& depth, cv::Mat& rays, const std::vector<cv::Point>& pixels,
+                                bool read_ahead) {
+  points_.clear();
+  read_many_(pixels, points_);
+  const bool with_rays = static_cast<bool>(read_point_);
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    const cv::Point& p = pixels[i];
+    const Eigen::Vector3f& P = points_[i];
+    const float z = P.allFinite() ? sanitized(P.z()) : 0.f;  // a non-finite coordinate: none
+    if (with_rays && z > 0.f) rays.ptr<cv::Vec2f>(p.y)[p.x] = cv::Vec2f(P.x() / z, P.y() / z);
+    depth.ptr<float>(p.y)[p.x] = read_ahead ? (z > 0.f ? -z : -kReadAheadZero) : z;
+    converted_.push_back(p);
+    if (!read_ahead) read_now_.push_back(p);
+  }
+}
+
+void LazyDepthSource::read_soon(cv::Mat& depth, cv::Mat& rays, const std::vector<cv::Point>& pixels) {
+  if (!read_many_) return;
+  pending_.clear();
+  for (const cv::Point& p : pixels)
+    if (std::isnan(depth.ptr<float>(p.y)[p.x])) pending_.push_back(p);
+  if (!pending_.empty()) read_many(depth, rays, pending_, false);
+}
+
+void LazyDepthSource::read_ahead(cv::Mat& depth, cv::Mat& rays) {
+  if (!read_many_) return;
+  pending_.clear();
+  // A pixel outside: the image changed size since the last frame.
+  for (const cv::Point& p : read_last_)
+    if (p.x < depth.cols && p.y < depth.rows && std::isnan(depth.ptr<float>(p.y)[p.x])) pending_.push_back(p);
+  if (!pending_.empty()) read_many(depth, rays, pending_, true);
+}
+
+float LazyDepthSource::resolve(cv::Mat& depth, cv::Mat& rays, int row, int col) {
+  if (!has_reader()) return 0.f;
+  float& held = depth.ptr<float>(row)[col];
+  float z = 0.f;
+  if (!std::isnan(held)) {  // read ahead
+    z = held == -kReadAheadZero ? 0.f : -held;
+  } else {
+    if (read_point_) {
+      const Eigen::Vector3f P = read_point_(row, col);
+      z = sanitized(P.z());
+      if (z > 0.f) rays.ptr<cv::Vec2f>(row)[col] = cv::Vec2f(P.x() / z, P.y() / z);
+    } else {
+      z = sanitized(read_(row, col));
+    }
+    converted_.emplace_back(col, row);
+  }
+  held = z;
+  read_now_.emplace_back(col, row);
+  return z;
+}
+
+void LazyDepthSource::unconvert(cv::Mat& depth) {
+  for (const cv::Point& p : converted_) depth.ptr<float>(p.y)[p.x] = kNotConverted;
+  converted_.clear();
+  std::swap(read_last_, read_now_);
+  read_now_.clear();
+}
+
+}  // namespace icgp
