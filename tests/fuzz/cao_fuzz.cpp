@@ -7,6 +7,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const std::filesystem::path file = icgp::fuzz::scratch_dir() / "model.cao";
   icgp::fuzz::write_file(file, data, size);
   // Few segments keep each run fast; the curved primitives are still meshed.
-  icgp::fuzz::refusing_cleanly([] { icgp::load_cao_mesh(file.string(), icgp::Pose(), icgp::CaoTessellation{3, 3}); });
+  icgp::fuzz::refusing_like_a_loader([] { icgp::load_cao_mesh(file.string(), icgp::Pose(), icgp::CaoTessellation{3, 3}); });
   return 0;
 }

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <unistd.h>
 
 namespace icgp::fuzz {
@@ -58,18 +59,38 @@ inline std::string write_file(const std::filesystem::path& path, const std::stri
   return write_file(path, reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
 }
 
-/// Runs `call`; any std::exception (vpException and cv::Exception are ones) is a clean
-/// refusal. Anything else escapes and is a finding (libFuzzer reports the abort). With
+/// Runs `call`; an exception of one of the `Refusal` types is the API's clean refusal of
+/// bad bytes (the loaders' documented errors; vpMbIcgTracker's vpException). Any other
+/// exception is a finding: std::bad_alloc or std::length_error (a size that reached an
+/// allocator unchecked), std::out_of_range (an index unchecked), cv::Exception (bytes that
+/// reached OpenCV unchecked), std::logic_error (a broken invariant). It is named on stderr
+/// and the process aborts, as libFuzzer and the replay report a crash. With
 /// ICGP_FUZZ_SHOW_REFUSALS set, each refusal's message goes to stderr: how to check that
 /// the seeds are accepted, and that a refusal names what is wrong.
-template <class Call>
+template <class... Refusal, class Call>
 void refusing_cleanly(Call&& call) {
+  static_assert(sizeof...(Refusal) > 0, "name the exception types that are clean refusals");
   static const bool show = std::getenv("ICGP_FUZZ_SHOW_REFUSALS") != nullptr;
+  const auto refused = [](const std::exception& e) {
+    if (show) std::cerr << "refused: " << e.what() << "\n";
+  };
   try {
     call();
   } catch (const std::exception& e) {
-    if (show) std::cerr << "refused: " << e.what() << "\n";
+    if (!(... || (dynamic_cast<const Refusal*>(&e) != nullptr))) {
+      std::cerr << "fuzz: unexpected exception (not a clean refusal): " << e.what() << "\n";
+      std::abort();
+    }
+    refused(e);
   }
+}
+
+/// The core loaders' documented errors: bad content (std::runtime_error and its subclasses:
+/// ModelFileError, ScenarioError, the YAML reader's Error) and bad values
+/// (std::invalid_argument).
+template <class Call>
+void refusing_like_a_loader(Call&& call) {
+  refusing_cleanly<std::runtime_error, std::invalid_argument>(std::forward<Call>(call));
 }
 
 }  // namespace icgp::fuzz

@@ -28,7 +28,7 @@ float touch_everything(const icgp::ViewpointModel& model) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path file = icgp::fuzz::scratch_dir() / "model.icgpmodel";
   icgp::fuzz::write_file(file, data, size);
-  icgp::fuzz::refusing_cleanly([] {
+  icgp::fuzz::refusing_like_a_loader([] {
     const icgp::ViewpointModel model = icgp::load_viewpoint_model(file.string());
     volatile float sink = touch_everything(model);
     (void)sink;

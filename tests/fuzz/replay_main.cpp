@@ -2,9 +2,10 @@
 // Replays saved inputs through a fuzz target without libFuzzer, so that the normal build
 // runs every seed and every input that once crashed: `fuzz_replay_<target> DIR...` feeds
 // each file of each DIR (sorted, dot files skipped) to LLVMFuzzerTestOneInput, after the
-// target's LLVMFuzzerInitialize when it has one. A crash
-// ends the process as it would end the fuzzer; a DIR given with --nonempty must hold at
-// least one input, so that a lost corpus does not pass silently.
+// target's LLVMFuzzerInitialize when it has one. A crash, or an exception the target does
+// not count as a clean refusal (fuzz_support.h), ends the process as it would end the
+// fuzzer. Every DIR must exist, and one given with --nonempty must hold at least one input,
+// so that a lost or misnamed corpus or regression folder does not pass silently.
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -25,7 +26,6 @@ namespace fs = std::filesystem;
 
 std::vector<fs::path> inputs_in(const fs::path& dir) {
   std::vector<fs::path> files;
-  if (!fs::is_directory(dir)) return files;
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.is_regular_file() && entry.path().filename().string().rfind('.', 0) != 0) files.push_back(entry.path());
   std::sort(files.begin(), files.end());
@@ -47,6 +47,10 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--nonempty") == 0) {
       nonempty = true;
       continue;
+    }
+    if (!fs::is_directory(argv[i])) {
+      std::cerr << "fuzz replay: " << argv[i] << " is not a folder\n";
+      return 1;
     }
     const std::vector<fs::path> files = inputs_in(argv[i]);
     if (nonempty && files.empty()) {

@@ -8,6 +8,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path file = icgp::fuzz::scratch_dir() / "scenario.yaml";
   icgp::fuzz::write_file(file, data, size);
-  icgp::fuzz::refusing_cleanly([] { icgp::servo::load_scenario(file.string(), ICGP_MODELS_DIR); });
+  icgp::fuzz::refusing_like_a_loader([] { icgp::servo::load_scenario(file.string(), ICGP_MODELS_DIR); });
   return 0;
 }

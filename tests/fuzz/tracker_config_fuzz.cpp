@@ -6,6 +6,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path file = icgp::fuzz::scratch_dir() / "tracker.yaml";
   icgp::fuzz::write_file(file, data, size);
-  icgp::fuzz::refusing_cleanly([] { icgp::load_tracker_config(file.string()); });
+  icgp::fuzz::refusing_like_a_loader([] { icgp::load_tracker_config(file.string()); });
   return 0;
 }

@@ -191,6 +191,6 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   InputBytes input(data, size);
-  icgp::fuzz::refusing_cleanly([&] { fixture->track_one(input); });
+  icgp::fuzz::refusing_cleanly<vpException>([&] { fixture->track_one(input); });
   return 0;
 }

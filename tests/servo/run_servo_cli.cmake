@@ -3,6 +3,7 @@
 # machine-readable contract (README / issue: scenario, tracker, trials, ...).
 # -DICGP=<program> -DSCENARIO=<yaml> -DOUT=<folder> [-DARGS=<extra arguments, ;-separated>]
 # [-DJSON_MATCH=<regular expression summary.json must match>]
+# [-DOUTPUT_MATCH=<regular expression the program's output must match>]
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND "${ICGP}" servo "${SCENARIO}" --out "${OUT}" --summary "${OUT}/summary.json" --quiet ${ARGS}
                 RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE errors)
@@ -25,4 +26,7 @@ foreach(file log.csv error.png velocity.png)
     message(FATAL_ERROR "icgp servo did not write ${OUT}/${file}")
   endif()
 endforeach()
+if(DEFINED OUTPUT_MATCH AND NOT "${output}${errors}" MATCHES "${OUTPUT_MATCH}")
+  message(FATAL_ERROR "the output does not match ${OUTPUT_MATCH}:\n${output}\n${errors}")
+endif()
 message("${output}")

@@ -18,10 +18,12 @@ const std::filesystem::path kBlender = std::filesystem::path(ICGP_TEST_DATA_DIR)
 
 }  // namespace
 
-TEST_CASE("vpMbGenericTracker edge + dense depth follows the first 10 teabox-blender frames") {
+TEST_CASE("vpMbGenericTracker edge + dense depth follows 10 teabox-blender frames where the box moves") {
   const Sequence sequence = Sequence::open(kBlender.string(), visp_sequence_options());
+  // From frame 20: over the first frames the box barely moves, and a pose frozen at the
+  // start would meet the bounds below (8.6 mm mean over frames 20-29).
   std::vector<Frame> frames;
-  for (int i = 0; i < 10; ++i) frames.push_back(sequence.load(i));
+  for (int i = 20; i < 30; ++i) frames.push_back(sequence.load(i));
 
   const VispTrackerConfiguration edge_depth = visp_reference_configurations().front();
   REQUIRE(edge_depth.edge);

@@ -28,6 +28,7 @@
 #include "icgp/visp/visp_camera_xml.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 #include "test_temp_dir.h"
+#include "vpmbicgtracker_test_setup.h"
 
 using namespace icgp;
 
@@ -44,7 +45,7 @@ const std::vector<Frame>& teabox_frames() {
     blender.blender_principal_point = true;
     const Sequence sequence = Sequence::open(kBlender.string(), blender);
     std::vector<Frame> f;
-    for (int i = 0; i < 8; ++i) f.push_back(sequence.load(i));
+    for (int i = 0; i < 8; ++i) f.push_back(sequence.load(test::kFirstTeaboxFrame + i));  // where the box moves
     return f;
   }();
   return frames;

@@ -118,7 +118,7 @@ TEST_CASE("vpMbIcgTracker: ViSP's tutorial set-up, default constructor and setTr
     INFO("frame " << frame.index);
     // teabox.xml's principal point is Blender's less half a pixel: a few mm along the line
     // of sight for a monocular tracker.
-    CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 10.0);
+    CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 5.0);
     CHECK(rotation_error_deg(to_pose(tracker.getPose()), *frame.truth()) < 1.0);
   }
 }
@@ -217,7 +217,7 @@ TEST_CASE("vpMbIcgTracker with KLT_TRACKER alone: the texture cue's first frame,
     tracker.track(input.grey);
     INFO("frame " << frame.index);
     CHECK_NOTHROW(tracker.testTracking());
-    CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 10.0);
+    CHECK(translation_error_mm(to_pose(tracker.getPose()), *frame.truth()) < 5.0);
   }
 }
 

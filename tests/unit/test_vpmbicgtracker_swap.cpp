@@ -39,6 +39,19 @@ MeanErrors mean_errors(const std::vector<Pose>& poses, const std::vector<Frame>&
 
 }  // namespace
 
+TEST_CASE("a tracker frozen at its start pose fails the teabox tests' bounds") {
+  // The tests start at test::kFirstTeaboxFrame and bound the mean translation error by
+  // 2 mm or less, and each frame's by 5 mm or less (monocular grey; 0.5 mm with depth).
+  for (const int n : {6, 8, 12}) {
+    const std::vector<Frame> frames = test::teabox_frames(n);
+    const test::FrozenPoseErrors frozen = test::frozen_pose_errors(frames);
+    INFO(n << " frames: frozen " << frozen.mean_translation_mm << " mm, " << frozen.mean_rotation_deg << " deg");
+    CHECK(frozen.mean_translation_mm > 2.0);
+    CHECK(frozen.mean_rotation_deg > 0.5);
+    CHECK(translation_error_mm(*frames.front().truth(), *frames.back().truth()) > 5.0);
+  }
+}
+
 TEST_CASE(
     "swap proof: the same ViSP code tracks teabox-blender as well with vpMbIcgTracker as with vpMbGenericTracker") {
   const std::vector<Frame> frames = test::teabox_frames(30);
