@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 # Fails when an #include goes against the module order (docs/architecture.md):
 #   cmake -DROOT=<source tree> -P check_module_order.cmake
-# A file belongs to the module of its folder: include/icgp/<module>/ or src/<module>/.
+# A file belongs to the module of its folder: include/icgp/<module>/ or src/<module>/, and
+# servo/include/icgp/servo/ or servo/src/ for the servo simulator at the top level.
 # It may include its own module and the modules below it, never one beside or above it;
 # a private header ("name.h", no folder) must sit in the including file's own folder.
 if(NOT ROOT)
@@ -22,12 +23,15 @@ function(module_level module out)
   endif()
 endfunction()
 
-file(GLOB_RECURSE files RELATIVE ${ROOT} ${ROOT}/include/icgp/*.h ${ROOT}/src/*.h ${ROOT}/src/*.cpp)
+file(GLOB_RECURSE files RELATIVE ${ROOT} ${ROOT}/include/icgp/*.h ${ROOT}/src/*.h ${ROOT}/src/*.cpp
+     ${ROOT}/servo/include/icgp/*.h ${ROOT}/servo/src/*.h ${ROOT}/servo/src/*.cpp)
 set(violations "")
 set(n_files 0)
 foreach(file IN LISTS files)
-  if(file MATCHES "^include/icgp/([a-z_]+)/")
-    set(module ${CMAKE_MATCH_1})
+  if(file MATCHES "^(servo/)?include/icgp/([a-z_]+)/")
+    set(module ${CMAKE_MATCH_2})
+  elseif(file MATCHES "^servo/src/")
+    set(module servo)
   elseif(file MATCHES "^src/([a-z_]+)/")
     set(module ${CMAKE_MATCH_1})
   else()
