@@ -60,7 +60,7 @@ class IcgpEstimator : public PoseEstimator {
     TrackerConfig config = spec.config.empty() ? TrackerConfig() : load_tracker_config(spec.config);
     if (!spec.modalities.empty()) config.modalities = spec.modalities;
     if (!scenario.object.regions.empty()) config.regions = scenario.object.regions;
-    name_ = "icgp (" + joined(cue_names(config.modalities)) + (config.regions.empty() ? "" : ", multi-region") +
+    name_ = "icgp (" + joined(config.modalities) + (config.regions.empty() ? "" : ", multi-region") +
             (scenario.grasp ? ", + gripper" : "") + ")";
     tracker_.setTrackerConfig(config);
     tracker_.loadModel(scenario.object.model);

@@ -16,6 +16,7 @@
 #include "icgp/io/model_reference.h"
 #include "icgp/io/yaml_reader.h"
 #include "icgp/modality/cue_kind.h"
+#include "icgp/tracker/cue_registry.h"
 
 namespace icgp::servo {
 namespace {

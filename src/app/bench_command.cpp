@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "option_ranges.h"
+#include "icgp/tracker/cue_registry.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/visp/cao_mesh_loader.h"

@@ -13,6 +13,7 @@
 #include "bench_runner.h"
 #include "commands.h"
 #include "option_ranges.h"
+#include "icgp/tracker/cue_registry.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
@@ -95,7 +96,7 @@ void run_compare(const CompareOptions& o) {
   const Mesh mesh = load_any_mesh(object.mesh_path);
   TrackerConfig icgp_config = benchmark_tracker_config(o.config);
   if (!o.modalities.empty()) icgp_config.modalities = parse_cue_list(o.modalities);
-  const std::string icgp_name = joined(cue_names(icgp_config.modalities));
+  const std::string icgp_name = joined(icgp_config.modalities);
 
   const int n_frames = o.frames > 0 ? std::min(o.frames, sequence.size()) : sequence.size();
   std::cerr << "loading " << n_frames << " frames of " << o.sequence << "\n";

@@ -372,7 +372,7 @@ void run_detect_bench(const DetectBenchOptions& options) {
       TrackerConfig config;  // icgp's defaults
       config.regions = object.regions;
       if (row.sensor.grey)
-        config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), CueKind::kDepth),
+        config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), cue::kDepth),
                                 config.modalities.end());
       BodyDetector detector(config, mesh, object.name, configured_cameras(config), renderer);
       Tally icgp;

@@ -41,7 +41,7 @@ void run_detect(const DetectOptions& o) {
   const std::string body = sequence_body_name(sequence, model);
   TrackerConfig config = sequence_tracker_config(o.config, o.sequence);
   if (o.sequence_options.grey_without_depth)
-    config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), CueKind::kDepth),
+    config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), cue::kDepth),
                             config.modalities.end());
   const Mesh mesh = load_any_mesh(model);
   BodyDetector detector(config, mesh, body, configured_cameras(config));

@@ -18,6 +18,7 @@
 #include "bench_runner.h"
 #include "commands.h"
 #include "gnuplot.h"
+#include "icgp/tracker/cue_registry.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/eval/sequence_writer.h"

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "icgp/tracker/cue_registry.h"
 #include "icgp/detection/body_detector.h"
 #include "icgp/eval/joint_evaluation.h"
 #include "icgp/eval/metrics.h"
@@ -112,7 +113,7 @@ TrackerConfig tracking_config(const TrackOptions& o) {
   if (!o.modalities.empty()) config.modalities = parse_cue_list(o.modalities);
   if (o.sequence_options.grey_without_depth) {
     // Without a depth camera the depth cue has nothing to read: the other cues track.
-    config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), CueKind::kDepth),
+    config.modalities.erase(std::remove(config.modalities.begin(), config.modalities.end(), cue::kDepth),
                             config.modalities.end());
     if (config.modalities.empty())
       throw std::runtime_error("--grey-without-depth leaves no modality: the configuration has only depth");
@@ -122,7 +123,7 @@ TrackerConfig tracking_config(const TrackOptions& o) {
 
 void print_modalities(const TrackerConfig& config) {
   std::cout << "modalities ";
-  for (std::size_t i = 0; i < config.modalities.size(); ++i) std::cout << (i ? "," : "") << to_string(config.modalities[i]);
+  for (std::size_t i = 0; i < config.modalities.size(); ++i) std::cout << (i ? "," : "") << config.modalities[i];
   std::cout << "\n";
 }
 

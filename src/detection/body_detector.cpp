@@ -104,15 +104,15 @@ constexpr double kRoundTurnStep = 15.0 * kPi / 180.0;
 /// its depth cue; texture is left out, since its keyframe would be taken at the unrefined pose.
 TrackerConfig refinement_config(const TrackerConfig& config) {
   TrackerConfig refine = config;
-  refine.modalities = {CueKind::kRegion};
-  if (has_cue(config.modalities, CueKind::kDepth)) refine.modalities.push_back(CueKind::kDepth);
+  refine.modalities = {cue::kRegion};
+  if (has_cue(config.modalities, cue::kDepth)) refine.modalities.push_back(cue::kDepth);
   refine.bodies.clear();
   return refine;
 }
 
 std::vector<CameraCues> refinement_cameras(const std::vector<CameraCues>& cameras) {
   std::vector<CameraCues> out = cameras;
-  for (CameraCues& c : out) c.texture = false;
+  for (CameraCues& c : out) c.types &= ~visp_type::kKlt;
   return out;
 }
 
@@ -149,8 +149,9 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
                            std::vector<Body> others)
     : params_(config.detection), body_name_(body_name) {
   for (const CameraCues& c : cameras) {
-    if (c.region && color_camera_.empty()) color_camera_ = c.camera;
-    if (c.depth && depth_camera_.empty() && has_cue(config.modalities, CueKind::kDepth)) depth_camera_ = c.camera;
+    if ((c.types & visp_type::kEdge) && color_camera_.empty()) color_camera_ = c.camera;
+    if ((c.types & visp_type::kDepth) && depth_camera_.empty() && has_cue(config.modalities, cue::kDepth))
+      depth_camera_ = c.camera;
   }
   if (color_camera_.empty())
     throw std::invalid_argument("detection of body '" + body_name +

@@ -79,7 +79,7 @@ bool Recovery::lost(const std::string& body) const {
 }
 
 bool Recovery::can_detect() const {
-  return std::any_of(cameras_.begin(), cameras_.end(), [](const CameraCues& c) { return c.region; });
+  return std::any_of(cameras_.begin(), cameras_.end(), [](const CameraCues& c) { return (c.types & visp_type::kEdge) != 0; });
 }
 
 std::vector<std::string> Recovery::after_track(const Frame& frame, std::vector<BodyResult>& results) {

@@ -8,11 +8,6 @@
 #include "icgp/io/mesh_loader.h"
 #include "icgp/model/model_cache.h"
 #include "icgp/modality/cue_kind.h"
-#include "icgp/modality/depth_modality.h"
-#include "icgp/modality/edge_modality.h"
-#include "icgp/modality/flow_modality.h"
-#include "icgp/modality/region_modality.h"
-#include "icgp/modality/texture_modality.h"
 
 namespace icgp {
 namespace {
@@ -34,70 +29,67 @@ std::vector<ViewpointModel> multi_region_models(const TrackerConfig& config, con
   return models;
 }
 
-/// Which cues the configuration and the rig ask for.
-struct CueSelection {
-  bool region, depth, texture, flow, edge;
-  bool depth_alone() const { return depth && !region && !texture && !flow && !edge; }
-};
+/// The registered cues of `config.modalities` that read a camera of the rig (or none),
+/// in registry order.
+std::vector<const CueEntry*> selected_cues(const TrackerConfig& config, const std::vector<CameraCues>& cameras) {
+  std::vector<const CueEntry*> cues;
+  for (const CueEntry& entry : CueRegistry::instance().entries()) {
+    if (!has_cue(config.modalities, entry.name)) continue;
+    const bool read = entry.visp_types == 0 ||
+                      std::any_of(cameras.begin(), cameras.end(), [&](const CameraCues& c) { return c.reads(entry); });
+    if (read) cues.push_back(&entry);
+  }
+  return cues;
+}
 
-/// Adds the cues of one tracked body: its region model(s) and depth model from the cache
-/// (`region_models` given: a multi-region body's), then its texture, flow and edge cues per camera.
+/// The configuration's parameters of a viewpoint model kind.
+const ViewpointModelParams& model_params(const TrackerConfig& config, ViewpointModel::Kind kind) {
+  return kind == ViewpointModel::Kind::kRegion ? config.region_model : config.depth_model;
+}
+
+/// Adds the cues of one tracked body, cue by cue in registry order; a cue with a viewpoint
+/// model gets one modality per model and camera, the others one per camera (or one, when
+/// they read none). The models come from the cache; `region_models` given: a multi-region
+/// body's region models.
 void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const std::vector<CameraCues>& cameras,
-              const CueSelection& cues, std::vector<ViewpointModel> region_models) {
-  std::vector<ModelRequest> requests;
+              const std::vector<const CueEntry*>& cues, std::vector<ViewpointModel> region_models) {
   const bool multi_region = !region_models.empty();
-  if (cues.region && !multi_region) requests.push_back({ViewpointModel::Kind::kRegion, config.region_model});
-  if (cues.depth) requests.push_back({ViewpointModel::Kind::kDepth, config.depth_model});
+  std::vector<ModelRequest> requests;
+  for (const CueEntry* cue : cues)
+    if (cue->model && !(multi_region && *cue->model == ViewpointModel::Kind::kRegion))
+      requests.push_back({*cue->model, model_params(config, *cue->model)});
   ModelGenerationOptions options;
   options.name = body.name;
   std::vector<ViewpointModel> models = load_or_generate(body.mesh, requests, config.cache_dir, options);
   for (ViewpointModel& model : region_models) models.push_back(std::move(model));
-
   std::vector<std::shared_ptr<const ViewpointModel>> shared;
   for (ViewpointModel& model : models) shared.push_back(std::make_shared<const ViewpointModel>(std::move(model)));
-  const RegionModality::Extent extent =
-      multi_region ? RegionModality::Extent::kRegionOfBody : RegionModality::Extent::kWholeBody;
-  // Depth alone must pin all six degrees of freedom by itself: the body's whole visible
-  // surface does that better than the model's sparse points (docs/configuration.md).
-  const DepthModality::Sampling depth_sampling = cues.depth_alone() && config.depth.dense.when_only_cue
-                                                     ? DepthModality::Sampling::kDense
-                                                     : DepthModality::Sampling::kModelPoints;
-  // Model by model, then camera by camera: one camera per cue gives the modality order of
-  // a single-camera tracker.
-  for (const auto& model : shared) {
-    for (const CameraCues& camera : cameras) {
-      if (model->kind() == ViewpointModel::Kind::kRegion && cues.region && camera.region) {
-        RegionParams params = config.region;
-        params.color_camera = camera.camera;
-        params.depth_camera = camera.occlusion_depth_camera;
-        tracker.add_modality(std::make_unique<RegionModality>(body, model, params, extent));
-      } else if (model->kind() == ViewpointModel::Kind::kDepth && cues.depth && camera.depth) {
-        DepthParams params = config.depth;
-        params.depth_camera = camera.camera;
-        if (camera.dense_depth_step) {
-          params.dense.step_x = camera.dense_depth_step->x;
-          params.dense.step_y = camera.dense_depth_step->y;
-        }
-        tracker.add_modality(std::make_unique<DepthModality>(body, model, params, depth_sampling));
+
+  for (const CueEntry* cue : cues) {
+    CueContext context{body, config};
+    context.only_cue = cues.size() == 1;
+    const auto add_per_camera = [&] {
+      if (cue->visp_types == 0) {
+        tracker.add_modality(cue->make(context));
+        return;
       }
+      for (const CameraCues& camera : cameras)
+        if (camera.reads(*cue)) {
+          context.camera = &camera;
+          tracker.add_modality(cue->make(context));
+        }
+    };
+    if (!cue->model) {
+      add_per_camera();
+      continue;
     }
+    for (const auto& model : shared)
+      if (model->kind() == *cue->model) {
+        context.model = model;
+        context.region_of_body = multi_region && model->kind() == ViewpointModel::Kind::kRegion;
+        add_per_camera();
+      }
   }
-  if (cues.texture)
-    for (const CameraCues& camera : cameras) {
-      if (!camera.texture) continue;
-      TextureParams params = config.texture;
-      params.color_camera = camera.camera;
-      params.depth_camera = camera.occlusion_depth_camera;
-      tracker.add_modality(std::make_unique<TextureModality>(body, params));
-    }
-  if (cues.flow)
-    for (const CameraCues& camera : cameras)
-      if (camera.texture)
-        tracker.add_modality(
-            std::make_unique<FlowModality>(body, config.flow, camera.camera, camera.occlusion_depth_camera));
-  if (cues.edge)
-    for (const CameraCues& camera : cameras)
-      if (camera.region) tracker.add_modality(std::make_unique<EdgeModality>(body, config.edge, camera.camera));
 }
 
 /// The mesh of a configured body, with the body named in any error.
@@ -111,11 +103,23 @@ Mesh read_body_mesh(const BodyConfig& body, const MeshReader& read_mesh) {
 
 }  // namespace
 
+bool CameraCues::reads_image(const std::vector<std::string>& modalities) const {
+  for (const std::string& name : modalities)
+    if (const CueEntry* cue = CueRegistry::instance().find(name); cue && cue->reads_image && reads(*cue)) return true;
+  return false;
+}
+
+bool CameraCues::reads_depth(const std::vector<std::string>& modalities) const {
+  for (const std::string& name : modalities)
+    if (const CueEntry* cue = CueRegistry::instance().find(name); cue && cue->reads_depth && reads(*cue)) return true;
+  return false;
+}
+
 std::vector<CameraCues> configured_cameras(const TrackerConfig& config) {
   // The cameras the parameters name: the colour cues' camera, which looks for occlusions
   // in the region cue's depth camera (the texture cue's when region is off), and the depth
   // cue's camera.
-  const bool region_on = has_cue(config.modalities, CueKind::kRegion);
+  const bool region_on = has_cue(config.modalities, cue::kRegion);
   std::vector<CameraCues> cameras;
   auto camera = [&](const std::string& name) -> CameraCues& {
     for (CameraCues& c : cameras)
@@ -125,9 +129,9 @@ std::vector<CameraCues> configured_cameras(const TrackerConfig& config) {
   camera(config.texture.color_camera).occlusion_depth_camera = config.texture.depth_camera;
   camera(config.region.color_camera).occlusion_depth_camera =
       region_on ? config.region.depth_camera : config.texture.depth_camera;
-  camera(config.region.color_camera).region = true;  // and the edge cue's
-  camera(config.texture.color_camera).texture = true;
-  camera(config.depth.depth_camera).depth = true;
+  camera(config.region.color_camera).types |= visp_type::kEdge;
+  camera(config.texture.color_camera).types |= visp_type::kKlt;
+  camera(config.depth.depth_camera).types |= visp_type::kDepthDense;
   return cameras;
 }
 
@@ -147,19 +151,14 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
                                        std::shared_ptr<SceneRenderer> renderer, const MeshReader& read_mesh) {
   validate(config, "tracker configuration");
   const std::vector<const BodyConfig*> others = in_tree_order(config.bodies, body_name);
-  auto any_camera = [&](bool CameraCues::*cue) {
-    return std::any_of(cameras.begin(), cameras.end(), [cue](const CameraCues& c) { return c.*cue; });
-  };
-  const CueSelection cues{has_cue(config.modalities, CueKind::kRegion) && any_camera(&CameraCues::region),
-                          has_cue(config.modalities, CueKind::kDepth) && any_camera(&CameraCues::depth),
-                          has_cue(config.modalities, CueKind::kTexture) && any_camera(&CameraCues::texture),
-                          has_cue(config.modalities, CueKind::kFlow) && any_camera(&CameraCues::texture),
-                          has_cue(config.modalities, CueKind::kEdge) && any_camera(&CameraCues::region)};
+  const std::vector<const CueEntry*> cues = selected_cues(config, cameras);
+  const bool region = has_cue(config.modalities, cue::kRegion) &&
+                      std::any_of(cues.begin(), cues.end(), [](const CueEntry* c) { return c->name == cue::kRegion; });
 
   auto tracker = std::make_unique<Tracker>(config.tracker, std::move(renderer));
   Body& body = tracker->add_body({body_name, mesh, Pose()});
   add_cues(*tracker, body, config, cameras, cues,
-           cues.region && !config.regions.empty() ? multi_region_models(config, body_name) : std::vector<ViewpointModel>{});
+           region && !config.regions.empty() ? multi_region_models(config, body_name) : std::vector<ViewpointModel>{});
   for (const BodyConfig* other : others) {
     Body added{other->name, read_body_mesh(*other, read_mesh), Pose()};
     if (other->occluder) {

@@ -3,6 +3,8 @@
 // rule); the reader, its validation and the writer all walk the same tables.
 #include "icgp/tracker/tracker_config.h"
 
+#include "icgp/tracker/cue_registry.h"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include "icgp/base/resource_limits.h"
 #include "icgp/io/yaml_reader.h"
 #include "icgp/modality/cue_kind.h"
+#include "icgp/tracker/cue_registry.h"
 
 namespace icgp {
 namespace {
@@ -325,7 +328,7 @@ const Fields<TrackerConfig> kConfigFields = {
      [](const yaml::Value& v, TrackerConfig& c) {
        c.modalities = parse_cue_list(v.as(Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}));
      },
-     [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, cue_names(c.modalities)); }},
+     [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.modalities); }},
     section("region_model", &TrackerConfig::region_model, kModelFields),
     section("depth_model", &TrackerConfig::depth_model, kModelFields),
     section("region", &TrackerConfig::region, kRegionFields),

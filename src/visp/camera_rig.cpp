@@ -86,18 +86,15 @@ bool CameraRig::is_depth_camera(const std::string& name) const {
   return (cameras_.at(name).types & (kDepthNormal | kDepthDense)) != 0;
 }
 
-std::vector<CameraCues> CameraRig::cues(const std::vector<CueKind>& modalities) const {
+std::vector<CameraCues> CameraRig::cues() const {
+  static_assert(kEdge == visp_type::kEdge && kKlt == visp_type::kKlt && kDepthNormal == visp_type::kDepthNormal &&
+                kDepthDense == visp_type::kDepthDense);
   std::string first_depth_camera;
   for (const auto& [name, camera] : cameras_)
     if (is_depth_camera(name) && first_depth_camera.empty()) first_depth_camera = name;
   std::vector<CameraCues> out;
   for (const auto& [name, camera] : cameras_) {
-    CameraCues c{name};
-    const bool contour_cues = has_cue(modalities, CueKind::kRegion) || has_cue(modalities, CueKind::kEdge);
-    c.region = (camera.types & kEdge) && contour_cues;
-    const bool point_cues = has_cue(modalities, CueKind::kTexture) || has_cue(modalities, CueKind::kFlow);
-    c.texture = (camera.types & kKlt) && point_cues;
-    c.depth = is_depth_camera(name) && has_cue(modalities, CueKind::kDepth);
+    CameraCues c{name, camera.types};
     c.occlusion_depth_camera = is_depth_camera(name) ? name : first_depth_camera;
     c.dense_depth_step = (camera.types & kDepthDense) ? camera.dense_step : camera.normal_step;
     out.push_back(c);

@@ -57,12 +57,13 @@ class CameraRig {
 
   void set_types(const std::string& name, int types, const std::string& call);
 
-  /// Which cues run on which camera: EDGE → region, KLT → texture, DEPTH_NORMAL or
-  /// DEPTH_DENSE → depth, each only if `modalities` names it. A colour camera looks for
-  /// occlusions in its own depth when it has a depth type, else in the first depth camera.
-  /// Dense depth samples with the camera's dense step when it has DEPTH_DENSE, with its
-  /// normal step when it has DEPTH_NORMAL alone.
-  std::vector<CameraCues> cues(const std::vector<CueKind>& modalities) const;
+  /// Each camera with its tracker types, which decide the cues that read it (the cue
+  /// registry's visp_types: EDGE → region and edge, KLT → texture and flow, DEPTH_NORMAL or
+  /// DEPTH_DENSE → depth, of the selected modalities). A colour camera looks for occlusions
+  /// in its own depth when it has a depth type, else in the first depth camera. Dense depth
+  /// samples with the camera's dense step when it has DEPTH_DENSE, with its normal step
+  /// when it has DEPTH_NORMAL alone.
+  std::vector<CameraCues> cues() const;
   /// Has a depth type (its depth may serve for occlusions even if the depth cue is off).
   bool is_depth_camera(const std::string& name) const;
 

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <visp3/mbt/vpMbtXmlGenericParser.h>
 
+#include "icgp/tracker/cue_registry.h"
 #include "icgp/io/file_extension.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
@@ -269,6 +270,19 @@ void vpMbIcgTracker::setModalities(const std::vector<std::string>& modalities) {
   icgp::TrackerConfig config = impl_->config;
   config.modalities = guarded("setModalities", [&] { return icgp::parse_cue_list(modalities); });
   setTrackerConfig(config);
+}
+
+void vpMbIcgTracker::addCue(const icgp::CueEntry& cue) {
+  guarded("addCue", [&] {
+    icgp::CueRegistry& registry = icgp::CueRegistry::instance();
+    if (registry.built_in(cue.name))
+      throw std::invalid_argument("'" + cue.name + "' is a built-in cue; select it with setModalities");
+    if (!registry.find(cue.name)) registry.add(cue);
+  });
+  if (icgp::has_cue(impl_->config.modalities, cue.name)) return;
+  std::vector<std::string> modalities = impl_->config.modalities;
+  modalities.push_back(cue.name);
+  setModalities(modalities);
 }
 
 void vpMbIcgTracker::setTrackerType(int type) {
@@ -560,7 +574,7 @@ void vpMbIcgTracker::build_tracker() {
     throw vpTrackingException(vpTrackingException::initializationError,
                               "vpMbIcgTracker::init: no model; call loadModel() before initialising");
   if (d.tracker) return;
-  d.cues = d.rig.cues(d.config.modalities);
+  d.cues = d.rig.cues();
   d.tracker = icgp::build_tracker(d.config, d.mesh, Impl::kBody, d.cues, d.renderer,
                                   [](const std::string& file, double scale) { return icgp::load_any_mesh(file, scale); });
   d.recovery = std::make_unique<icgp::Recovery>(*d.tracker, d.config, Impl::kBody, d.cues, d.renderer);

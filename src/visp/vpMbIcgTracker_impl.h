@@ -36,8 +36,8 @@ struct vpMbIcgTracker::Impl {
   /// files are read over them.
   static icgp::TrackerConfig default_config() {
     icgp::TrackerConfig config;
-    config.modalities.push_back(icgp::CueKind::kFlow);
-    config.modalities.push_back(icgp::CueKind::kEdge);
+    config.modalities.push_back(icgp::cue::kFlow);
+    config.modalities.push_back(icgp::cue::kEdge);
     return config;
   }
 

@@ -13,7 +13,6 @@
 #include "vector_cloud_reader.h"
 #include "vpMbIcgTracker_impl.h"
 
-using icgp::CueKind;
 using icgp::visp_detail::DepthInput;
 using icgp::visp_detail::Failure;
 using icgp::visp_detail::guarded;
@@ -63,7 +62,7 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     const icgp::CameraRig::Camera& camera = rig.at(name, call);
     // ViSP programs also pass a depth camera's image: only colour cues read one.
     const icgp::CameraCues& cues = d.cues_of(name);
-    if (!image || !(cues.region || cues.texture)) continue;
+    if (!image || !cues.reads_image(d.config.modalities)) continue;
     icgp::require_image_size(
         call, [&name = name] { return "the image of camera '" + name + "'"; }, image->getWidth(), image->getHeight());
     d.assembler.set_color(name, *image, camera.parameters, camera.parameters_set, camera.camera_M_reference);
@@ -95,13 +94,13 @@ const vpImage<unsigned char>* vpMbIcgTracker::assemble_frame(const std::map<std:
     else
       d.assembler.set_depth(depth.camera, depth.width, depth.height, camera.parameters, camera.parameters_set,
                             camera.camera_M_reference, depth.depth, depth.read_many);
-    any_depth = any_depth || d.cues_of(depth.camera).depth;
+    any_depth = any_depth || d.cues_of(depth.camera).reads_depth(d.config.modalities);
   }
   bool any_color = false;
   for (const icgp::CameraCues& cues : d.cues) {
     const std::string& name = cues.camera;
     if (rig.is_depth_camera(name)) d.assembler.set_no_depth(name);  // unless delivered above
-    if (!(cues.region || cues.texture)) continue;
+    if (!cues.reads_image(d.config.modalities)) continue;
     if (!d.assembler.frame().find_color(name))
       throw vpException(vpException::badValue, "vpMbIcgTracker::" + call + ": no image of camera '" + name +
                                                    "', whose cues (EDGE_TRACKER: region, KLT_TRACKER: texture) "
@@ -340,32 +339,26 @@ void vpMbIcgTracker::computeVVSInteractionMatrixAndResidu() {
 vpColVector vpMbIcgTracker::getError() const { return m_error; }
 vpColVector vpMbIcgTracker::getRobustWeights() const { return m_w; }
 
-std::vector<const icgp::Modality*> vpMbIcgTracker::cues(const std::string& name, const std::string& camera) const {
+std::vector<const icgp::Modality*> vpMbIcgTracker::cues_counted_as(icgp::VispFeatures features,
+                                                                    const std::string& camera) const {
   std::vector<const icgp::Modality*> out;
   if (!impl_->tracker) return out;
-  for (const icgp::Modality* m : impl_->tracker->modalities(Impl::kBody))
-    if (m->name() == name && (camera.empty() || m->camera() == camera)) out.push_back(m);
+  // Registry order, then the tracker's order: region before edge, texture before flow. A
+  // cue that reads no camera (a sensor's) is the reference camera's.
+  const std::vector<const icgp::Modality*> all = impl_->tracker->modalities(Impl::kBody);
+  const auto of_camera = [&](const icgp::Modality& m) {
+    return camera.empty() || m.camera() == camera || (m.camera().empty() && camera == impl_->rig.reference());
+  };
+  for (const icgp::CueEntry& entry : icgp::CueRegistry::instance().entries()) {
+    if (entry.visp_features != features) continue;
+    for (const icgp::Modality* m : all)
+      if (m->name() == entry.name && of_camera(*m)) out.push_back(m);
+  }
   return out;
 }
 
-std::vector<const icgp::Modality*> vpMbIcgTracker::klt_cues(const std::string& camera) const {
-  std::vector<const icgp::Modality*> out = cues(to_string(CueKind::kTexture), camera);
-  for (const icgp::Modality* m : cues(to_string(CueKind::kFlow), camera)) out.push_back(m);
-  return out;
-}
-
-std::vector<const icgp::Modality*> vpMbIcgTracker::edge_cues(const std::string& camera) const {
-  std::vector<const icgp::Modality*> out = cues(to_string(CueKind::kRegion), camera);
-  for (const icgp::Modality* m : cues(to_string(CueKind::kEdge), camera)) out.push_back(m);
-  return out;
-}
-
-unsigned int vpMbIcgTracker::edge_count(const std::string& camera) const {
-  return correspondence_count(to_string(CueKind::kRegion), camera) + correspondence_count(to_string(CueKind::kEdge), camera);
-}
-
-unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const std::string& camera,
-                                                  int depth_type) const {
+unsigned int vpMbIcgTracker::count_features(icgp::VispFeatures features, const std::string& camera,
+                                            int depth_type) const {
   if (!impl_->tracker) return 0;
   // The optimizer's part of each cue in the last update: the correspondences it summed
   // over are the features ViSP counts in its minimisation.
@@ -374,7 +367,8 @@ unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const
   unsigned int n = 0;
   for (std::size_t i = 0; i < terms.size(); ++i) {
     const icgp::Modality& m = *all[i];
-    if (m.name() != name || (!camera.empty() && m.camera() != camera)) continue;
+    const icgp::CueEntry* entry = icgp::CueRegistry::instance().find(m.name());
+    if (!entry || entry->visp_features != features || (!camera.empty() && m.camera() != camera)) continue;
     if (depth_type != 0) {
       // A camera with both depth types counts as DEPTH_DENSE, ICG's point-to-plane cue.
       const int types = impl_->rig.at(m.camera(), "getNbFeatures").types;
@@ -385,37 +379,37 @@ unsigned int vpMbIcgTracker::correspondence_count(const std::string& name, const
   return n;
 }
 
-unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return edge_count(); }
+unsigned int vpMbIcgTracker::getNbFeaturesEdge() const { return count_features(icgp::VispFeatures::kEdge); }
 unsigned int vpMbIcgTracker::getNbFeaturesKlt() const {
   // ViSP counts the rows of its KLT error vector: x and y of each point, as getError() here.
-  return 2 * (correspondence_count(to_string(CueKind::kTexture)) + correspondence_count(to_string(CueKind::kFlow)));
+  return 2 * count_features(icgp::VispFeatures::kKlt);
 }
 unsigned int vpMbIcgTracker::getNbFeaturesDepthNormal() const {
-  return correspondence_count(to_string(CueKind::kDepth), "", DEPTH_NORMAL_TRACKER);
+  return count_features(icgp::VispFeatures::kDepth, "", DEPTH_NORMAL_TRACKER);
 }
 unsigned int vpMbIcgTracker::getNbFeaturesDepthDense() const {
-  return correspondence_count(to_string(CueKind::kDepth), "", DEPTH_DENSE_TRACKER);
+  return count_features(icgp::VispFeatures::kDepth, "", DEPTH_DENSE_TRACKER);
 }
 
 unsigned int vpMbIcgTracker::getNbPoints(unsigned int) const {
-  return edge_count(impl_->rig.reference());
+  return count_features(icgp::VispFeatures::kEdge, impl_->rig.reference());
 }
 
 void vpMbIcgTracker::getNbPoints(std::map<std::string, unsigned int>& mapOfNbPoints, unsigned int) const {
   mapOfNbPoints.clear();
   for (const std::string& name : impl_->rig.names())
-    mapOfNbPoints[name] = edge_count(name);
+    mapOfNbPoints[name] = count_features(icgp::VispFeatures::kEdge, name);
 }
 
 std::vector<std::vector<double>> vpMbIcgTracker::features_for_display(const std::string& camera) const {
   std::vector<std::vector<double>> out;
   constexpr double kFullWeight = 0.0, kDownWeighted = 4.0;  // vpMeSite::NO_SUPPRESSION, M_ESTIMATOR
   std::vector<icgp::ImageFeature> features;
-  for (const icgp::Modality* m : edge_cues(camera)) m->append_image_features(features);
+  for (const icgp::Modality* m : cues_counted_as(icgp::VispFeatures::kEdge, camera)) m->append_image_features(features);
   for (const icgp::ImageFeature& f : features)
     out.push_back({0.0, f.pixel.y(), f.pixel.x(), f.weight >= 0.5 ? kFullWeight : kDownWeighted});
   features.clear();
-  for (const icgp::Modality* m : klt_cues(camera)) m->append_image_features(features);
+  for (const icgp::Modality* m : cues_counted_as(icgp::VispFeatures::kKlt, camera)) m->append_image_features(features);
   for (std::size_t id = 0; id < features.size(); ++id)
     out.push_back({1.0, features[id].pixel.y(), features[id].pixel.x(), static_cast<double>(id)});
   return out;
@@ -432,7 +426,8 @@ void vpMbIcgTracker::getFeaturesForDisplay(std::map<std::string, std::vector<std
 
 std::map<int, vpImagePoint> vpMbIcgTracker::getKltImagePointsWithId() const {
   std::vector<icgp::ImageFeature> features;
-  for (const icgp::Modality* m : klt_cues(impl_->rig.reference())) m->append_image_features(features);
+  for (const icgp::Modality* m : cues_counted_as(icgp::VispFeatures::kKlt, impl_->rig.reference()))
+    m->append_image_features(features);
   std::map<int, vpImagePoint> points;
   for (std::size_t id = 0; id < features.size(); ++id)
     points[static_cast<int>(id)] = vpImagePoint(features[id].pixel.y(), features[id].pixel.x());

@@ -72,7 +72,7 @@ vpMbIcgTracker& teabox_tracker(vpMbIcgTracker& tracker) {
     model->image_size = 256;
   }
   config.cache_dir = ICGP_FUZZ_CACHE_DIR;
-  config.modalities = {icgp::CueKind::kRegion, icgp::CueKind::kDepth};
+  config.modalities = {icgp::cue::kRegion, icgp::cue::kDepth};
   tracker.setTrackerConfig(config);
   tracker.loadModel(teabox + "/teabox.cao");
   const vpCameraParameters camera(kFocal, kFocal, (kWidth - 1) / 2.0, (kHeight - 1) / 2.0);

@@ -144,7 +144,7 @@ seed: 7
   CHECK(s.desired_cMo.matrix().isApprox(Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 0.35)).matrix()));
 
   CHECK(s.tracker.kind == icgp::servo::TrackerKind::kVisp);
-  CHECK(s.tracker.modalities == std::vector<icgp::CueKind>{icgp::CueKind::kRegion, icgp::CueKind::kDepth});
+  CHECK(s.tracker.modalities == std::vector<std::string>{icgp::cue::kRegion, icgp::cue::kDepth});
   CHECK(same_file(s.tracker.config, (dir.path() / "icgp.yaml").string()));
   CHECK(s.tracker.visp_configuration == "edge + dense depth");
 

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The smallest complete cue (docs/architecture.md): a measured position of the body's
 // origin in the reference camera, with a standard deviation, as a fiducial marker or an
-// external sensor would give it.
+// external sensor would give it. It shows the measurement in the reference camera's image.
 #pragma once
 
 #include <cmath>
+#include <optional>
 
 #include "icgp/modality/modality.h"
 
@@ -18,7 +19,9 @@ class PositionCue final : public Modality {
   std::string name() const override { return "position"; }
   const std::string& camera() const override { return no_camera_; }  // it reads no image
   void start(const Frame&, const Renders&) override {}
-  void correspondences(const Frame&, const Renders&, int) override {}
+  void correspondences(const Frame& frame, const Renders&, int) override {
+    if (!frame.colors.empty()) image_ = frame.colors.front().intrinsics;
+  }
 
   // ℓ = −‖t − p‖² / (2σ²). A body-frame variation θ moves the origin t by R θ_t.
   CueTerms gradient_hessian(int, int) override {
@@ -40,6 +43,9 @@ class PositionCue final : public Modality {
     q.sigma = sigma_;
     return q;
   }
+  void append_image_features(std::vector<ImageFeature>& features) const override {
+    if (image_ && measured_.z() > 0.0) features.push_back({image_->project(measured_), 1.0});
+  }
   void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const override {
     for (int i = 0; i < 3; ++i) {
       residuals.push_back(error()[i]);
@@ -53,6 +59,7 @@ class PositionCue final : public Modality {
   Eigen::Vector3d measured_;
   double sigma_;
   std::string no_camera_;
+  std::optional<Intrinsics> image_;  ///< the reference camera's, once a frame had one
 };
 
 }  // namespace icgp::example

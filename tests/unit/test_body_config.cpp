@@ -118,7 +118,7 @@ TEST_CASE("bodies: bad lists name the file, the body and the field") {
 
 TEST_CASE("bodies: building refuses unknown parents, taken names and unreadable meshes, naming the body") {
   TrackerConfig config;
-  config.modalities = {CueKind::kTexture};  // no viewpoint model to generate
+  config.modalities = {cue::kTexture};  // no viewpoint model to generate
   const Mesh box = test::make_box(0.1f, 0.1f, 0.1f);
   auto body = [](std::string name, std::string mesh, std::optional<Joint> joint = std::nullopt, bool occluder = false) {
     return BodyConfig{std::move(name), std::move(mesh), 1.0, occluder, std::move(joint)};
@@ -140,7 +140,7 @@ TEST_CASE("bodies: building refuses unknown parents, taken names and unreadable 
 
 TEST_CASE("bodies: a built tracker has the links, joints and occluders of the list") {
   TrackerConfig config;
-  config.modalities = {CueKind::kTexture};
+  config.modalities = {cue::kTexture};
   const Mesh box = test::make_box(0.1f, 0.1f, 0.1f);
   const MeshReader boxes = [&](const std::string&, double) { return box; };
   // The lid is listed before its parent: the builder orders the tree.
@@ -149,7 +149,7 @@ TEST_CASE("bodies: a built tracker has the links, joints and occluders of the li
                    BodyConfig{"lid", "lid.obj", 1.0, false,
                               Joint::revolute("base", Pose(), Eigen::Vector3d::UnitX(), 0.0, 1.0)},
                    BodyConfig{"hand", "hand.obj", 1.0, true, std::nullopt}};
-  std::unique_ptr<Tracker> tracker = build_tracker(config, box, "base", {CameraCues{"Camera1", false, true, false, ""}},
+  std::unique_ptr<Tracker> tracker = build_tracker(config, box, "base", {CameraCues{"Camera1", visp_type::kKlt, ""}},
                                                    nullptr, boxes);
   std::vector<std::string> names;
   for (Body* body : tracker->bodies()) names.push_back(body->name);

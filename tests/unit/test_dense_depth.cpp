@@ -33,7 +33,7 @@ struct BoxTracker {
   Mesh mesh = box_mesh();
   std::unique_ptr<Tracker> tracker;
 
-  explicit BoxTracker(std::vector<CueKind> modalities, DenseDepthParams dense = {}) {
+  explicit BoxTracker(std::vector<std::string> modalities, DenseDepthParams dense = {}) {
     TrackerConfig config;
     config.modalities = std::move(modalities);
     config.cache_dir = ICGP_TEST_CACHE_DIR;
@@ -73,7 +73,7 @@ namespace {
 /// Tracks frames 0 .. n-1 of the moving box with depth alone from the truth of frame 0;
 /// the errors of each frame against its truth.
 std::vector<std::pair<double, double>> track_depth_alone(std::vector<Frame>& frames, const DenseDepthParams& dense) {
-  BoxTracker depth_alone({CueKind::kDepth}, dense);
+  BoxTracker depth_alone({cue::kDepth}, dense);
   depth_alone.body().reference_T_body = truth(0);
   depth_alone.tracker->start(frames[0]);
   std::vector<std::pair<double, double>> errors;
@@ -115,11 +115,11 @@ TEST_CASE("dense depth: depth alone follows a moving box that a frozen pose and 
 TEST_CASE("dense depth: depth alone pairs many more points than the fused cue's model points") {
   test::SceneRenderer scene(box_mesh(), kColorK, kDepthK, kDepthTColor);
   const Frame frame = scene.render(truth(0), "box");
-  const int fused = BoxTracker({CueKind::kRegion, CueKind::kDepth, CueKind::kTexture}).correspondences_at_truth(frame);
-  const int alone = BoxTracker({CueKind::kDepth}).correspondences_at_truth(frame);
+  const int fused = BoxTracker({cue::kRegion, cue::kDepth, cue::kTexture}).correspondences_at_truth(frame);
+  const int alone = BoxTracker({cue::kDepth}).correspondences_at_truth(frame);
   DenseDepthParams model_points;
   model_points.when_only_cue = false;
-  const int alone_sparse = BoxTracker({CueKind::kDepth}, model_points).correspondences_at_truth(frame);
+  const int alone_sparse = BoxTracker({cue::kDepth}, model_points).correspondences_at_truth(frame);
   INFO("fused " << fused << ", depth alone " << alone << ", depth alone with model points " << alone_sparse);
   CHECK(fused <= 100);  // the coarse model's points per view
   CHECK(alone_sparse == fused);
@@ -133,7 +133,7 @@ TEST_CASE("dense depth: the sampling step samples the multiples of its columns a
     DenseDepthParams dense;
     dense.step_x = step_x;
     dense.step_y = step_y;
-    return BoxTracker({CueKind::kDepth}, dense).correspondences_at_truth(frame);
+    return BoxTracker({cue::kDepth}, dense).correspondences_at_truth(frame);
   };
   const int every_pixel = pairs(1, 1), two_by_two = pairs(2, 2), four_by_two = pairs(4, 2), three_by_five = pairs(3, 5);
   INFO("1x1 " << every_pixel << ", 2x2 " << two_by_two << ", 4x2 " << four_by_two << ", 3x5 " << three_by_five);
@@ -144,5 +144,5 @@ TEST_CASE("dense depth: the sampling step samples the multiples of its columns a
   // The automatic step puts at most n_points_max samples on the body's square.
   DenseDepthParams few;
   few.n_points_max = 500;
-  CHECK(BoxTracker({CueKind::kDepth}, few).correspondences_at_truth(frame) <= 500);
+  CHECK(BoxTracker({cue::kDepth}, few).correspondences_at_truth(frame) <= 500);
 }

@@ -127,7 +127,7 @@ TEST_CASE("detection: the textured box is found by its keypoints in a grey image
   const test::TempDir cache("icgp-detection-grey-cache");
   TrackerConfig config = load_tracker_config(ICGP_TEST_DATA_DIR "/../configs/coarse_models.yaml");
   config.cache_dir = cache.path().string();
-  config.modalities = {CueKind::kRegion, CueKind::kTexture};
+  config.modalities = {cue::kRegion, cue::kTexture};
   const Mesh mesh = load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj");
   const Intrinsics color_k{600.0, 600.0, 319.5, 239.5, 640, 480};
   test::SceneRenderer scene(mesh, color_k, color_k, Pose());

@@ -340,7 +340,7 @@ struct TwoRegionTracker {
   std::unique_ptr<Tracker> tracker;
   Body* body;
   test::SceneRenderer scene;
-  explicit TwoRegionTracker(const std::vector<CueKind>& modalities)
+  explicit TwoRegionTracker(const std::vector<std::string>& modalities)
       : scene(object, Fixture::instance().color_k, Fixture::instance().depth_k, Fixture::instance().depth_T_color) {
     TrackerConfig config;
     config.modalities = modalities;
@@ -366,7 +366,7 @@ void check_at_truth(const Body& body, const BodyResult& result, double max_mm, d
 }  // namespace
 
 TEST_CASE("build_tracker: one region modality per region of a multi-region object") {
-  TwoRegionTracker two_region({CueKind::kRegion, CueKind::kDepth});
+  TwoRegionTracker two_region({cue::kRegion, cue::kDepth});
   Tracker* tracker = two_region.tracker.get();
   Body& body = *two_region.body;
   Fixture& f = Fixture::instance();
@@ -381,7 +381,7 @@ TEST_CASE("build_tracker: one region modality per region of a multi-region objec
 }
 
 TEST_CASE("multi-region: a region out of view at the start abstains, then learns its colours when it comes into view") {
-  TwoRegionTracker two_region({CueKind::kRegion});
+  TwoRegionTracker two_region({cue::kRegion});
   Tracker* tracker = two_region.tracker.get();
   Body& body = *two_region.body;
   Fixture& f = Fixture::instance();

@@ -242,7 +242,7 @@ TEST_CASE("tracker config: defaults are the reference values of ALGORITHMS.md") 
   CHECK(c.tracker.tikhonov_translation == 30000.0);
   CHECK(c.tracker.n_corr_iterations == 5);
   CHECK(c.tracker.n_update_iterations == 2);
-  CHECK(c.modalities == std::vector<icgp::CueKind>{icgp::CueKind::kRegion, icgp::CueKind::kDepth, icgp::CueKind::kTexture});
+  CHECK(c.modalities == std::vector<std::string>{icgp::cue::kRegion, icgp::cue::kDepth, icgp::cue::kTexture});
   for (const icgp::ViewpointModelParams& m : {c.region_model, c.depth_model}) {
     CHECK(m.n_divides == 4);
     CHECK(m.sphere_radius == 0.8);

@@ -237,7 +237,7 @@ TEST_CASE("vpMbIcgTracker with KLT_TRACKER alone follows corners from frame to f
   CHECK(flow.window_size == 7);
   CHECK(flow.min_distance == 4.0);
   CHECK(flow.mask_border == 3);
-  REQUIRE(icgp::has_cue(tracker.getTrackerConfig().modalities, icgp::CueKind::kFlow));
+  REQUIRE(icgp::has_cue(tracker.getTrackerConfig().modalities, icgp::cue::kFlow));
 
   tracker.loadModel(kTeaboxCao);
   tracker.setCameraParameters(to_camera_parameters(frames.front().colors.front().intrinsics));

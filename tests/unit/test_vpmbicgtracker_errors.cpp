@@ -70,7 +70,7 @@ TEST_CASE("vpMbIcgTracker: setModalities refuses a name that is no cue, naming i
   CHECK(e.getCode() == vpException::badValue);
   CHECK_THAT(e.getStringMessage(), Contains("setModalities") && Contains("'edges'") &&
                                        Contains("region, depth, texture"));
-  CHECK(tracker.getTrackerConfig().modalities == std::vector<icgp::CueKind>{icgp::CueKind::kRegion, icgp::CueKind::kDepth});
+  CHECK(tracker.getTrackerConfig().modalities == std::vector<std::string>{icgp::cue::kRegion, icgp::cue::kDepth});
 }
 
 TEST_CASE("vpMbIcgTracker: tracking before initFromPose is a vpTrackingException") {

@@ -9,25 +9,29 @@
 
 #include "icgp/base/mesh.h"
 #include "icgp/render/scene_renderer.h"
+#include "icgp/tracker/cue_registry.h"
 #include "icgp/tracker/tracker.h"
 #include "icgp/tracker/tracker_config.h"
 
 namespace icgp {
 
-/// One camera of a rig and the cues that read it. The colour cues (region, texture, flow)
-/// test their lines and points for measured occlusion in `occlusion_depth_camera`'s depth
-/// (empty: none). `region` marks the camera of the contour cues: region and edge (ViSP's
-/// EDGE_TRACKER); `texture` that of the point cues: texture and flow (ViSP's KLT_TRACKER),
-/// as the configuration selects them.
+/// One camera of a rig and the cues that read it: those of the selected modalities whose
+/// ViSP tracker types (CueEntry::visp_types) the camera has. The colour cues test their
+/// lines and points for measured occlusion in `occlusion_depth_camera`'s depth (empty:
+/// none).
 struct CameraCues {
   std::string camera;
-  bool region = false;
-  bool texture = false;
-  bool depth = false;
+  int types = 0;  ///< ViSP tracker types (visp_type::kEdge, ...)
   std::string occlusion_depth_camera;
   /// The sampling step of this camera's dense depth (ViSP's setDepthDenseSamplingStep),
   /// over the configuration's depth.dense step; none: the configuration's.
   std::optional<SamplingStep> dense_depth_step;
+
+  /// Whether `cue` reads this camera.
+  bool reads(const CueEntry& cue) const { return (types & cue.visp_types) != 0; }
+  /// Whether a cue of `modalities` reads this camera's image / its depth.
+  bool reads_image(const std::vector<std::string>& modalities) const;
+  bool reads_depth(const std::vector<std::string>& modalities) const;
 };
 
 /// Reads the mesh of a configured body (BodyConfig): file and metres per unit.
@@ -35,8 +39,9 @@ using MeshReader = std::function<Mesh(const std::string& path, double scale)>;
 /// The core's MeshReader: load_mesh (the formats assimp reads).
 Mesh read_mesh_file(const std::string& path, double scale);
 
-/// The cameras the configuration's cue parameters name (region.color_camera,
-/// texture.color_camera, depth.depth_camera) and the cues each one reads.
+/// The cameras the configuration's cue parameters name and the cues each one reads:
+/// region.color_camera the contour cues' (EDGE_TRACKER), texture.color_camera the point
+/// cues' (KLT_TRACKER), depth.depth_camera the depth cue's (DEPTH_DENSE_TRACKER).
 std::vector<CameraCues> configured_cameras(const TrackerConfig& config);
 
 /// A tracker for the main body `body_name` and the configuration's other bodies

@@ -20,9 +20,10 @@ namespace icgp {
 struct TrackerConfig {
   std::string preset = "default";  ///< the preset the configuration started from
   TrackerParams tracker;
-  /// ICG+'s three cues. Texture abstains on objects without texture (too few keyframe
+  /// The cues by name (the cue registry's: cue::kRegion, ... or a registered cue's); ICG+'s
+  /// three by default. Texture abstains on objects without texture (too few keyframe
   /// points, ModalityQuality::abstained) and depth where no depth is measured.
-  std::vector<CueKind> modalities = {CueKind::kRegion, CueKind::kDepth, CueKind::kTexture};
+  std::vector<std::string> modalities = {cue::kRegion, cue::kDepth, cue::kTexture};
   ViewpointModelParams region_model;
   ViewpointModelParams depth_model;
   RegionParams region;

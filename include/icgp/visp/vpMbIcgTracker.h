@@ -22,6 +22,7 @@
 #include <visp3/mbt/vpMbtFaceDepthNormal.h>
 #include <visp3/me/vpMe.h>
 
+#include "icgp/tracker/cue_registry.h"
 #include "icgp/tracker/tracker_config.h"
 
 // The PCL overloads take clouds by shared pointer, which is what PCL 1.13's ConstPtr is;
@@ -115,8 +116,15 @@ class vpMbIcgTracker : public vpMbTracker {
   virtual void loadConfigFile(const std::map<std::string, std::string>& mapOfConfigFiles, bool verbose = true);
   void setTrackerConfig(const icgp::TrackerConfig& config);
   const icgp::TrackerConfig& getTrackerConfig() const;
-  /// The cues to fuse: any of "region", "depth", "texture" (among the cameras' types).
+  /// The cues to fuse by name: "region", "depth", "texture", "flow", "edge" or a cue added
+  /// with addCue (each on the cameras whose types it reads).
   void setModalities(const std::vector<std::string>& modalities);
+  /// A cue of the program's own, fused with the others from now on: registered in
+  /// icgp::CueRegistry (so that YAML files and setModalities select it by name, and the
+  /// getNbFeatures* counters and getFeaturesForDisplay count and show it as its
+  /// visp_features say), then added to this tracker's modalities. A cue registered already
+  /// under that name by an earlier addCue is kept; a built-in cue's name is refused.
+  void addCue(const icgp::CueEntry& cue);
 
   virtual void setTrackerType(int type);
   virtual void setTrackerType(const std::map<std::string, int>& mapOfTrackerTypes);
@@ -616,17 +624,12 @@ class vpMbIcgTracker : public vpMbTracker {
   /// The camera a raw depth image belongs to: the reference camera if it has a depth type,
   /// else the first camera that has one.
   std::string depth_camera_of_raw_depth() const;
-  /// The tracker's cues called `name` ("region", "depth", "texture", "flow", "edge"), of `camera` or all.
-  std::vector<const icgp::Modality*> cues(const std::string& name, const std::string& camera = "") const;
-  /// The cues that replace ViSP's KLT tracker (texture, then flow) of `camera`.
-  std::vector<const icgp::Modality*> klt_cues(const std::string& camera) const;
-  /// The cues that replace ViSP's moving edges (region, then edge) of `camera`.
-  std::vector<const icgp::Modality*> edge_cues(const std::string& camera) const;
-  /// The correspondences of the region and edge cues in the last update, of `camera` or all.
-  unsigned int edge_count(const std::string& camera = "") const;
-  /// The correspondences the cues called `name` summed over in the last update, of `camera`
-  /// or all; for "depth", of the cameras whose types count them as `depth_type` (0: all).
-  unsigned int correspondence_count(const std::string& name, const std::string& camera = "", int depth_type = 0) const;
+  /// The tracker's cues that ViSP's `features` stand for (the cue registry's VispFeatures:
+  /// region and edge for moving edges, texture and flow for KLT, ...), of `camera` or all.
+  std::vector<const icgp::Modality*> cues_counted_as(icgp::VispFeatures features, const std::string& camera = "") const;
+  /// The correspondences those cues summed over in the last update, of `camera` or all; for
+  /// depth, of the cameras whose types count them as `depth_type` (0: all).
+  unsigned int count_features(icgp::VispFeatures features, const std::string& camera = "", int depth_type = 0) const;
   /// ViSP's getFeaturesForDisplay format for one camera.
   std::vector<std::vector<double>> features_for_display(const std::string& camera) const;
   /// Keeps a ViSP XML file's settings of ViSP's own cues for their getters; the reference

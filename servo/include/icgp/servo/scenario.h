@@ -129,7 +129,7 @@ struct CameraSpec {
 struct TrackerSpec {
   TrackerKind kind = TrackerKind::kIcgp;
   /// icgp: modalities ("region", "depth", "texture"); empty = the configuration's.
-  std::vector<CueKind> modalities;
+  std::vector<std::string> modalities;
   /// icgp: tracker configuration YAML (resolved; YAML: relative to the scenario); empty =
   /// reference defaults.
   std::string config;
