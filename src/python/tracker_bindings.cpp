@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "bindings.h"
+#include "icgp/io/yaml_reader.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/io/joint_yaml.h"
 #include "icgp/optimizer/covariance.h"

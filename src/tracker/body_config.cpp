@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "icgp/tracker/body_config.h"
+#include "body_config_yaml.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -3,6 +3,8 @@
 // rule); the reader, its validation and the writer all walk the same tables.
 #include "icgp/tracker/tracker_config.h"
 
+#include "body_config_yaml.h"
+
 #include "icgp/tracker/cue_registry.h"
 
 #include <yaml-cpp/yaml.h>

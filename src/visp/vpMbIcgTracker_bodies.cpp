@@ -2,6 +2,7 @@
 // vpMbIcgTracker: icgp's extension for several bodies. The object (cMo) stays ViSP's one
 // reference pose; further bodies, links and occluders are entries of the configuration's
 // `bodies:` list, tracked in the same frames by the same cues.
+#include "icgp/io/yaml_reader.h"
 #include "icgp/visp/conversions.h"
 #include "vpMbIcgTracker_impl.h"
 

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "icgp/geometry/joint.h"
-#include "icgp/io/yaml_reader.h"
 
 namespace icgp {
 
@@ -33,13 +32,6 @@ struct BodyConfig {
   /// free body.
   std::optional<Joint> joint;
 };
-
-/// Reads a `bodies:` list. Errors name the file, the body and the field: a name given
-/// twice, a joint whose values are out of order (limits with min > max), an occluder with a
-/// joint, a cycle of parents.
-std::vector<BodyConfig> read_body_configs(const yaml::Value& list);
-/// Writes `bodies` as read_body_configs reads them.
-void write_body_configs(YAML::Emitter& out, const std::vector<BodyConfig>& bodies);
 
 /// `bodies` ordered so that every parent comes before its links, checked against the main
 /// body's name: throws std::invalid_argument naming the body and the field for a name used
