@@ -9,8 +9,8 @@
 #include <visp3/core/vpImageConvert.h>
 
 #include "icgp/base/pose.h"
-#include "icgp/eval/sequence_writer.h"
 #include "icgp/render/renderer.h"
+#include "icgp/render/scene_props.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
@@ -40,13 +40,12 @@ struct RgbdSimulator::Impl {
   Renderer renderer;
   Renderer::BodyHandle object{}, occluder{}, gripper{};  ///< occluder, gripper: when the scenario has one
   vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
-  cv::RNG rng;
+  SensorNoiseDraws noise;  ///< frame drops, colour and depth noise, in that order per capture
   RgbdCapture capture;
   bool has_capture = false;
-  cv::Mat noise;
 
   Impl(const Scenario& s, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& wMo, std::uint64_t seed)
-      : scenario(s), world_T_camera_start(wMc), world_T_object_start(wMo), rng(seed) {}
+      : scenario(s), world_T_camera_start(wMc), world_T_object_start(wMo), noise(seed) {}
 
   void add_background(std::uint64_t seed) {
     const BackgroundSpec& b = scenario.background;
@@ -93,16 +92,6 @@ struct RgbdSimulator::Impl {
     });
   }
 
-  void add_color_noise(cv::Mat& color) {
-    const double sigma = scenario.camera.noise.color_sigma;
-    if (sigma <= 0.0) return;
-    noise.create(color.size(), CV_16SC3);
-    rng.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
-    cv::Mat noisy;
-    cv::add(color, noise, noisy, cv::noArray(), CV_16SC3);
-    noisy.convertTo(color, CV_8UC3);  // saturates
-  }
-
   /// Depth as a real sensor gives it: missing at grazing angles, at discontinuities and at
   /// random, and noisy with sigma growing as Z^2.
   cv::Mat render_depth(const vpHomogeneousMatrix& wMc) {
@@ -110,17 +99,7 @@ struct RgbdSimulator::Impl {
     const Intrinsics& k = scenario.camera.depth;
     const Pose depth_T_world = scenario.camera.depth_T_color * to_pose(wMc.inverse());
     cv::Mat depth = render_sensor_depth(renderer, k, depth_T_world, n);
-    if (n.depth_dropout > 0.0) {
-      cv::Mat u(depth.size(), CV_32FC1);
-      rng.fill(u, cv::RNG::UNIFORM, 0.0, 1.0);
-      depth.setTo(0.f, u < n.depth_dropout);
-    }
-    if (n.depth_sigma_at_1m > 0.0) {
-      cv::Mat g(depth.size(), CV_32FC1);
-      rng.fill(g, cv::RNG::NORMAL, 0.0, n.depth_sigma_at_1m);
-      cv::Mat z2 = depth.mul(depth);
-      depth += g.mul(z2);  // where depth is 0, z2 is 0: missing stays missing
-    }
+    noise.add_depth_noise(depth, n);
     return depth;
   }
 
@@ -180,14 +159,14 @@ RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc,
   c.time = time;
   c.cMo_true = wMc.inverse() * wMo;
   c.cMg_true = gripper ? std::optional<vpHomogeneousMatrix>(wMc.inverse() * *gripper) : std::nullopt;
-  c.dropped = d.has_capture && d.rng.uniform(0.0, 1.0) < d.scenario.camera.noise.frame_drop;
+  c.dropped = d.has_capture && d.noise.uniform() < d.scenario.camera.noise.frame_drop;
   if (c.dropped) return c;  // the tracker gets nothing new: the images stay the last ones
 
   d.renderer.set_body_pose(d.object, to_pose(wMo));
   if (gripper) d.renderer.set_body_pose(d.gripper, to_pose(*gripper));
   d.place_occluder(time);
   cv::Mat color = d.render_color(wMc, previous_wMc);
-  d.add_color_noise(color);
+  d.noise.add_color_noise(color, d.scenario.camera.noise.color_sigma);
   to_vp_image(color, c.color);
   vpImageConvert::convert(c.color, c.grey);
   d.store_depth(d.render_depth(wMc));

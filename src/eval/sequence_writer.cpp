@@ -16,6 +16,7 @@
 
 #include "icgp/base/camera_names.h"
 #include "icgp/render/renderer.h"
+#include "icgp/render/scene_props.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/base/splitmix64.h"
 #include "icgp/io/joint_yaml.h"
@@ -26,25 +27,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// SplitMix64 with the distributions sequences draw from.
-class Random : public SplitMix64 {
- public:
-  using SplitMix64::SplitMix64;
-  using SplitMix64::uniform;
-  double uniform(double low, double high) { return low + (high - low) * uniform(); }
-  double normal() {  // Box-Muller; 1 - uniform() is in (0, 1] so the log is finite
-    const double radius = std::sqrt(-2.0 * std::log(1.0 - uniform()));
-    return radius * std::cos(2.0 * kPi * uniform());
-  }
-};
-
-/// Separate generator streams per purpose (and per frame for noise): changing the noise
-/// must not move the camera, and each frame's noise must not depend on the others.
-enum Stream : std::uint64_t { kTrajectoryStream = 1, kBackgroundStream = 2, kNoiseStream = 3, kStereoNoiseStream = 4 };
-Random stream(std::uint64_t seed, Stream purpose, std::uint64_t index = 0) {
-  Random mixer(seed ^ (std::uint64_t(purpose) << 56));
-  return Random(mixer.next() ^ (index * 0xD1B54A32D192ED03ull));
-}
+/// The writer's generator streams (seeded_stream purposes), one per frame for noise;
+/// purpose 2 is the background clutter's (procedural_clutter_texture).
+enum Stream : std::uint64_t { kTrajectoryStream = 1, kNoiseStream = 3, kStereoNoiseStream = 4 };
 
 /// Shortest decimal form of `value` that parses back to the same double.
 std::string exact(double value) {
@@ -58,30 +43,6 @@ std::string exact(double value) {
 
 void require(bool condition, const std::string& message) {
   if (!condition) throw std::invalid_argument("SequenceWriter: " + message);
-}
-
-/// Clutter for the background: random filled rectangles, discs and thick lines on a
-/// random base colour, so edges and colours vary at several scales.
-cv::Mat procedural_texture(Random& random) {
-  const auto colour = [&random] {
-    return cv::Scalar(random.uniform(0, 256), random.uniform(0, 256), random.uniform(0, 256));
-  };
-  const auto point = [&random](int size) { return cv::Point(int(random.uniform(0, size)), int(random.uniform(0, size))); };
-  constexpr int kSize = 512;
-  cv::Mat texture(kSize, kSize, CV_8UC3, colour());
-  for (int i = 0; i < 160; ++i) {
-    switch (random.next() % 3) {
-      case 0:
-        cv::rectangle(texture, point(kSize), point(kSize), colour(), cv::FILLED);
-        break;
-      case 1:
-        cv::circle(texture, point(kSize), int(random.uniform(4, 60)), colour(), cv::FILLED, cv::LINE_AA);
-        break;
-      default:
-        cv::line(texture, point(kSize), point(kSize), colour(), int(random.uniform(1, 8)), cv::LINE_AA);
-    }
-  }
-  return texture;
 }
 
 /// Widest angle between the optical axis and the ray through an image corner.
@@ -114,46 +75,6 @@ double background_half_extent(const SequenceWriterOptions& o) {
   return far * std::sin(tilt) + offset + wander + (far + o.background.distance) * std::tan(ray);
 }
 
-/// A square plane at world Z = z facing +Z, made of tiles that each map the whole texture,
-/// so the texture repeats without relying on the renderer's wrap mode.
-Mesh background_plane(const cv::Mat& texture, const Eigen::Vector2d& centre, double z, double half_extent,
-                      double tile) {
-  MeshPart part;
-  part.material.texture_bgr = texture;
-  const int tiles = int(std::ceil(half_extent / tile));
-  for (int i = -tiles; i < tiles; ++i) {
-    for (int j = -tiles; j < tiles; ++j) {
-      const int first = int(part.vertices.size());
-      const double x = centre.x() + i * tile, y = centre.y() + j * tile;
-      part.vertices.emplace_back(float(x), float(y), float(z));
-      part.vertices.emplace_back(float(x + tile), float(y), float(z));
-      part.vertices.emplace_back(float(x + tile), float(y + tile), float(z));
-      part.vertices.emplace_back(float(x), float(y + tile), float(z));
-      part.texcoords.insert(part.texcoords.end(), {{0.f, 0.f}, {1.f, 0.f}, {1.f, 1.f}, {0.f, 1.f}});
-      part.triangles.emplace_back(first, first + 1, first + 2);
-      part.triangles.emplace_back(first, first + 2, first + 3);
-    }
-  }
-  Mesh mesh;
-  mesh.source = "background plane";
-  mesh.parts.push_back(std::move(part));
-  return mesh;
-}
-
-void add_color_noise(cv::Mat& image, double sigma, Random& random) {
-  for (auto it = image.begin<cv::Vec3b>(); it != image.end<cv::Vec3b>(); ++it)
-    for (int c = 0; c < 3; ++c) (*it)[c] = cv::saturate_cast<uchar>((*it)[c] + sigma * random.normal());
-}
-
-void add_depth_noise(cv::Mat& depth, const SensorNoise& noise, Random& random) {
-  for (auto it = depth.begin<float>(); it != depth.end<float>(); ++it) {
-    if (*it <= 0.f) continue;
-    if (noise.depth_dropout > 0.0 && random.uniform() < noise.depth_dropout)
-      *it = 0.f;
-    else if (noise.depth_sigma_at_1m > 0.0)
-      *it += float(noise.depth_sigma_at_1m * double(*it) * double(*it) * random.normal());
-  }
-}
 
 cv::Mat quantise_depth(const cv::Mat& depth, double scale) {
   cv::Mat stored(depth.size(), CV_16UC1);
@@ -236,15 +157,6 @@ bool is_file_name_safe(const std::string& name) {
 
 }  // namespace
 
-cv::Mat procedural_clutter_texture(std::uint64_t seed) {
-  Random random = stream(seed, kBackgroundStream);
-  return procedural_texture(random);
-}
-
-Mesh tiled_plane(const cv::Mat& texture, double half_extent, double tile) {
-  return background_plane(texture, Eigen::Vector2d::Zero(), 0.0, half_extent, tile);
-}
-
 double OrbitTrajectory::Signal::at(double seconds) const {
   double sum = 0.0, total_weight = 0.0;
   for (int k = 0; k < 3; ++k) {
@@ -261,7 +173,7 @@ OrbitTrajectory::OrbitTrajectory(const OrbitOptions& options, std::uint64_t seed
   require(options.max_tilt_deg >= 0.0 && options.max_tilt_deg <= 60.0, "max_tilt_deg must be in [0, 60]");
   require(options.cycles_per_second > 0.0 && options.speed > 0.0, "cycles_per_second and speed must be positive");
   require(options.look_at_wander >= 0.0, "look_at_wander must not be negative");
-  Random random = stream(seed, kTrajectoryStream);
+  SplitMix64 random = seeded_stream(seed, kTrajectoryStream);
   const double base = options.cycles_per_second * options.speed;
   for (Signal* signal : {&distance_, &tilt_x_, &tilt_y_, &roll_, &wander_[0], &wander_[1], &wander_[2]})
     for (int k = 0; k < 3; ++k) {
@@ -422,8 +334,8 @@ void SequenceWriter::write(const std::string& dir_name) const {
     const cv::Mat texture =
         o.background.texture_bgr.empty() ? procedural_clutter_texture(o.seed) : o.background.texture_bgr;
     const Eigen::Vector3d& target = o.motion.target;
-    renderer.add_body(background_plane(texture, target.head<2>(), target.z() - o.background.distance,
-                                       background_half_extent(o), o.background.tile_size),
+    renderer.add_body(tiled_plane(texture, background_half_extent(o), o.background.tile_size, target.head<2>(),
+                                  target.z() - o.background.distance),
                       255);
   }
 
@@ -481,12 +393,12 @@ void SequenceWriter::write(const std::string& dir_name) const {
     place_objects(seconds);
     const std::vector<Pose> world_T_objects = world_T_objects_at(seconds);
     cv::Mat depth = render_sensor_depth(renderer, o.depth_intrinsics, o.depth_T_color * camera_T_world, o.noise);
-    Random noise = stream(o.seed, kNoiseStream, std::uint64_t(i));
-    if (o.noise.color_sigma > 0.0) add_color_noise(color, o.noise.color_sigma, noise);
-    add_depth_noise(depth, o.noise, noise);
-    if (o.stereo && o.noise.color_sigma > 0.0) {
-      Random stereo_noise = stream(o.seed, kStereoNoiseStream, std::uint64_t(i));
-      add_color_noise(stereo_color, o.noise.color_sigma, stereo_noise);
+    SensorNoiseDraws noise(seeded_stream(o.seed, kNoiseStream, std::uint64_t(i)).next());
+    noise.add_color_noise(color, o.noise.color_sigma);
+    noise.add_depth_noise(depth, o.noise);
+    if (o.stereo) {
+      SensorNoiseDraws stereo_noise(seeded_stream(o.seed, kStereoNoiseStream, std::uint64_t(i)).next());
+      stereo_noise.add_color_noise(stereo_color, o.noise.color_sigma);
     }
 
     std::snprintf(name, sizeof name, "%06d.png", i);

@@ -22,6 +22,8 @@ class SplitMix64 {
   }
   /// Uniform in [0, 1): the top 53 bits.
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  /// Uniform in [low, high).
+  double uniform(double low, double high) { return low + (high - low) * uniform(); }
   /// Uniform in [0, n) (multiply-shift; the bias of 2^-64 per value is far below anything seen).
   int below(int n) {
     return static_cast<int>((static_cast<unsigned __int128>(next()) * static_cast<unsigned>(n)) >> 64);
@@ -30,5 +32,13 @@ class SplitMix64 {
  private:
   std::uint64_t state_;
 };
+
+/// The generator of one purpose (and one index, e.g. a frame's) of a seed: streams of
+/// different purposes or indices do not depend on each other, so that changing what one
+/// draws (the noise) moves nothing drawn from another (the camera's path).
+inline SplitMix64 seeded_stream(std::uint64_t seed, std::uint64_t purpose, std::uint64_t index = 0) {
+  SplitMix64 mixer(seed ^ (purpose << 56));
+  return SplitMix64(mixer.next() ^ (index * 0xD1B54A32D192ED03ull));
+}
 
 }  // namespace icgp

@@ -73,12 +73,6 @@ struct BackgroundPlane {
   double tile_size = 0.3; ///< metres covered by one copy of the texture
 };
 
-/// The clutter texture behind objects when none is given: random filled rectangles, discs
-/// and thick lines on a random base colour (512 x 512, BGR), the same for the same seed.
-cv::Mat procedural_clutter_texture(std::uint64_t seed);
-/// A square plane of side 2 * half_extent at z = 0 facing +z, centred on the origin, made of
-/// tiles of `tile` metres that each map the whole texture.
-Mesh tiled_plane(const cv::Mat& texture, double half_extent, double tile);
 
 /// How one joint value moves over a sequence: from `from` to `to` and back, smoothly, once
 /// per `period` seconds: q(t) = from + (to − from)(1 − cos(2πt / period)) / 2. Radians for

@@ -1,16 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // What a real RGB-D sensor does to rendered images that a renderer alone does not: its
-// parameters (SensorNoise), depth holes at grazing angles and along depth edges, and motion
-// blur. Shared by the sequence writer and the servo simulator so that both simulate the
-// same sensor with the same parameters.
-// The random draws of that noise (colour, depth, dropout) are not here: the writer draws it pixel by
-// pixel from SplitMix64 streams in double precision, the simulator whole images at a time
-// from cv::RNG in single precision, and both sequences and servo runs are reproduced bit
-// for bit from their seeds, so neither can take the other's.
+// parameters (SensorNoise), depth holes at grazing angles and along depth edges, random
+// noise and dropout (SensorNoiseDraws), and motion blur. Shared by the sequence writer and
+// the servo simulator so that both simulate the same sensor with the same parameters and
+// the same code.
 #pragma once
 
+#include <cstdint>
 #include <functional>
-#include <opencv2/core/mat.hpp>
+#include <opencv2/core.hpp>
 
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
@@ -40,6 +38,27 @@ struct SensorNoise {
   static SensorNoise kinect_class();
 };
 
+
+/// The random part of a sensor's imperfections, drawn whole images at a time from one
+/// seeded stream (OpenCV's generator): the same seed gives the same images, bit for bit.
+class SensorNoiseDraws {
+ public:
+  explicit SensorNoiseDraws(std::uint64_t seed) : rng_(seed) {}
+
+  /// Adds Gaussian noise of `sigma` 8-bit levels to each channel of a CV_8UC3 image,
+  /// saturated to [0, 255]; nothing for sigma 0.
+  void add_color_noise(cv::Mat& color, double sigma);
+  /// Drops each measured pixel of a CV_32FC1 depth image with probability
+  /// noise.depth_dropout (0: no measurement), then adds Gaussian noise of
+  /// noise.depth_sigma_at_1m · Z² to the others.
+  void add_depth_noise(cv::Mat& depth, const SensorNoise& noise);
+  /// A uniform draw in [0, 1) from the same stream (e.g. whether a frame is dropped).
+  double uniform() { return rng_.uniform(0.0, 1.0); }
+
+ private:
+  cv::RNG rng_;
+  cv::Mat scratch_;  ///< kept from image to image: no allocation per frame
+};
 
 /// Removes depth (sets 0) where the surface is seen more obliquely than `max_angle_deg`
 /// (angle between its normal and the viewing ray), as structured-light and stereo sensors
