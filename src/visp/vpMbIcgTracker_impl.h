@@ -194,6 +194,14 @@ void read_cloud(DepthInput& depth, CloudPoint cloud_point, const vpCameraParamet
     depth.depth = [point_at](int row, int col) { return point_at(row, col).z(); };
 }
 
+/// Every camera named in the maps is one of the rig's (checked before anything changes).
+template <typename... Maps>
+void require_known_cameras(const CameraRig& rig, const std::string& call, const Maps&... maps) {
+  (..., [&] {
+    for (const auto& entry : maps) rig.at(entry.first, call);
+  }());
+}
+
 /// Refuses a depth size that is neither 0 x 0 (ViSP's "no depth this frame") nor within
 /// [1, kMaxImageSide] on both sides, before anything is read or allocated for it.
 inline void require_depth_size(const std::string& call, const DepthInput& depth) {
