@@ -180,12 +180,13 @@ void in_camera(vpCameraParameters& m_cam, const vpCameraParameters& camera, Init
 
 }  // namespace
 
-void vpMbIcgTracker::initClick(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
-                               const std::map<std::string, std::string>& mapOfInitFiles, bool displayHelp,
-                               const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
-  const auto file = reference_or_first(mapOfInitFiles, impl_->rig.reference(), "initClick");
+template <typename Image>
+void vpMbIcgTracker::init_click(const std::map<std::string, const Image*>& images,
+                                const std::map<std::string, std::string>& files, bool displayHelp,
+                                const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  const auto file = reference_or_first(files, impl_->rig.reference(), "initClick");
   const std::string& camera = file->first;
-  const vpImage<unsigned char>& I = image_of(mapOfImages, camera, "initClick");
+  const Image& I = image_of(images, camera, "initClick");
   const auto T = mapOfT.find(camera);
   in_camera(m_cam, impl_->rig.at(camera, "initClick").parameters, [&] {
     vpMbTracker::initClick(I, file->second, displayHelp, T == mapOfT.end() ? vpHomogeneousMatrix() : T->second);
@@ -193,17 +194,16 @@ void vpMbIcgTracker::initClick(const std::map<std::string, const vpImage<unsigne
   if (camera != impl_->rig.reference()) initFromPose(I, reference_pose(camera, m_cMo, "initClick"));
 }
 
+void vpMbIcgTracker::initClick(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                               const std::map<std::string, std::string>& mapOfInitFiles, bool displayHelp,
+                               const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
+  init_click(mapOfImages, mapOfInitFiles, displayHelp, mapOfT);
+}
+
 void vpMbIcgTracker::initClick(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfImages,
                                const std::map<std::string, std::string>& mapOfInitFiles, bool displayHelp,
                                const std::map<std::string, vpHomogeneousMatrix>& mapOfT) {
-  const auto file = reference_or_first(mapOfInitFiles, impl_->rig.reference(), "initClick");
-  const std::string& camera = file->first;
-  const vpImage<vpRGBa>& I = image_of(mapOfImages, camera, "initClick");
-  const auto T = mapOfT.find(camera);
-  in_camera(m_cam, impl_->rig.at(camera, "initClick").parameters, [&] {
-    vpMbTracker::initClick(I, file->second, displayHelp, T == mapOfT.end() ? vpHomogeneousMatrix() : T->second);
-  });
-  if (camera != impl_->rig.reference()) initFromPose(I, reference_pose(camera, m_cMo, "initClick"));
+  init_click(mapOfImages, mapOfInitFiles, displayHelp, mapOfT);
 }
 
 void vpMbIcgTracker::initFromPoints(const vpImage<unsigned char>& I1, const vpImage<unsigned char>& I2,
@@ -220,22 +220,24 @@ void vpMbIcgTracker::initFromPoints(const vpImage<vpRGBa>& I_color1, const vpIma
                  {{first, initFile1}, {second, initFile2}});
 }
 
-void vpMbIcgTracker::initFromPoints(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
-                                    const std::map<std::string, std::string>& mapOfInitPoints) {
-  const auto file = reference_or_first(mapOfInitPoints, impl_->rig.reference(), "initFromPoints");
-  const vpImage<unsigned char>& I = image_of(mapOfImages, file->first, "initFromPoints");
+template <typename Image>
+void vpMbIcgTracker::init_from_points(const std::map<std::string, const Image*>& images,
+                                      const std::map<std::string, std::string>& points) {
+  const auto file = reference_or_first(points, impl_->rig.reference(), "initFromPoints");
+  const Image& I = image_of(images, file->first, "initFromPoints");
   in_camera(m_cam, impl_->rig.at(file->first, "initFromPoints").parameters,
             [&] { vpMbTracker::initFromPoints(I, file->second); });
   if (file->first != impl_->rig.reference()) initFromPose(I, reference_pose(file->first, m_cMo, "initFromPoints"));
 }
 
+void vpMbIcgTracker::initFromPoints(const std::map<std::string, const vpImage<unsigned char>*>& mapOfImages,
+                                    const std::map<std::string, std::string>& mapOfInitPoints) {
+  init_from_points(mapOfImages, mapOfInitPoints);
+}
+
 void vpMbIcgTracker::initFromPoints(const std::map<std::string, const vpImage<vpRGBa>*>& mapOfColorImages,
                                     const std::map<std::string, std::string>& mapOfInitPoints) {
-  const auto file = reference_or_first(mapOfInitPoints, impl_->rig.reference(), "initFromPoints");
-  const vpImage<vpRGBa>& I = image_of(mapOfColorImages, file->first, "initFromPoints");
-  in_camera(m_cam, impl_->rig.at(file->first, "initFromPoints").parameters,
-            [&] { vpMbTracker::initFromPoints(I, file->second); });
-  if (file->first != impl_->rig.reference()) initFromPose(I, reference_pose(file->first, m_cMo, "initFromPoints"));
+  init_from_points(mapOfColorImages, mapOfInitPoints);
 }
 
 void vpMbIcgTracker::setPose(const vpImage<unsigned char>& I, const vpHomogeneousMatrix& cdMo) {

@@ -604,6 +604,14 @@ class vpMbIcgTracker : public vpMbTracker {
   template <typename Image>
   void init_from_pose_files(const std::map<std::string, const Image*>& images,
                             const std::map<std::string, std::string>& files, const std::string& call);
+  /// initClick and initFromPoints of the maps, grey or colour: ViSP's own initialisation in
+  /// the camera of the reference's file (else the first), then the reference's pose.
+  template <typename Image>
+  void init_click(const std::map<std::string, const Image*>& images, const std::map<std::string, std::string>& files,
+                  bool displayHelp, const std::map<std::string, vpHomogeneousMatrix>& mapOfT);
+  template <typename Image>
+  void init_from_points(const std::map<std::string, const Image*>& images,
+                        const std::map<std::string, std::string>& points);
   /// The reference camera's pose of the object from one camera's.
   vpHomogeneousMatrix reference_pose(const std::string& camera, const vpHomogeneousMatrix& cMo,
                                      const std::string& call) const;
