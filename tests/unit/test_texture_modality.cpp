@@ -22,15 +22,6 @@ using namespace icgp;
 
 namespace {
 
-struct Scene {
-  Mesh mesh = load_mesh(ICGP_MODELS_DIR "/textured_box/textured_box.obj");
-  Intrinsics color_k{650.0, 648.0, 321.3, 238.9, 640, 480};
-  Intrinsics depth_k{580.0, 580.0, 318.2, 243.1, 640, 480};
-  Pose depth_T_color{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.05, 0.002, 0.001)};
-  Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.5, -0.6, 0.3), Eigen::Vector3d(0.01, -0.015, 0.45));
-  test::SceneRenderer renderer{mesh, color_k, depth_k, depth_T_color};
-};
-
 /// `pose` turned by `deg` about the body origin and moved by `mm`.
 Pose perturbed(const Pose& pose, double mm, double deg) {
   const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.8, 0.5).normalized();
@@ -54,9 +45,9 @@ double rotation_error_deg(const Pose& a, const Pose& b) {
 }  // namespace
 
 TEST_CASE("texture modality: keyframe points lie on the box and project onto their keypoints") {
-  Scene s;
-  const Frame frame = s.renderer.render(s.truth);
-  Body body{"box", s.mesh, s.truth};
+  test::MovingTexturedBox s;  // at its start pose
+  const Frame frame = s.renderer.render(s.start);
+  Body body{"box", s.mesh, s.start};
   TextureModality texture(body, {});
   start_cue(texture, frame);
   const Keyframe& keyframe = texture.keyframe();
@@ -67,7 +58,7 @@ TEST_CASE("texture modality: keyframe points lie on the box and project onto the
   double worst_px = 0.0, worst_surface_mm = 0.0;
   for (std::size_t i = 0; i < keyframe.body_points.size(); ++i) {
     const Eigen::Vector3f& X = keyframe.body_points[i];
-    const Eigen::Vector2d x = s.color_k.project<double>(s.truth * X.cast<double>());
+    const Eigen::Vector2d x = s.color_k.project<double>(s.start * X.cast<double>());
     worst_px = std::max(worst_px, (x - Eigen::Vector2d(keyframe.image_points[i].x, keyframe.image_points[i].y)).norm());
     // On the surface: inside the box and on one of its faces.
     const Eigen::Vector3f outside = (X.cwiseAbs() - half).cwiseMax(0.f);
@@ -80,18 +71,18 @@ TEST_CASE("texture modality: keyframe points lie on the box and project onto the
 }
 
 TEST_CASE("texture modality: matches recover a known image-plane shift") {
-  Scene s;
+  test::MovingTexturedBox s;  // at its start pose
   for (const Descriptor descriptor : {Descriptor::kOrientedBrief, Descriptor::kOrb}) {
     INFO(to_string(descriptor));
-    Body body{"box", s.mesh, s.truth};
+    Body body{"box", s.mesh, s.start};
     TextureParams params;
     params.descriptor = descriptor;
     TextureModality texture(body, params);
-    start_cue(texture, s.renderer.render(s.truth));
+    start_cue(texture, s.renderer.render(s.start));
     // 5 px to the right and 3 px down at the object's depth.
-    const double z = s.truth.translation().z();
+    const double z = s.start.translation().z();
     const Eigen::Vector2d shift_px(5.0, 3.0);
-    const Pose shifted(s.truth.rotation(), s.truth.translation() + Eigen::Vector3d(shift_px.x() * z / s.color_k.fu,
+    const Pose shifted(s.start.rotation(), s.start.translation() + Eigen::Vector3d(shift_px.x() * z / s.color_k.fu,
                                                                                     shift_px.y() * z / s.color_k.fv, 0.0));
     texture.correspondences(s.renderer.render(shifted), {}, 0);
     REQUIRE(texture.matches().size() >= 30);
@@ -116,11 +107,11 @@ TEST_CASE("texture modality: matches recover a known image-plane shift") {
 }
 
 TEST_CASE("texture modality: gradient is the derivative of its log-likelihood") {
-  Scene s;
-  Body body{"box", s.mesh, s.truth};
+  test::MovingTexturedBox s;  // at its start pose
+  Body body{"box", s.mesh, s.start};
   TextureModality texture(body, {});
-  start_cue(texture, s.renderer.render(s.truth));
-  const Frame moved = s.renderer.render(perturbed(s.truth, 3.0, 2.0));
+  start_cue(texture, s.renderer.render(s.start));
+  const Frame moved = s.renderer.render(perturbed(s.start, 3.0, 2.0));
   for (int corr_iter : {0, 2}) {
     texture.correspondences(moved, {}, corr_iter);
     const CueTerms terms = texture.gradient_hessian(corr_iter, 0);
@@ -135,12 +126,12 @@ TEST_CASE("texture modality: gradient is the derivative of its log-likelihood") 
 }
 
 TEST_CASE("texture modality: texture alone converges from 3 mm / 3 deg") {
-  Scene s;
+  test::MovingTexturedBox s;  // at its start pose
   Tracker tracker;
-  Body& body = tracker.add_body({"box", s.mesh, s.truth});
+  Body& body = tracker.add_body({"box", s.mesh, s.start});
   tracker.add_modality(std::make_unique<TextureModality>(body, TextureParams{}));
-  tracker.start(s.renderer.render(s.truth));  // keyframe at the true pose
-  const Pose moved = perturbed(s.truth, 3.0, 3.0);
+  tracker.start(s.renderer.render(s.start));  // keyframe at the true pose
+  const Pose moved = perturbed(s.start, 3.0, 3.0);
   const Frame frame = s.renderer.render(moved);  // the object moved; tracking starts where it was
   std::vector<BodyResult> results;
   std::vector<double> ms;
@@ -160,16 +151,16 @@ TEST_CASE("texture modality: texture alone converges from 3 mm / 3 deg") {
 }
 
 TEST_CASE("texture modality: frames without the object give quality 0") {
-  Scene s;
-  const Pose away(s.truth.rotation(), Eigen::Vector3d(1.0, 0.0, 0.45));  // far outside the view
+  test::MovingTexturedBox s;  // at its start pose
+  const Pose away(s.start.rotation(), Eigen::Vector3d(1.0, 0.0, 0.45));  // far outside the view
   const Frame empty = s.renderer.render(away);
   Tracker tracker;
-  Body& body = tracker.add_body({"box", s.mesh, s.truth});
+  Body& body = tracker.add_body({"box", s.mesh, s.start});
   tracker.add_modality(std::make_unique<TextureModality>(body, TextureParams{}));
 
   SECTION("the object left the view after the start") {
-    tracker.start(s.renderer.render(s.truth));
-    tracker.track(s.renderer.render(s.truth));  // the start frame: the keyframe is made
+    tracker.start(s.renderer.render(s.start));
+    tracker.track(s.renderer.render(s.start));  // the start frame: the keyframe is made
     const auto results = tracker.track(empty);
     CHECK(results[0].modalities[0].score == 0.0);
     CHECK_FALSE(results[0].tracked);
@@ -185,7 +176,7 @@ TEST_CASE("texture modality: frames without the object give quality 0") {
     CHECK((body.reference_T_body.translation() - away.translation()).norm() < 1e-12);
   }
   SECTION("the body behind the camera") {
-    tracker.start(s.renderer.render(s.truth));
+    tracker.start(s.renderer.render(s.start));
     body.reference_T_body = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5));
     const auto results = tracker.track(empty);
     CHECK(results[0].modalities[0].score == 0.0);
@@ -213,12 +204,12 @@ TEST_CASE("texture modality: descriptors by name, built by the tracker from a co
 }
 
 TEST_CASE("texture modality: on an object without texture it abstains and leaves the quality to the others") {
-  Scene s;
+  test::MovingTexturedBox s;  // at its start pose
   const Mesh plain = test::make_box(0.08f, 0.16f, 0.06f);  // no texture: one flat colour
   test::SceneRenderer renderer(plain, s.color_k, s.depth_k, s.depth_T_color);
-  const Frame frame = renderer.render(s.truth);
+  const Frame frame = renderer.render(s.start);
   Tracker tracker;
-  Body& body = tracker.add_body({"box", plain, s.truth});
+  Body& body = tracker.add_body({"box", plain, s.start});
   auto texture = std::make_unique<TextureModality>(body, TextureParams{});
   const TextureModality& modality = *texture;
   tracker.add_modality(std::move(texture));

@@ -127,6 +127,21 @@ inline bool read_matrix(const std::string &filename, vpHomogeneousMatrix &M)
   return true;
 }
 
+//! ViSP's RGB-D rig: colour "Camera1" at the reference, depth "Camera2" placed by the
+//! folder's depth_M_color.txt (read into depth_M_color); false (said on stderr) when that
+//! file cannot be read.
+template <typename Tracker>
+bool set_rgbd_transformations(Tracker &tracker, const std::string &input_directory, vpHomogeneousMatrix &depth_M_color)
+{
+  if (!read_matrix(input_directory + "/depth_M_color.txt", depth_M_color))
+    return false;
+  std::map<std::string, vpHomogeneousMatrix> mapOfCameraTransformations;
+  mapOfCameraTransformations["Camera1"] = vpHomogeneousMatrix();
+  mapOfCameraTransformations["Camera2"] = depth_M_color;
+  tracker.setCameraTransformationMatrix(mapOfCameraTransformations);
+  return true;
+}
+
 //! The organised cloud of a depth image, as ViSP's RGB-D examples build it: each pixel
 //! back-projected with the camera's parameters at its depth depth_at(i, j) (metres, 0: no
 //! measurement), X Y Z in the camera's frame, row major.

@@ -135,12 +135,8 @@ int main(int argc, char *argv[])
     if (use_depth) {
       tracker.getCameraParameters(cam_color, cam_depth);
       vpHomogeneousMatrix depth_M_color;
-      if (!program::read_matrix(input_directory + "/depth_M_color.txt", depth_M_color))
+      if (!program::set_rgbd_transformations(tracker, input_directory, depth_M_color))
         return EXIT_FAILURE;
-      std::map<std::string, vpHomogeneousMatrix> mapOfCameraTransformations;
-      mapOfCameraTransformations["Camera1"] = vpHomogeneousMatrix();
-      mapOfCameraTransformations["Camera2"] = depth_M_color;
-      tracker.setCameraTransformationMatrix(mapOfCameraTransformations);
     } else {
       tracker.getCameraParameters(cam_color);
       cam_depth = cam_color; // the frames' clouds are read, and not used

@@ -69,12 +69,8 @@ int main(int argc, char *argv[])
     std::cout << "cam_depth:\n" << cam_depth << std::endl;
 
     vpHomogeneousMatrix depth_M_color;
-    if (!program::read_matrix(input_directory + "/depth_M_color.txt", depth_M_color))
+    if (!program::set_rgbd_transformations(tracker, input_directory, depth_M_color))
       return EXIT_FAILURE;
-    std::map<std::string, vpHomogeneousMatrix> mapOfCameraTransformations;
-    mapOfCameraTransformations["Camera1"] = vpHomogeneousMatrix();
-    mapOfCameraTransformations["Camera2"] = depth_M_color;
-    tracker.setCameraTransformationMatrix(mapOfCameraTransformations);
     std::cout << "depth_M_color:\n" << depth_M_color << std::endl;
 
     vpImage<unsigned char> I;
