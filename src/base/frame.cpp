@@ -9,16 +9,19 @@ void LazyDepthSource::read_many(cv::Mat& depth, cv::Mat& rays, const std::vector
                                 bool read_ahead) {
   points_.clear();
   read_many_(pixels, points_);
-  const bool with_rays = static_cast<bool>(read_point_);
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const cv::Point& p = pixels[i];
-    const Eigen::Vector3f& P = points_[i];
-    const float z = P.allFinite() ? sanitized(P.z()) : 0.f;  // a non-finite coordinate: none
-    if (with_rays && z > 0.f) rays.ptr<cv::Vec2f>(p.y)[p.x] = cv::Vec2f(P.x() / z, P.y() / z);
+    const float z = measured_depth(points_[i], rays, p.y, p.x);
     depth.ptr<float>(p.y)[p.x] = read_ahead ? (z > 0.f ? -z : -kReadAheadZero) : z;
     converted_.push_back(p);
     if (!read_ahead) read_now_.push_back(p);
   }
+}
+
+float LazyDepthSource::measured_depth(const Eigen::Vector3f& P, cv::Mat& rays, int row, int col) const {
+  const float z = P.allFinite() ? sanitized(P.z()) : 0.f;  // a non-finite coordinate: none
+  if (read_point_ && z > 0.f) rays.ptr<cv::Vec2f>(row)[col] = cv::Vec2f(P.x() / z, P.y() / z);
+  return z;
 }
 
 void LazyDepthSource::read_soon(cv::Mat& depth, cv::Mat& rays, const std::vector<cv::Point>& pixels) {
@@ -45,13 +48,7 @@ float LazyDepthSource::resolve(cv::Mat& depth, cv::Mat& rays, int row, int col) 
   if (!std::isnan(held)) {  // read ahead
     z = held == -kReadAheadZero ? 0.f : -held;
   } else {
-    if (read_point_) {
-      const Eigen::Vector3f P = read_point_(row, col);
-      z = sanitized(P.z());
-      if (z > 0.f) rays.ptr<cv::Vec2f>(row)[col] = cv::Vec2f(P.x() / z, P.y() / z);
-    } else {
-      z = sanitized(read_(row, col));
-    }
+    z = read_point_ ? measured_depth(read_point_(row, col), rays, row, col) : sanitized(read_(row, col));
     converted_.emplace_back(col, row);
   }
   held = z;

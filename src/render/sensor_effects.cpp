@@ -95,23 +95,25 @@ cv::Mat average_color_renders(int samples, const std::function<cv::Mat(int sampl
 
 void SensorNoiseDraws::add_color_noise(cv::Mat& color, double sigma) {
   if (sigma <= 0.0) return;
-  scratch_.create(color.size(), CV_16SC3);
-  rng_.fill(scratch_, cv::RNG::NORMAL, 0.0, sigma);
-  cv::Mat noisy;
-  cv::add(color, scratch_, noisy, cv::noArray(), CV_16SC3);
-  noisy.convertTo(color, CV_8UC3);  // saturates
+  draws_.create(color.size(), CV_16SC3);
+  rng_.fill(draws_, cv::RNG::NORMAL, 0.0, sigma);
+  cv::add(color, draws_, sum_, cv::noArray(), CV_16SC3);
+  sum_.convertTo(color, CV_8UC3);  // saturates
 }
 
 void SensorNoiseDraws::add_depth_noise(cv::Mat& depth, const SensorNoise& noise) {
   if (noise.depth_dropout > 0.0) {
-    cv::Mat u(depth.size(), CV_32FC1);
-    rng_.fill(u, cv::RNG::UNIFORM, 0.0, 1.0);
-    depth.setTo(0.f, u < noise.depth_dropout);
+    draws_.create(depth.size(), CV_32FC1);
+    rng_.fill(draws_, cv::RNG::UNIFORM, 0.0, 1.0);
+    cv::compare(draws_, noise.depth_dropout, dropped_, cv::CMP_LT);
+    depth.setTo(0.f, dropped_);
   }
   if (noise.depth_sigma_at_1m > 0.0) {
-    cv::Mat g(depth.size(), CV_32FC1);
-    rng_.fill(g, cv::RNG::NORMAL, 0.0, noise.depth_sigma_at_1m);
-    depth += g.mul(depth.mul(depth));  // where depth is 0, Z² is 0: missing stays missing
+    draws_.create(depth.size(), CV_32FC1);
+    rng_.fill(draws_, cv::RNG::NORMAL, 0.0, noise.depth_sigma_at_1m);
+    cv::multiply(depth, depth, sum_);
+    cv::multiply(draws_, sum_, sum_);
+    depth += sum_;  // where depth is 0, Z² is 0: missing stays missing
   }
 }
 

@@ -83,12 +83,10 @@ void CameraRig::set_types(const std::string& name, int types, const std::string&
 }
 
 bool CameraRig::is_depth_camera(const std::string& name) const {
-  return (cameras_.at(name).types & (kDepthNormal | kDepthDense)) != 0;
+  return (cameras_.at(name).types & visp_type::kDepth) != 0;
 }
 
 std::vector<CameraCues> CameraRig::cues() const {
-  static_assert(kEdge == visp_type::kEdge && kKlt == visp_type::kKlt && kDepthNormal == visp_type::kDepthNormal &&
-                kDepthDense == visp_type::kDepthDense);
   std::string first_depth_camera;
   for (const auto& [name, camera] : cameras_)
     if (is_depth_camera(name) && first_depth_camera.empty()) first_depth_camera = name;
@@ -96,7 +94,7 @@ std::vector<CameraCues> CameraRig::cues() const {
   for (const auto& [name, camera] : cameras_) {
     CameraCues c{name, camera.types};
     c.occlusion_depth_camera = is_depth_camera(name) ? name : first_depth_camera;
-    c.dense_depth_step = (camera.types & kDepthDense) ? camera.dense_step : camera.normal_step;
+    c.dense_depth_step = (camera.types & visp_type::kDepthDense) ? camera.dense_step : camera.normal_step;
     out.push_back(c);
   }
   return out;

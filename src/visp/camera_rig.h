@@ -20,9 +20,8 @@ namespace icgp {
 /// Unknown names and invalid types throw vpException naming the call.
 class CameraRig {
  public:
-  /// vpMbGenericTracker's tracker types.
-  enum Types : int { kEdge = 1 << 0, kKlt = 1 << 1, kDepthNormal = 1 << 2, kDepthDense = 1 << 3 };
-  static constexpr int kAllTypes = kEdge | kKlt | kDepthNormal | kDepthDense;
+  /// The tracker types a camera may have: vpMbGenericTracker's, as icgp::visp_type's bits.
+  static constexpr int kAllTypes = visp_type::kEdge | visp_type::kKlt | visp_type::kDepth;
 
   struct Camera {
     int types = 0;

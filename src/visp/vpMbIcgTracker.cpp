@@ -21,10 +21,10 @@ using icgp::visp_detail::Failure;
 using icgp::visp_detail::guarded;
 using icgp::visp_detail::require_known_cameras;
 
-static_assert(int{vpMbIcgTracker::EDGE_TRACKER} == int{icgp::CameraRig::kEdge} &&
-                  int{vpMbIcgTracker::KLT_TRACKER} == int{icgp::CameraRig::kKlt} &&
-                  int{vpMbIcgTracker::DEPTH_NORMAL_TRACKER} == int{icgp::CameraRig::kDepthNormal} &&
-                  int{vpMbIcgTracker::DEPTH_DENSE_TRACKER} == int{icgp::CameraRig::kDepthDense},
+static_assert(int{vpMbIcgTracker::EDGE_TRACKER} == icgp::visp_type::kEdge &&
+                  int{vpMbIcgTracker::KLT_TRACKER} == icgp::visp_type::kKlt &&
+                  int{vpMbIcgTracker::DEPTH_NORMAL_TRACKER} == icgp::visp_type::kDepthNormal &&
+                  int{vpMbIcgTracker::DEPTH_DENSE_TRACKER} == icgp::visp_type::kDepthDense,
               "the rig's tracker types are vpMbGenericTracker's");
 
 namespace {

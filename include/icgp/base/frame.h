@@ -105,6 +105,9 @@ class LazyDepthSource {
   void read_many(cv::Mat& depth, cv::Mat& rays, const std::vector<cv::Point>& pixels, bool read_ahead);
   /// A measured depth as the image holds it: 0 where there is no measurement.
   static float sanitized(float z) { return z > 0.f && std::isfinite(z) ? z : 0.f; }
+  /// The depth of measured point P of pixel (row, col) as the image holds it; with a point
+  /// reader, its ray goes to `rays`.
+  float measured_depth(const Eigen::Vector3f& P, cv::Mat& rays, int row, int col) const;
 
   std::function<float(int row, int col)> read_;
   std::function<Eigen::Vector3f(int row, int col)> read_point_;

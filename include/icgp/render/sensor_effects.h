@@ -57,7 +57,7 @@ class SensorNoiseDraws {
 
  private:
   cv::RNG rng_;
-  cv::Mat scratch_;  ///< kept from image to image: no allocation per frame
+  cv::Mat draws_, sum_, dropped_;  ///< kept from image to image: no allocation per frame
 };
 
 /// Removes depth (sets 0) where the surface is seen more obliquely than `max_angle_deg`
