@@ -110,12 +110,6 @@ TrackerConfig refinement_config(const TrackerConfig& config) {
   return refine;
 }
 
-std::vector<CameraCues> refinement_cameras(const std::vector<CameraCues>& cameras) {
-  std::vector<CameraCues> out = cameras;
-  for (CameraCues& c : out) c.types &= ~visp_type::kKlt;
-  return out;
-}
-
 /// Image pixels around a near search's templates that their probes and a level's grid reach.
 constexpr double kWindowMarginPx = 32.0;
 
@@ -161,7 +155,7 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
     throw std::invalid_argument("detection of body '" + body_name + "': detection.min_distance (" +
                                 std::to_string(params_.min_distance) + " m) must be below detection.max_distance (" +
                                 std::to_string(params_.max_distance) + " m)");
-  refiner_ = build_tracker(refinement_config(config), mesh, body_name, refinement_cameras(cameras), std::move(renderer));
+  refiner_ = build_tracker(refinement_config(config), mesh, body_name, cameras, std::move(renderer));
   for (Body& other : others) refiner_->add_occluder(std::move(other));
   std::vector<const ViewpointModel*> region_models;
   const ViewpointModel* depth_model = nullptr;
