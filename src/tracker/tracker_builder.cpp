@@ -55,9 +55,13 @@ void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const s
               const std::vector<const CueEntry*>& cues, std::vector<ViewpointModel> region_models) {
   const bool multi_region = !region_models.empty();
   std::vector<ModelRequest> requests;
-  for (const CueEntry* cue : cues)
-    if (cue->model && !(multi_region && *cue->model == ViewpointModel::Kind::kRegion))
+  // One model of each kind, whichever cues read it.
+  for (const CueEntry* cue : cues) {
+    if (!cue->model || (multi_region && *cue->model == ViewpointModel::Kind::kRegion)) continue;
+    const auto same_kind = [&](const ModelRequest& r) { return r.kind == *cue->model; };
+    if (std::none_of(requests.begin(), requests.end(), same_kind))
       requests.push_back({*cue->model, model_params(config, *cue->model)});
+  }
   ModelGenerationOptions options;
   options.name = body.name;
   std::vector<ViewpointModel> models = load_or_generate(body.mesh, requests, config.cache_dir, options);
@@ -152,8 +156,7 @@ std::unique_ptr<Tracker> build_tracker(const TrackerConfig& config, const Mesh& 
   validate(config, "tracker configuration");
   const std::vector<const BodyConfig*> others = in_tree_order(config.bodies, body_name);
   const std::vector<const CueEntry*> cues = selected_cues(config, cameras);
-  const bool region = has_cue(config.modalities, cue::kRegion) &&
-                      std::any_of(cues.begin(), cues.end(), [](const CueEntry* c) { return c->name == cue::kRegion; });
+  const bool region = std::any_of(cues.begin(), cues.end(), [](const CueEntry* c) { return c->name == cue::kRegion; });
 
   auto tracker = std::make_unique<Tracker>(config.tracker, std::move(renderer));
   Body& body = tracker->add_body({body_name, mesh, Pose()});
