@@ -12,9 +12,8 @@ void LazyDepthSource::read_many(cv::Mat& depth, cv::Mat& rays, const std::vector
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const cv::Point& p = pixels[i];
     const float z = measured_depth(points_[i], rays, p.y, p.x);
-    depth.ptr<float>(p.y)[p.x] = read_ahead ? (z > 0.f ? -z : -kReadAheadZero) : z;
+    store(depth.ptr<float>(p.y)[p.x], read_ahead ? (z > 0.f ? -z : -kReadAheadZero) : z);
     converted_.push_back(p);
-    if (!read_ahead) read_now_.push_back(p);
   }
 }
 
@@ -26,9 +25,10 @@ float LazyDepthSource::measured_depth(const Eigen::Vector3f& P, cv::Mat& rays, i
 
 void LazyDepthSource::read_soon(cv::Mat& depth, cv::Mat& rays, const std::vector<cv::Point>& pixels) {
   if (!read_many_) return;
+  const std::lock_guard<std::mutex> lock(source_lock_.mutex);
   pending_.clear();
   for (const cv::Point& p : pixels)
-    if (std::isnan(depth.ptr<float>(p.y)[p.x])) pending_.push_back(p);
+    if (std::isnan(load(depth.ptr<float>(p.y)[p.x]))) pending_.push_back(p);
   if (!pending_.empty()) read_many(depth, rays, pending_, false);
 }
 
@@ -44,23 +44,28 @@ void LazyDepthSource::read_ahead(cv::Mat& depth, cv::Mat& rays) {
 float LazyDepthSource::resolve(cv::Mat& depth, cv::Mat& rays, int row, int col) {
   if (!has_reader()) return 0.f;
   float& held = depth.ptr<float>(row)[col];
-  float z = 0.f;
-  if (!std::isnan(held)) {  // read ahead
-    z = held == -kReadAheadZero ? 0.f : -held;
-  } else {
-    z = read_point_ ? measured_depth(read_point_(row, col), rays, row, col) : sanitized(read_(row, col));
-    converted_.emplace_back(col, row);
-  }
-  held = z;
-  read_now_.emplace_back(col, row);
+  const auto take_read_ahead = [&held](float h) {
+    const float z = h == -kReadAheadZero ? 0.f : -h;
+    store(held, z);  // threads that race here store the same value
+    return z;
+  };
+  if (const float h = load(held); !std::isnan(h)) return h >= 0.f ? h : take_read_ahead(h);
+  const std::lock_guard<std::mutex> lock(source_lock_.mutex);
+  if (const float h = load(held); !std::isnan(h)) return h >= 0.f ? h : take_read_ahead(h);  // read meanwhile
+  const float z = read_point_ ? measured_depth(read_point_(row, col), rays, row, col) : sanitized(read_(row, col));
+  store(held, z);
+  converted_.emplace_back(col, row);
   return z;
 }
 
 void LazyDepthSource::unconvert(cv::Mat& depth) {
-  for (const cv::Point& p : converted_) depth.ptr<float>(p.y)[p.x] = kNotConverted;
+  read_last_.clear();
+  for (const cv::Point& p : converted_) {
+    float& held = depth.ptr<float>(p.y)[p.x];
+    if (held >= 0.f) read_last_.push_back(p);  // read ahead and never read: still negative
+    held = kNotConverted;
+  }
   converted_.clear();
-  std::swap(read_last_, read_now_);
-  read_now_.clear();
 }
 
 }  // namespace icgp

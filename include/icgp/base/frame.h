@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <opencv2/core/mat.hpp>
 #include <opencv2/core/types.hpp>
 #include <string>
@@ -49,7 +50,13 @@ struct ColorImage {
 /// A pixel of such an image holds its depth (>= 0: converted), kNotConverted (NaN), or,
 /// read ahead and not read yet this frame, its depth negated (kReadAheadZero for 0): one
 /// comparison with 0 tells a converted pixel, so reading one costs a load, and the first
-/// read of a pixel read ahead tells the source the pixel is still read.
+/// read of a pixel read ahead makes it converted: at the frame's end, the converted pixels
+/// that hold a depth >= 0 are the ones the frame read.
+///
+/// Several threads may read one image at once: a pixel's depth is loaded and stored
+/// atomically, a pixel read ahead is converted by storing its one value (whichever thread
+/// does it), and the source itself is asked under a lock. Setting the reader, reading ahead
+/// and unconverting happen between frames, on one thread.
 class LazyDepthSource {
  public:
   static constexpr float kNotConverted = std::numeric_limits<float>::quiet_NaN();
@@ -92,6 +99,13 @@ class LazyDepthSource {
   /// DepthImage::at of a pixel that holds no converted depth: reads it from the source,
   /// or takes the depth read ahead; either way the frame read it. 0 without a source.
   float resolve(cv::Mat& depth, cv::Mat& rays, int row, int col);
+  /// A pixel's value as another thread may be storing it (resolve): the load pairs with
+  /// that store, so the pixel's ray, written first, is seen with it.
+  static float load(const float& held) {
+    float z;
+    __atomic_load(&held, &z, __ATOMIC_ACQUIRE);
+    return z;
+  }
   /// Makes the pixels converted so far kNotConverted again, so that the next frame of the
   /// source is read without converting or clearing the whole image.
   void unconvert(cv::Mat& depth);
@@ -108,13 +122,22 @@ class LazyDepthSource {
   /// The depth of measured point P of pixel (row, col) as the image holds it; with a point
   /// reader, its ray goes to `rays`.
   float measured_depth(const Eigen::Vector3f& P, cv::Mat& rays, int row, int col) const;
+  static void store(float& held, float z) { __atomic_store(&held, &z, __ATOMIC_RELEASE); }
+
+  /// A mutex that a copy of the source does not share: a copied image converts on its own.
+  struct OwnMutex {
+    std::mutex mutex;
+    OwnMutex() = default;
+    OwnMutex(const OwnMutex&) {}
+    OwnMutex& operator=(const OwnMutex&) { return *this; }
+  };
 
   std::function<float(int row, int col)> read_;
   std::function<Eigen::Vector3f(int row, int col)> read_point_;
   ManyPointsReader read_many_;
+  OwnMutex source_lock_;              ///< held while the source is asked, and for the lists
   std::vector<cv::Point> converted_;  ///< this frame's, to unconvert
-  std::vector<cv::Point> read_now_;   ///< pixels this frame read, read ahead in the next
-  std::vector<cv::Point> read_last_;  ///< the last frame's
+  std::vector<cv::Point> read_last_;  ///< pixels the last frame read, read ahead in this one
   std::vector<cv::Point> pending_;    ///< scratch of read_many
   std::vector<Eigen::Vector3f> points_;
 };
@@ -124,8 +147,7 @@ class LazyDepthSource {
 /// The cues read depth sparsely: a few samples per model point, a few thousand distinct
 /// pixels per frame. When a source costs more to convert whole than that (ViSP's organised
 /// clouds, one heap-allocated vpColVector per pixel), pixels may hold kNotConverted and
-/// `source` gives their depth on first read through at(). Such a frame must not be read
-/// from several threads at once.
+/// `source` gives their depth on first read through at(), on any thread.
 struct DepthImage {
   static constexpr float kNotConverted = LazyDepthSource::kNotConverted;
 
@@ -147,7 +169,7 @@ struct DepthImage {
   bool delivered() const { return !depth.empty(); }
   /// The depth at (row, col), inside the image: metres, 0 where there is no measurement.
   float at(int row, int col) const {
-    const float z = depth.ptr<float>(row)[col];
+    const float z = LazyDepthSource::load(depth.ptr<float>(row)[col]);
     return z >= 0.f ? z : source.resolve(const_cast<cv::Mat&>(depth), const_cast<cv::Mat&>(rays), row, col);
   }
   /// Whether read_soon() may help: the depth is converted on read from a source that reads
