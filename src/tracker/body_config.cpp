@@ -27,6 +27,19 @@ TreeOrder tree_order(const std::vector<BodyConfig>& bodies, const std::vector<st
   return parents_first(names, parents, outside_roots);
 }
 
+/// The main body is named by the program, not the configuration: only cycles are refused.
+void refuse_parent_cycles(const std::vector<BodyConfig>& bodies, const yaml::Location& list) {
+  std::vector<std::string> outside;
+  for (const BodyConfig& body : bodies)
+    if (body.joint && !find(bodies, body.joint->parent)) outside.push_back(body.joint->parent);
+  const TreeOrder tree = tree_order(bodies, outside);
+  if (tree.problem)
+    list.child(bodies[tree.problem->body].name).child("parent").fail("the parents form a cycle: " + tree.problem->chain);
+}
+
+/// A body's scale: a factor of its mesh's units.
+const yaml::Interval kScale{0.0, 1e6, true};
+
 }  // namespace
 
 std::vector<BodyConfig> read_body_configs(const yaml::Value& list) {
@@ -41,21 +54,34 @@ std::vector<BodyConfig> read_body_configs(const yaml::Value& list) {
     // The body's keys are named after it: "bodies.lid.limits_deg".
     const yaml::Map m(yaml::Value{entry.node, list.at.child(body.name)}, keys);
     body.mesh = m.required("mesh").as(yaml::kNonEmptyString);
-    if (auto x = m.get("scale")) body.scale = x->number_in({0.0, 1e6, true});
+    if (auto x = m.get("scale")) body.scale = x->number_in(kScale);
     if (auto x = m.get("role")) body.occluder = x->choice<bool>({{"tracked", false}, {"occluder", true}});
     body.joint = read_joint(m);
     if (body.occluder && body.joint) m.required("parent").at.fail("an occluder is placed by the caller, not by a joint");
     bodies.push_back(std::move(body));
   }
-  // The main body is named by the program, not the file: only cycles are refused here.
-  std::vector<std::string> outside;
-  for (const BodyConfig& body : bodies)
-    if (body.joint && !find(bodies, body.joint->parent)) outside.push_back(body.joint->parent);
-  const TreeOrder tree = tree_order(bodies, outside);
-  if (tree.problem)
-    list.at.child(bodies[tree.problem->body].name).child("parent").fail("the parents form a cycle: " +
-                                                                       tree.problem->chain);
+  refuse_parent_cycles(bodies, list.at);
   return bodies;
+}
+
+void check_body_configs(const std::vector<BodyConfig>& bodies, const yaml::Location& list) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodyConfig& body = bodies[i];
+    if (body.name.empty()) list.element(i).child("name").fail("expected a non-empty string");
+    if (find(bodies, body.name) != &body) list.element(i).child("name").fail("expected a name no other body has");
+    const yaml::Location at = list.child(body.name);
+    if (body.mesh.empty()) at.child("mesh").fail("expected a non-empty string");
+    if (!kScale.contains(body.scale)) at.child("scale").fail("expected a number in " + kScale.text());
+    if (!body.joint) continue;
+    if (body.occluder) at.child("parent").fail("an occluder is placed by the caller, not by a joint");
+    Joint joint = *body.joint;
+    try {
+      validate(joint, body.name);
+    } catch (const std::invalid_argument& e) {
+      list.fail(e.what());  // already names the body and the joint's field
+    }
+  }
+  refuse_parent_cycles(bodies, list);
 }
 
 void write_body_configs(YAML::Emitter& out, const std::vector<BodyConfig>& bodies) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Tracker configuration files. Every parameter is one row of a field table (key, member,
-// rule); the reader, its validation and the writer all walk the same tables.
+// rule); the reader, the writer and the check of a configuration made in code all walk the
+// same tables.
 #include "icgp/tracker/tracker_config.h"
 
 #include "body_config_yaml.h"
@@ -81,13 +82,21 @@ void emit(YAML::Emitter& out, const std::vector<T>& v) {
   out << YAML::EndSeq;
 }
 
-/// One key of a section: reads its YAML value into S (validated) and writes it back.
+/// One key of a section: reads its YAML value into S (validated), writes it back, and
+/// checks the value a program set by the same rule, failing at the section's `at`.
 template <typename S>
 struct Field {
   std::string name;
   std::function<void(const yaml::Value&, S&)> read;
   std::function<void(YAML::Emitter&, const S&)> write;
+  std::function<void(const S&, const yaml::Location& at)> check;
 };
+
+/// Fails as reading `value` from a file would: "<key>: expected <rule>, got <value>".
+template <typename T>
+void check_value(const T& value, const Rule<T>& rule, const yaml::Location& at) {
+  if (!rule.ok(value)) yaml::Value{YAML::Node(value), at}.expected(rule.expected);
+}
 
 template <typename S>
 using Fields = std::vector<Field<S>>;
@@ -100,6 +109,11 @@ void read_map(const yaml::Value& value, const Fields<S>& fields, S& s) {
   yaml::for_each_entry(value, names, [&](const std::string& name, const yaml::Value& v) {
     std::find_if(fields.begin(), fields.end(), [&](const Field<S>& f) { return f.name == name; })->read(v, s);
   });
+}
+
+template <typename S>
+void check_map(const Fields<S>& fields, const S& s, const yaml::Location& at) {
+  for (const Field<S>& f : fields) f.check(s, at);
 }
 
 template <typename S>
@@ -116,7 +130,8 @@ void write_map(YAML::Emitter& out, const Fields<S>& fields, const S& s) {
 template <typename S, typename T>
 Field<S> field(const char* name, T S::*member, Rule<T> rule) {
   return {name, [member, rule](const yaml::Value& v, S& s) { s.*member = v.as(rule); },
-          [member](YAML::Emitter& out, const S& s) { emit(out, s.*member); }};
+          [member](YAML::Emitter& out, const S& s) { emit(out, s.*member); },
+          [name, member, rule](const S& s, const yaml::Location& at) { check_value(s.*member, rule, at.child(name)); }};
 }
 
 /// A member of a struct member under a key of the section itself (the flat keys of
@@ -124,21 +139,26 @@ Field<S> field(const char* name, T S::*member, Rule<T> rule) {
 template <typename S, typename M, typename T>
 Field<S> field(const char* name, M S::*outer, T M::*inner, Rule<T> rule) {
   return {name, [outer, inner, rule](const yaml::Value& v, S& s) { (s.*outer).*inner = v.as(rule); },
-          [outer, inner](YAML::Emitter& out, const S& s) { emit(out, (s.*outer).*inner); }};
+          [outer, inner](YAML::Emitter& out, const S& s) { emit(out, (s.*outer).*inner); },
+          [name, outer, inner, rule](const S& s, const yaml::Location& at) {
+            check_value((s.*outer).*inner, rule, at.child(name));
+          }};
 }
 
 /// A struct member read and written as a nested map of `fields`.
 template <typename S, typename T>
 Field<S> section(const char* name, T S::*member, const Fields<T>& fields) {
   return {name, [member, &fields](const yaml::Value& v, S& s) { read_map(v, fields, s.*member); },
-          [member, &fields](YAML::Emitter& out, const S& s) { write_map(out, fields, s.*member); }};
+          [member, &fields](YAML::Emitter& out, const S& s) { write_map(out, fields, s.*member); },
+          [name, member, &fields](const S& s, const yaml::Location& at) { check_map(fields, s.*member, at.child(name)); }};
 }
 
 /// An enumerator member, written and read by its name (to_string).
 template <typename S, typename E, std::size_t N>
 Field<S> choice(const char* name, E S::*member, const std::array<E, N>& values) {
   return {name, [member, values](const yaml::Value& v, S& s) { s.*member = v.choice(yaml::named(values)); },
-          [member](YAML::Emitter& out, const S& s) { emit(out, to_string(s.*member)); }};
+          [member](YAML::Emitter& out, const S& s) { emit(out, to_string(s.*member)); },
+          [](const S&, const yaml::Location&) {}};  // an enumerator set in code is one of its values
 }
 
 const Fields<TrackerParams> kTrackerFields = {
@@ -324,13 +344,19 @@ std::string preset_list() {
 /// checked and written.
 const Fields<TrackerConfig> kConfigFields = {
     {"preset", [](const yaml::Value&, TrackerConfig&) {},
-     [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.preset); }},
+     [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.preset); },
+     [](const TrackerConfig& c, const yaml::Location& at) {
+       if (!known_preset(c.preset)) at.child("preset").fail("expected one of " + preset_list() + " (got '" + c.preset + "')");
+     }},
     section("tracker", &TrackerConfig::tracker, kTrackerFields),
     {"modalities",
      [](const yaml::Value& v, TrackerConfig& c) {
        c.modalities = parse_cue_list(v.as(Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}));
      },
-     [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.modalities); }},
+     [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.modalities); },
+     [](const TrackerConfig& c, const yaml::Location& at) {
+       check_value(c.modalities, Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}, at.child("modalities"));
+     }},
     section("region_model", &TrackerConfig::region_model, kModelFields),
     section("depth_model", &TrackerConfig::depth_model, kModelFields),
     section("region", &TrackerConfig::region, kRegionFields),
@@ -345,7 +371,8 @@ const Fields<TrackerConfig> kConfigFields = {
                                                                [](const std::string& f) { return f.empty(); });
                                          }}),
     {"bodies", [](const yaml::Value& v, TrackerConfig& c) { c.bodies = read_body_configs(v); },
-     [](YAML::Emitter& out, const TrackerConfig& c) { write_body_configs(out, c.bodies); }},
+     [](YAML::Emitter& out, const TrackerConfig& c) { write_body_configs(out, c.bodies); },
+     [](const TrackerConfig& c, const yaml::Location& at) { check_body_configs(c.bodies, at.child("bodies")); }},
     section("detection", &TrackerConfig::detection, kDetectionFields),
     field("cache_dir", &TrackerConfig::cache_dir, yaml::kString),
 };
@@ -414,12 +441,7 @@ TrackerConfig read_tracker_config(const std::string& yaml_text, const std::strin
 }
 
 void validate(const TrackerConfig& config, const std::string& source) {
-  // A configuration made in code gets the checks of a file: written and read back through
-  // the same field tables, so each rule lives in one place and the message names the key.
-  YAML::Emitter out;
-  write_map(out, kConfigFields, config);
-  TrackerConfig read_back = config;
-  read_map(yaml::Value{YAML::Load(out.c_str()), yaml::Location{source, "", kWording}}, kConfigFields, read_back);
+  check_map(kConfigFields, config, yaml::Location{source, "", kWording});
 }
 
 std::string to_yaml(const TrackerConfig& config) {

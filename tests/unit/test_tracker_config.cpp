@@ -494,4 +494,50 @@ TEST_CASE("tracker config: a configuration made in code gets the checks of a fil
   config = icgp::TrackerConfig();
   config.tracker.tikhonov_rotation = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: tracker.tikhonov_rotation: expected a positive number"));
+  config = icgp::TrackerConfig();
+  config.region.noise.tukey_constant = 0.0;  // a nested section
+  CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: region.noise.tukey_constant: expected a positive number, got 0"));
+  config = icgp::TrackerConfig();
+  config.depth.occlusion.render_size = 8;  // a flat key of a struct member
+  CHECK_THROWS_WITH(icgp::validate(config, "code"),
+                    StartsWith("code: depth.occlusion_render_size: expected an integer from 16 to 2048, got 8"));
+  config = icgp::TrackerConfig();
+  config.modalities = {"region", "colour"};
+  CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: modalities: expected ") && Contains("'colour'"));
+  config = icgp::TrackerConfig();
+  config.preset = "fastest";
+  CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: preset: expected one of default, icg_reference"));
+}
+
+TEST_CASE("tracker config: bodies made in code get the checks of a file, naming the body and the field") {
+  icgp::TrackerConfig config;
+  config.bodies = {{"lid", "lid.obj"}, {"handle", "handle.obj"}};
+  CHECK_NOTHROW(icgp::validate(config, "code"));
+  SECTION("a name given twice") {
+    config.bodies[1].name = "lid";
+    CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: bodies[1].name: expected a name no other body has"));
+  }
+  SECTION("no mesh") {
+    config.bodies[1].mesh.clear();
+    CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: bodies.handle.mesh: expected a non-empty string"));
+  }
+  SECTION("a scale of 0") {
+    config.bodies[0].scale = 0.0;
+    CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: bodies.lid.scale: expected a number in (0, 1000000]"));
+  }
+  SECTION("a joint with limits out of order") {
+    icgp::Joint joint;
+    joint.parent = "box";
+    joint.directions.push_back({icgp::JointDirection::Kind::kRotation, Eigen::Vector3d::UnitZ(), 1.0, -1.0});
+    config.bodies[0].joint = joint;
+    CHECK_THROWS_WITH(icgp::validate(config, "code"), Contains("body 'lid': joint direction 0: limits: expected min <= max"));
+  }
+  SECTION("a cycle of parents") {
+    icgp::Joint joint;
+    joint.parent = "handle";
+    config.bodies[0].joint = joint;
+    joint.parent = "lid";
+    config.bodies[1].joint = joint;
+    CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: bodies.") && Contains("parent: the parents form a cycle"));
+  }
 }
