@@ -13,6 +13,9 @@ void place_links(const std::vector<TreeLink>& links) {
   }
 }
 
+TreeOptimizer::TreeOptimizer(const OptimizerParams& params)
+    : regularisation_((validate(params), params.diagonal())) {}
+
 void TreeOptimizer::step(const std::vector<TreeLink>& links, int corr_iter, int update_iter) {
   // Column offsets of every link's joint values after the root's six.
   offset_.assign(links.size(), 0);
@@ -22,7 +25,7 @@ void TreeOptimizer::step(const std::vector<TreeLink>& links, int corr_iter, int 
     n += links[i].joint->size();
   }
 
-  const Vec6& lambda = links.front().terms->regularisation();
+  const Vec6& lambda = regularisation_;
   A_.setZero(n, n);
   b_.setZero(n);
   A_.diagonal().head<6>() = lambda;

@@ -9,11 +9,10 @@
 namespace icgp {
 
 struct Tracker::BodyState {
-  BodyState(Body body, const TrackerParams& params)
+  explicit BodyState(Body body)
       : body(std::make_unique<Body>(std::move(body))),
         // A body without a mesh (cues that read no image) is never rendered.
-        sphere(this->body->mesh.empty() ? Sphere{} : bounding_sphere(this->body->mesh)),
-        optimizer(OptimizerParams{params.tikhonov_rotation, params.tikhonov_translation}) {}
+        sphere(this->body->mesh.empty() ? Sphere{} : bounding_sphere(this->body->mesh)) {}
 
   std::unique_ptr<Body> body;
   Sphere sphere;  ///< bounding_sphere of the body's mesh
@@ -22,14 +21,16 @@ struct Tracker::BodyState {
   std::vector<double> joint_values;
   std::vector<std::unique_ptr<Modality>> modalities;
   std::vector<Modality*> cues;  ///< the same modalities, as the optimizer takes them
-  Optimizer optimizer;
+  CueTermSum terms;             ///< of the last update
 };
 
 Tracker::Tracker(TrackerParams params, std::shared_ptr<SceneRenderer> renderer)
-    : params_(params), renderer_(renderer ? std::move(renderer) : std::make_shared<SceneRenderer>()) {
+    : params_(params),
+      renderer_(renderer ? std::move(renderer) : std::make_shared<SceneRenderer>()),
+      optimizer_(params.regularisation),
+      tree_optimizer_(params.regularisation) {
   if (params_.n_corr_iterations < 1 || params_.n_update_iterations < 1)
     throw std::invalid_argument("tracker needs at least one correspondence and one update iteration");
-  validate(OptimizerParams{params_.tikhonov_rotation, params_.tikhonov_translation});
 }
 
 Tracker::~Tracker() = default;
@@ -39,7 +40,7 @@ Tracker& Tracker::operator=(Tracker&&) noexcept = default;
 Tracker::BodyState& Tracker::add_state(Body body) {
   for (const auto& s : states_)
     if (s->body->name == body.name) throw std::invalid_argument("tracker already has a body named '" + body.name + "'");
-  states_.push_back(std::make_unique<BodyState>(std::move(body), params_));
+  states_.push_back(std::make_unique<BodyState>(std::move(body)));
   trees_.clear();
   return *states_.back();
 }
@@ -113,7 +114,7 @@ const std::vector<std::vector<TreeLink>>& Tracker::trees() {
   std::map<std::string, std::pair<std::size_t, int>> placed;  // body -> its tree, its index there
   for (auto& s : states_) {
     if (s->occluder) continue;
-    TreeLink link{s->body.get(), &s->cues, &s->optimizer};
+    TreeLink link{s->body.get(), &s->cues, &s->terms};
     std::size_t tree = trees_.size();
     if (s->joint) {
       const auto [parent_tree, parent_index] = placed.at(s->joint->parent);
@@ -146,10 +147,10 @@ Tracker::BodyState& Tracker::state(const std::string& name) {
   return const_cast<BodyState&>(static_cast<const Tracker&>(*this).state(name));
 }
 
-const Mat66& Tracker::last_hessian(const std::string& name) const { return state(name).optimizer.total().hessian; }
+const Mat66& Tracker::last_hessian(const std::string& name) const { return state(name).terms.total().hessian; }
 
 const std::vector<CueTerms>& Tracker::last_cue_terms(const std::string& name) const {
-  return state(name).optimizer.cue_terms();
+  return state(name).terms.per_cue();
 }
 
 void Tracker::residuals(const std::string& name, std::vector<double>& residuals, std::vector<double>& weights) const {
@@ -197,7 +198,7 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
     for (int u = 0; u < params_.n_update_iterations; ++u)
       for (const std::vector<TreeLink>& tree : trees()) {
         if (tree.size() == 1)
-          tree.front().terms->step(*tree.front().body, *tree.front().cues, c, u);
+          optimizer_.step(*tree.front().body, *tree.front().cues, *tree.front().terms, c, u);
         else
           tree_optimizer_.step(tree, c, u);
       }

@@ -164,8 +164,8 @@ Field<S> choice(const char* name, E S::*member, const std::array<E, N>& values) 
 const Fields<TrackerParams> kTrackerFields = {
     field("n_corr_iterations", &TrackerParams::n_corr_iterations, int_range<1, 100>()),
     field("n_update_iterations", &TrackerParams::n_update_iterations, int_range<1, 100>()),
-    field("tikhonov_rotation", &TrackerParams::tikhonov_rotation, kPositive),
-    field("tikhonov_translation", &TrackerParams::tikhonov_translation, kPositive),
+    field("tikhonov_rotation", &TrackerParams::regularisation, &OptimizerParams::tikhonov_rotation, kPositive),
+    field("tikhonov_translation", &TrackerParams::regularisation, &OptimizerParams::tikhonov_translation, kPositive),
     field("quality_threshold", &TrackerParams::quality_threshold, kFraction),
 };
 

@@ -238,8 +238,8 @@ cache_dir: /tmp/icgp cache
 
 TEST_CASE("tracker config: defaults are the reference values of ALGORITHMS.md") {
   const TrackerConfig c;
-  CHECK(c.tracker.tikhonov_rotation == 1000.0);
-  CHECK(c.tracker.tikhonov_translation == 30000.0);
+  CHECK(c.tracker.regularisation.tikhonov_rotation == 1000.0);
+  CHECK(c.tracker.regularisation.tikhonov_translation == 30000.0);
   CHECK(c.tracker.n_corr_iterations == 5);
   CHECK(c.tracker.n_update_iterations == 2);
   CHECK(c.modalities == std::vector<std::string>{icgp::cue::kRegion, icgp::cue::kDepth, icgp::cue::kTexture});
@@ -387,11 +387,11 @@ TEST_CASE("tracker config: to_yaml writes every key and round-trips exactly") {
     TrackerConfig awkward;
     awkward.region.function_slope = 0.1 + 0.2;
     awkward.depth.standard_deviations = {1.0 / 3.0, 1e-300, 1e300};
-    awkward.tracker.tikhonov_rotation = 123456789.0;
+    awkward.tracker.regularisation.tikhonov_rotation = 123456789.0;
     const TrackerConfig back = load_tracker_config(dir.write("awkward.yaml", to_yaml(awkward)));
     CHECK(back.region.function_slope == awkward.region.function_slope);
     CHECK(back.depth.standard_deviations == awkward.depth.standard_deviations);
-    CHECK(back.tracker.tikhonov_rotation == awkward.tracker.tikhonov_rotation);
+    CHECK(back.tracker.regularisation.tikhonov_rotation == awkward.tracker.regularisation.tikhonov_rotation);
   }
 }
 
@@ -492,7 +492,7 @@ TEST_CASE("tracker config: a configuration made in code gets the checks of a fil
   CHECK_THROWS_WITH(icgp::validate(config, "code"),
                     StartsWith("code: depth.n_points_max: expected an integer from 1 to 5000, got 2000000000"));
   config = icgp::TrackerConfig();
-  config.tracker.tikhonov_rotation = std::numeric_limits<double>::quiet_NaN();
+  config.tracker.regularisation.tikhonov_rotation = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_WITH(icgp::validate(config, "code"), StartsWith("code: tracker.tikhonov_rotation: expected a positive number"));
   config = icgp::TrackerConfig();
   config.region.noise.tukey_constant = 0.0;  // a nested section

@@ -102,14 +102,15 @@ TEST_CASE("optimizer: keeps each cue's part and sums them; the step is the regul
   example::PositionCue b(body, Eigen::Vector3d(0.01, -0.02, 0.62), 0.004);
   const Pose before = body.reference_T_body;
   const CueTerms ta = a.gradient_hessian(0, 0), tb = b.gradient_hessian(0, 0);
-  Optimizer optimizer({1000.0, 30000.0});
-  optimizer.step(body, {&a, &b}, 0, 0);
-  REQUIRE(optimizer.cue_terms().size() == 2);
-  CHECK(optimizer.cue_terms()[0].gradient == ta.gradient);
-  CHECK(optimizer.cue_terms()[1].gradient == tb.gradient);
-  CHECK(optimizer.total().gradient.isApprox(ta.gradient + tb.gradient));
-  CHECK(optimizer.total().hessian.isApprox(ta.hessian + tb.hessian));
-  CHECK(optimizer.total().n_correspondences == 2);
+  const Optimizer optimizer({1000.0, 30000.0});
+  CueTermSum terms;
+  optimizer.step(body, {&a, &b}, terms, 0, 0);
+  REQUIRE(terms.per_cue().size() == 2);
+  CHECK(terms.per_cue()[0].gradient == ta.gradient);
+  CHECK(terms.per_cue()[1].gradient == tb.gradient);
+  CHECK(terms.total().gradient.isApprox(ta.gradient + tb.gradient));
+  CHECK(terms.total().hessian.isApprox(ta.hessian + tb.hessian));
+  CHECK(terms.total().n_correspondences == 2);
   // θ_t = (1/σa² + 1/σb² + λ_t)⁻¹ Σ g_t, and no rotation.
   const Eigen::Vector3d theta_t = (ta.gradient + tb.gradient).tail<3>() / (1 / 4e-6 + 1 / 16e-6 + 30000.0);
   const Eigen::Vector3d moved = body.reference_T_body.translation() - before.translation();

@@ -15,8 +15,8 @@ namespace icgp {
 struct TreeLink {
   Body* body = nullptr;
   const std::vector<Modality*>* cues = nullptr;
-  /// Collects the link's cue terms each update (and keeps them for diagnostics).
-  Optimizer* terms = nullptr;
+  /// The link's cue terms, collected each update.
+  CueTermSum* terms = nullptr;
   int parent = -1;               ///< index of the parent link; -1 for the root only
   const Joint* joint = nullptr;  ///< to the parent; null for the root
   std::vector<double>* joint_values = nullptr;
@@ -32,10 +32,14 @@ struct TreeLink {
 /// clamped into their limits and every link is placed by forward kinematics.
 class TreeOptimizer {
  public:
+  /// Throws std::invalid_argument for a negative or NaN λ.
+  explicit TreeOptimizer(const OptimizerParams& params = {});
+
   /// One update. A singular system leaves the tree as it is.
   void step(const std::vector<TreeLink>& links, int corr_iter, int update_iter);
 
  private:
+  Vec6 regularisation_;
   // Kept between updates so that a frame's steps reuse their memory.
   std::vector<int> offset_;  ///< column of each link's first joint value
   std::vector<JointJacobian> jacobians_;

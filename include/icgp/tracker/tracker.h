@@ -17,8 +17,7 @@ namespace icgp {
 struct TrackerParams {
   int n_corr_iterations = 5;
   int n_update_iterations = 2;
-  double tikhonov_rotation = 1000.0;      ///< λ_r
-  double tikhonov_translation = 30000.0;  ///< λ_t
+  OptimizerParams regularisation;  ///< λ_r, λ_t
   /// A body whose combined quality (the mean of the scores of its modalities that had
   /// something to measure, ModalityQuality::abstained) is below this is reported lost. A
   /// body whose cues all just started (ModalityQuality::just_started) has quality 1.
@@ -121,6 +120,7 @@ class Tracker {
   Renders renders_;
   std::vector<BodyExtent> scene_;  ///< where every body is, for the render step's Stage
   std::vector<std::vector<TreeLink>> trees_;
+  Optimizer optimizer_;  ///< of a free body
   TreeOptimizer tree_optimizer_;
 };
 
