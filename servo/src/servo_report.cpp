@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -16,6 +15,7 @@
 #include <utility>
 
 #include "icgp/base/pose.h"
+#include "icgp/eval/gnuplot.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 
@@ -143,25 +143,6 @@ std::string step_table(const ServoResult& result, char separator, bool header) {
   return out;
 }
 
-/// A string for a POSIX shell: single-quoted.
-std::string shell_quote(const std::string& text) {
-  std::string out = "'";
-  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-bool is_png(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  char signature[4] = {};
-  in.read(signature, 4);
-  return in && signature[0] == '\x89' && signature[1] == 'P' && signature[2] == 'N' && signature[3] == 'G';
-}
-
 /// The gnuplot script of plot_run, data included as a datablock so that the script alone
 /// redraws the figures (`cd dir && gnuplot servo_plot.gp`).
 std::string plot_script(const ServoResult& result) {
@@ -181,17 +162,11 @@ std::string plot_script(const ServoResult& result) {
   std::replace(title.begin(), title.end(), '"', '\'');
 
   std::string s;
-  s += "# Written by icgp servo (plot_run); redraw with: gnuplot servo_plot.gp (in this folder).\n";
+  s += gnuplot_png_preamble("icgp servo (plot_run)", "gnuplot servo_plot.gp (in this folder)", 900, 600);
   s += "# Columns: time s, servo error mm / deg, tracker error mm / deg, |s - s*|, velocity (" +
        std::to_string(n) + "), lost, safety stop, dropped, render / track / control ms.\n";
   s += "$steps << EOD\n" + step_table(result, ' ', false) + "EOD\n\n";
-  s += "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-       "  set terminal pngcairo size 900,600 noenhanced\n"
-       "} else {\n"
-       "  set terminal png size 900,600 noenhanced\n"
-       "}\n";
-  s += "set datafile missing 'NaN'\n";
-  s += "set grid\nset key inside right top opaque\nset xlabel 'simulated time (s)'\n";
+  s += "set key inside right top opaque\nset xlabel 'simulated time (s)'\n";
   // Errors span decades: log scale, with values at or below the floor drawn on it.
   s += "floor = 1e-4\nclamp(x) = (x > floor) ? x : floor\n";
   s += "set logscale y\nset format y '%g'\n\n";
@@ -371,32 +346,12 @@ void write_step_csv(const ServoResult& result, const std::string& path) {
 
 void plot_run(const ServoResult& result, const std::string& dir) {
   namespace fs = std::filesystem;
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    throw std::runtime_error("gnuplot is not installed: cannot draw the servo plots in '" + dir + "'");
-
   const fs::path folder(dir.empty() ? "." : dir);
   std::error_code error;
   fs::create_directories(folder, error);
   if (error) throw std::runtime_error("cannot create plot folder '" + dir + "': " + error.message());
-
   // The script (data inside) stays next to the figures: it redraws or restyles them.
-  const fs::path script = folder / "servo_plot.gp";
-  write_text_file(script.string(), plot_script(result), "gnuplot script");
-  const fs::path log = folder / "servo_plot.log";  // gnuplot's messages, removed on success
-  for (const char* name : {"error.png", "velocity.png"}) fs::remove(folder / name, error);
-
-  const std::string command =
-      "cd " + shell_quote(folder.string()) + " && gnuplot servo_plot.gp >servo_plot.log 2>&1";
-  const int status = std::system(command.c_str());
-  const bool ok = status == 0 && is_png(folder / "error.png") && is_png(folder / "velocity.png");
-  if (!ok) {
-    std::string messages = read_file(log);
-    if (messages.size() > 2000) messages = "..." + messages.substr(messages.size() - 2000);
-    throw std::runtime_error("gnuplot failed to draw the servo plots in '" + dir + "' (script " +
-                             script.string() + ", exit status " + std::to_string(status) + ")" +
-                             (messages.empty() ? std::string() : ":\n" + messages));
-  }
-  fs::remove(log, error);
+  draw_with_gnuplot(plot_script(result), folder / "servo_plot.gp", {folder / "error.png", folder / "velocity.png"});
 }
 
 }  // namespace icgp::servo

@@ -45,14 +45,10 @@ struct BenchOptions {
 
 void print_table(const std::vector<TimedRow>& rows, int rounds) {
   const TimedRow* reference = find_row(rows, kReferenceRow);
-  std::printf("\n%-34s %8s %8s %9s %9s %10s %8s %14s\n", "configuration", "mean mm", "max mm", "mean deg", "max deg",
-              "median ms", "Hz", "speed vs ViSP");
-  for (const TimedRow& row : rows) {
-    const TrackingSummary& s = row.summary;
-    const double speed = speed_ratio(reference, row);
-    std::printf("%-34s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", row.name.c_str(), s.mean_t_mm, s.max_t_mm,
-                s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, speed);
-  }
+  TextTable table(columns({{"configuration", 34, true}}, {accuracy_columns(), timing_columns()}));
+  for (const TimedRow& row : rows) timing_cells(table.text(row.name).accuracy(row.summary), row, reference);
+  std::printf("\n");
+  table.print();
   std::printf("\nTimes are of the tracking call alone, single thread (OpenMP and OpenCV limited to one). Every\n"
               "configuration ran %d rounds, in alternating order; median ms is the median over rounds of each\n"
               "round's median, and speed vs ViSP the median over rounds of '%s''s median / the row's\n"

@@ -64,16 +64,12 @@ std::string joined(const std::vector<std::string>& names) {
 
 void print_table(const std::vector<TimedRow>& rows, const std::vector<RowName>& names, int rounds) {
   const TimedRow* reference = find_row(rows, RowName{kVispTracker, kReferenceConfig}.name());
-  std::printf("\n%-20s %-26s %8s %8s %9s %9s %10s %8s %14s\n", "tracker", "configuration", "mean mm", "max mm",
-              "mean deg", "max deg", "median ms", "Hz", "speed vs ViSP");
-  for (const RowName& name : names) {
-    const TimedRow* row = find_row(rows, name.name());
-    if (!row) continue;
-    const TrackingSummary& s = row->summary;
-    const double speed = speed_ratio(reference, *row);
-    std::printf("%-20s %-26s %8.2f %8.2f %9.2f %9.2f %10.2f %8.0f %13.2fx\n", name.tracker.c_str(), name.config.c_str(),
-                s.mean_t_mm, s.max_t_mm, s.mean_r_deg, s.max_r_deg, s.median_ms, s.hz, speed);
-  }
+  TextTable table(columns({{"tracker", 20, true}, {"configuration", 26, true}}, {accuracy_columns(), timing_columns()}));
+  for (const RowName& name : names)
+    if (const TimedRow* row = find_row(rows, name.name()))
+      timing_cells(table.text(name.tracker).text(name.config).accuracy(row->summary), *row, reference);
+  std::printf("\n");
+  table.print();
   std::printf(
       "\n%s and %s run through the same ViSP-API code (grey image + organised point cloud);\n"
       "%s is icgp's tracker on the grey or colour image and the depth image, without the ViSP layer.\n"

@@ -14,8 +14,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "gnuplot.h"
 #include "icgp/detection/body_detector.h"
+#include "icgp/eval/gnuplot.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
@@ -301,7 +301,8 @@ struct OcclusionLine {
 
 void plot_occlusion(const std::vector<OcclusionLine>& lines, const fs::path& script, const std::string& png) {
   std::ostringstream s;
-  s << gnuplot_png_preamble("icgp bench --detect", script.filename().string(), 900, 520, png);
+  s << gnuplot_png_preamble("icgp bench --detect", "gnuplot " + script.filename().string(), 900, 520);
+  s << "set output '" << png << "'\n";
   s << "set yrange [0:105]\n";
   s << "set xtics ('0-10 %%' 0, '10-20 %%' 1, '20-30 %%' 2, '30 %% and more' 3)\nset xrange [-0.3:3.3]\n";
   s << "set xlabel 'share of the object hidden by the bar'\nset ylabel 'found within 5 mm / 5 deg or equivalent (%)'\n";
@@ -318,7 +319,7 @@ void plot_occlusion(const std::vector<OcclusionLine>& lines, const fs::path& scr
     s << (i ? ", " : "") << "$d using 1:" << i + 2 << " with linespoints lw 2 pt " << 5 + 2 * i << " title '"
       << lines[i].title << "'";
   s << "\nset output\n";
-  draw_with_gnuplot(s.str(), script.string(), png);
+  draw_with_gnuplot(s.str(), script, {png});
 }
 
 void print_row(const std::string& object, const Row& row, const Tally& icgp, const std::optional<Tally>& baseline) {
@@ -429,7 +430,7 @@ void run_detect_bench(const DetectBenchOptions& options) {
     JsonObject().add("rows", json_rows).add("occlusion", json_occlusion).write(options.summary);
     std::cout << "wrote " << options.summary << "\n";
   }
-  plot_occlusion({icgp_rgbd, icgp_grey, vp_grey}, root / "occlusion.gp", options.plot);
+  plot_occlusion({icgp_rgbd, icgp_grey, vp_grey}, root / "occlusion.gp", fs::absolute(options.plot).string());
   std::cout << "plot " << options.plot << "\n";
 }
 

@@ -28,6 +28,7 @@
 #include "icgp/visp/visp_camera_xml.h"
 #include "icgp/visp/vpMbIcgTracker.h"
 #include "single_thread_scope.h"
+#include "text_table.h"
 
 namespace icgp::app {
 namespace {
@@ -195,14 +196,19 @@ StereoRow run_configuration(const Sequence& sequence, int n_frames, const Sequen
 }
 
 void print_table(const std::vector<StereoRow>& rows) {
-  std::printf("\n%-34s %8s %8s %9s %9s %7s %7s %7s %10s %7s %6s\n", "configuration", "mean mm", "max mm", "mean deg",
-              "max deg", "|x| mm", "|y| mm", "|z| mm", "median ms", "Hz", "lost");
+  TextTable table(columns({{"configuration", 34, true}}, {accuracy_columns(),
+                                                           {{"|x| mm", 7}, {"|y| mm", 7}, {"|z| mm", 7}},
+                                                           {{"median ms", 10}, {"Hz", 7}, {"lost", 6}}}));
   for (const StereoRow& row : rows) {
     const TrackingSummary& s = row.summary;
-    std::printf("%-34s %8.2f %8.2f %9.3f %9.3f %7.2f %7.2f %7.2f %10.2f %7.1f %3d/%-3d\n", row.name.c_str(), s.mean_t_mm,
-                s.max_t_mm, s.mean_r_deg, s.max_r_deg, row.mean_abs_axis_mm.x(), row.mean_abs_axis_mm.y(),
-                row.mean_abs_axis_mm.z(), s.median_ms, s.hz, row.lost, s.frames);
+    table.text(row.name).accuracy(s, 3);
+    for (int axis = 0; axis < 3; ++axis) table.number(row.mean_abs_axis_mm[axis], 2);
+    char lost[32];
+    std::snprintf(lost, sizeof lost, "%3d/%-3d", row.lost, s.frames);
+    table.number(s.median_ms, 2).number(s.hz, 1).text(lost).end_row();
   }
+  std::printf("\n");
+  table.print();
 }
 
 void run_stereo(const StereoOptions& o) {

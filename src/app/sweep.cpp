@@ -17,14 +17,15 @@
 
 #include "bench_runner.h"
 #include "commands.h"
-#include "gnuplot.h"
 #include "icgp/tracker/cue_registry.h"
+#include "icgp/eval/gnuplot.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/eval/sequence_writer.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/visp_baseline.h"
 #include "single_thread_scope.h"
+#include "text_table.h"
 
 namespace icgp::app {
 namespace {
@@ -308,14 +309,14 @@ void print_table(const std::vector<SweepRow>& rows, int frames) {
               "lost = frames the tracker reported lost (icgp: quality below its threshold; ViSP: track() threw)\n"
               "       or whose error exceeded %.0f mm or %.0f deg\n\n",
               frames, kLostTranslationMm, kLostRotationDeg);
-  std::printf("%-16s %-9s %-20s %-32s %8s %8s %8s %8s %7s %7s %5s %9s\n", "model", "depth", "image", "tracker",
-              "mean mm", "max mm", "mean deg", "max deg", "ADD", "ADD-S", "lost", "median ms");
+  TextTable table(columns({{"model", 16, true}, {"depth", 9, true}, {"image", 20, true}, {"tracker", 32, true}},
+                          {accuracy_columns(8), {{"ADD", 7}, {"ADD-S", 7}, {"lost", 5}, {"median ms", 9}}}));
   for (const SweepRow& r : rows) {
     const TrackingSummary& s = r.summary;
-    std::printf("%-16s %-9s %-20s %-32s %8.2f %8.2f %8.2f %8.2f %7.1f %7.1f %5d %9.2f\n", r.model.c_str(),
-                r.depth.c_str(), r.image.c_str(), r.tracker.c_str(), s.mean_t_mm, s.max_t_mm, s.mean_r_deg,
-                s.max_r_deg, s.add_auc, s.adds_auc, r.lost, s.median_ms);
+    table.text(r.model).text(r.depth).text(r.image).text(r.tracker).accuracy(s);
+    table.number(s.add_auc, 1).number(s.adds_auc, 1).integer(r.lost).number(s.median_ms, 2).end_row();
   }
+  table.print();
   std::printf("\nADD / ADD-S: area under the accuracy curve up to 10 cm, percent (YCB-Video).\n");
 }
 
@@ -351,7 +352,8 @@ void plot_sweep(const std::vector<SweepRow>& rows, const fs::path& script, const
       }
 
   std::ostringstream s;
-  s << gnuplot_png_preamble("icgp bench --sweep", script.filename().string(), 1500, 520, png);
+  s << gnuplot_png_preamble("icgp bench --sweep", "gnuplot " + script.filename().string(), 1500, 520);
+  s << "set output '" << png << "'\n";
   s << "set logscale y\nset format y '%g'\n";
   s << "set xtics ('exact' 0, 'RealSense-class' 1, 'Kinect-class' 2)\nset xrange [-0.3:2.3]\n";
   s << "set key below\nset ylabel 'mean translation error (mm, all models)'\n";
@@ -379,7 +381,7 @@ void plot_sweep(const std::vector<SweepRow>& rows, const fs::path& script, const
   }
   s << "unset multiplot\nset output\n";
 
-  draw_with_gnuplot(s.str(), script.string(), png);
+  draw_with_gnuplot(s.str(), script, {png});
 }
 
 }  // namespace

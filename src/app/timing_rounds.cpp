@@ -67,4 +67,10 @@ const TimedRow* find_row(const std::vector<TimedRow>& rows, const std::string& n
   return nullptr;
 }
 
+std::vector<TableColumn> timing_columns() { return {{"median ms", 10}, {"Hz", 8}, {"speed vs ViSP", 14}}; }
+
+void timing_cells(TextTable& table, const TimedRow& row, const TimedRow* reference) {
+  table.number(row.summary.median_ms, 2).number(row.summary.hz, 0).ratio(speed_ratio(reference, row)).end_row();
+}
+
 }  // namespace icgp::app

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "icgp/eval/metrics.h"
+#include "text_table.h"
 
 namespace icgp::app {
 
@@ -43,5 +44,10 @@ double speed_ratio(const TimedRow* reference, const TimedRow& row);
 
 /// The row named `name`, or nullptr.
 const TimedRow* find_row(const std::vector<TimedRow>& rows, const std::string& name);
+
+/// "median ms", "Hz" and "speed vs ViSP": the columns of timing_cells.
+std::vector<TableColumn> timing_columns();
+/// Appends `row`'s median ms, Hz and speed against `reference` to the table's row and ends it.
+void timing_cells(TextTable& table, const TimedRow& row, const TimedRow* reference);
 
 }  // namespace icgp::app
