@@ -8,17 +8,18 @@
 #include <filesystem>
 #include <iostream>
 
-#include "bench_runner.h"
 #include "commands.h"
 #include "icgp/tracker/cue_registry.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/eval/single_body_tracker.h"
 #include "icgp/eval/sequence_writer.h"
 #include "icgp/io/mesh_loader.h"
 #include "icgp/model/model_cache.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/visp_camera_xml.h"
 #include "single_thread_scope.h"
+#include "text_table.h"
 
 namespace icgp::app {
 namespace {
@@ -111,20 +112,23 @@ void run_ablation(const std::string& summary_path, int frame_limit) {
     std::vector<Frame> frames;
     for (int i = 0; i < n; ++i) frames.push_back(sequence.load(i));
 
-    std::printf("\n%s (%d frames)\n%-24s %8s %8s %9s %9s %10s %8s\n", s.name.c_str(), n, "configuration", "ADD AUC",
-                "ADD-S AUC", "mean mm", "mean deg", "median ms", "Hz");
+    TextTable table({{"configuration", 24, true}, {"ADD AUC", 8}, {"ADD-S AUC", 9}, {"mean mm", 9}, {"mean deg", 9},
+                     {"median ms", 10}, {"Hz", 8}});
     for (const AblationConfig& c : ablation_configs()) {
       TrackerConfig config = s.base;
       config.modalities = parse_cue_list(c.modalities);
       config.texture.descriptor = c.descriptor;
       if (!c.multi_region) config.regions.clear();
       std::cerr << s.name << ": " << c.name << " ...\n";
-      const TrackingSummary r = run_icgp(frames, body, mesh, config);
-      std::printf("%-24s %8.2f %9.2f %9.2f %9.2f %10.2f %8.0f\n", c.name.c_str(), r.add_auc, r.adds_auc, r.mean_t_mm,
-                  r.mean_r_deg, r.median_ms, r.hz);
-      std::fflush(stdout);
+      const TrackingSummary r =
+          evaluate_tracker(FrameSource::of(frames), body, mesh, config, *frames.front().truth(body)).summary();
+      table.text(c.name).number(r.add_auc, 2).number(r.adds_auc, 2).number(r.mean_t_mm, 2).number(r.mean_r_deg, 2);
+      table.number(r.median_ms, 2).number(r.hz, 0).end_row();
       json_rows.push_back(JsonObject().add("sequence", s.name).add("config", c.name).add_fields(r.to_json()));
     }
+    std::printf("\n%s (%d frames)\n", s.name.c_str(), n);
+    table.print();
+    std::fflush(stdout);
   }
   std::printf("\nEvery row is icgp's defaults with the named change; ob = oriented_brief, the defaults' descriptor.\n"
               "multi-region applies to labelled_can, labelled_can_spin and two_region (the others have one colour region).\n");

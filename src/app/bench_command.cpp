@@ -9,11 +9,11 @@
 #include "icgp/tracker/cue_registry.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/eval/single_body_tracker.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/visp_baseline.h"
 #include "icgp/visp/visp_camera_xml.h"
 #include "single_thread_scope.h"
-#include "bench_runner.h"
 #include "timing_rounds.h"
 #include "detect_bench.h"
 #include "sweep.h"
@@ -71,6 +71,7 @@ void run_bench(const BenchOptions& o) {
   std::cerr << "loading " << n_frames << " frames of " << o.sequence << "\n";
   std::vector<Frame> frames;
   for (int i = 0; i < n_frames; ++i) frames.push_back(sequence.load(i));
+  const Pose start = *frames.front().truth(object.name);
 
   std::vector<TimedJob> jobs;
   for (const std::vector<std::string>& modalities :
@@ -81,16 +82,15 @@ void run_bench(const BenchOptions& o) {
     jobs.push_back({name, [&, modalities] {
                       TrackerConfig config = base_config;
                       config.modalities = parse_cue_list(modalities);
-                      return run_icgp(frames, object.name, mesh, config);
+                      return evaluate_tracker(FrameSource::of(frames), object.name, mesh, config, start).summary();
                     }});
   }
   for (const VispTrackerConfiguration& configuration : visp_reference_configurations()) {
     jobs.push_back({"ViSP " + configuration.name, [&, configuration] {
                       VispRgbdTracker tracker(configuration, visp_files);
-                      return run_configuration(
-                          frames, object.name, mesh,
-                          [&](const Frame& f, const Pose& pose) { tracker.start(f, pose); },
-                          [&](const Frame& f, double* ms) { return TrackedPose{tracker.track(f, ms), true}; });
+                      return evaluate_sequence(FrameSource::of(frames), object.name, mesh, tracker.as_run_tracker(),
+                                               start)
+                          .summary();
                     }});
   }
 

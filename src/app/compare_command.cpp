@@ -10,13 +10,13 @@
 #include <optional>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
-#include "bench_runner.h"
 #include "commands.h"
 #include "option_ranges.h"
 #include "icgp/tracker/cue_registry.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/eval/single_body_tracker.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/visp_baseline.h"
@@ -98,10 +98,12 @@ void run_compare(const CompareOptions& o) {
   std::cerr << "loading " << n_frames << " frames of " << o.sequence << "\n";
   std::vector<Frame> frames;
   for (int i = 0; i < n_frames; ++i) frames.push_back(sequence.load(i));
-  const vpHomogeneousMatrix cMo0 = to_homogeneous_matrix(*frames.front().truth(object.name));
+  const Pose start = *frames.front().truth(object.name);
+  const FrameSource colour_frames = FrameSource::of(frames);
 
-  // Each job gives its row; the vpMbIcgTracker job also keeps its run for the overhead line.
-  RgbdRun icg_run;
+  // Each job gives its row; the vpMbIcgTracker job also keeps its conversion times for the
+  // overhead line.
+  std::vector<double> icg_convert_ms;
   std::vector<RowName> names;
   std::vector<TimedJob> jobs;
   auto add_job = [&](RowName name, std::function<TrackingSummary()> run) {
@@ -110,17 +112,20 @@ void run_compare(const CompareOptions& o) {
   };
   for (const std::string& name : kVispConfigs) {
     add_job({kVispTracker, name}, [&, name] {
-                      const std::unique_ptr<vpMbGenericTracker> tracker =
-                          make_visp_tracker(visp_reference_configuration(name), visp_files);
-                      return summarise_visp_run(frames, object.name, mesh,
-                                       track_rgbd_sequence(*tracker, frames, visp_files, cMo0));
+      const std::unique_ptr<vpMbGenericTracker> tracker =
+          make_visp_tracker(visp_reference_configuration(name), visp_files);
+      VispProgram<vpMbGenericTracker> program(*tracker, visp_files, kRgbdCameraTypes);
+      return evaluate_sequence(colour_frames, object.name, mesh, program.as_run_tracker(), start).summary();
     });
   }
   add_job({kIcgTracker, icgp_name}, [&] {
     vpMbIcgTracker tracker(kRgbdTrackerTypes);
     tracker.setTrackerConfig(icgp_config);
-    icg_run = track_rgbd_sequence(tracker, frames, visp_files, cMo0);
-    return summarise_visp_run(frames, object.name, mesh, icg_run);
+    VispProgram<vpMbIcgTracker> program(tracker, visp_files, kRgbdCameraTypes);
+    const TrackingSummary summary =
+        evaluate_sequence(colour_frames, object.name, mesh, program.as_run_tracker(), start).summary();
+    icg_convert_ms = program.convert_ms();
+    return summary;
   });
   // icgp's own Tracker, timed as `icgp bench` does: on the grey image the ViSP-API code
   // gives vpMbIcgTracker (the baseline of the layer's overhead), and on the colour image.
@@ -129,8 +134,11 @@ void run_compare(const CompareOptions& o) {
     cv::Mat& image = frame.colors.front().image;
     if (image.channels() == 3) cv::cvtColor(image, image, cv::COLOR_BGR2GRAY);
   }
-  add_job({kCoreTracker, icgp_name + kGreySuffix}, [&] { return run_icgp(grey_frames, object.name, mesh, icgp_config); });
-  add_job({kCoreTracker, icgp_name + kColourSuffix}, [&] { return run_icgp(frames, object.name, mesh, icgp_config); });
+  add_job({kCoreTracker, icgp_name + kGreySuffix}, [&] {
+    return evaluate_tracker(FrameSource::of(grey_frames), object.name, mesh, icgp_config, start).summary();
+  });
+  add_job({kCoreTracker, icgp_name + kColourSuffix},
+          [&] { return evaluate_tracker(colour_frames, object.name, mesh, icgp_config, start).summary(); });
 
   std::cerr << "vpMbIcgTracker generates its viewpoint models on first use (10-30 s on 2 cores); later runs read them "
                "from the cache\n";
@@ -153,7 +161,7 @@ void run_compare(const CompareOptions& o) {
         "icgp::Tracker::track %.3f ms on the same grey and depth images: %.1f%% of the frame time\n"
         "(median over rounds). Building the grey image and point cloud, the caller's work for either\n"
         "tracker: %.2f ms.\n",
-        icg->summary.median_ms, core->summary.median_ms, overhead_percent, median(icg_run.convert_ms));
+        icg->summary.median_ms, core->summary.median_ms, overhead_percent, median(icg_convert_ms));
 
   if (!o.summary.empty()) {
     std::vector<JsonObject> json_rows;

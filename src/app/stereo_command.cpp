@@ -13,13 +13,13 @@
 #include <visp3/core/vpRGBa.h>
 #include <visp3/core/vpTrackingException.h>
 
-#include "bench_runner.h"
 #include "commands.h"
 #include "option_ranges.h"
 #include "icgp/base/camera_names.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/eval/sequence_run.h"
 #include "icgp/eval/sequence_writer.h"
 #include "icgp/model/model_cache.h"
 #include "icgp/visp/cao_mesh_loader.h"
@@ -29,6 +29,7 @@
 #include "icgp/visp/vpMbIcgTracker.h"
 #include "single_thread_scope.h"
 #include "text_table.h"
+#include "timing_rounds.h"
 
 namespace icgp::app {
 namespace {
@@ -139,56 +140,59 @@ StereoRow run_configuration(const Sequence& sequence, int n_frames, const Sequen
     if (stereo) to_vp_image(second, I2);
   };
 
-  Frame frame = sequence.load(0);
-  convert(frame);
-  const vpHomogeneousMatrix c1Mo0 = to_homogeneous_matrix(*frame.truth(object.name));
-  if (stereo) {
-    // The tracker's "Camera2" is the sequence's stereo camera "Camera3".
-    tracker->setCameraParameters(cam1, cam3);
-    tracker->setCameraTransformationMatrix("Camera2", c3Mc1);
-    tracker->initFromPose(I1, I2, c1Mo0, c3Mc1 * c1Mo0);
-  } else if (cameras == Cameras::kStereoAlone) {
-    tracker->setCameraParameters(cam3);
-    tracker->initFromPose(I1, c3Mc1 * c1Mo0);
-  } else {
-    tracker->setCameraParameters(cam1);
-    tracker->initFromPose(I1, c1Mo0);
-  }
-
-  // Times are of track() alone, single thread, as every icgp benchmark reports them; the
-  // viewpoint models were generated (or read) above, with every core.
-  const SingleThreadScope single_thread;
-  StereoRow row{name, stereo ? 2 : 1};
-  TrackingEvaluation evaluation(mesh);
-  Progress progress(name, n_frames);
-  vpHomogeneousMatrix cMo;
-  for (int i = 0; i < n_frames; ++i) {
-    if (i > 0) {
-      frame = sequence.load(i);
-      convert(frame);
+  const auto start = [&](const Frame& first, const Pose& pose) {
+    convert(first);
+    const vpHomogeneousMatrix c1Mo0 = to_homogeneous_matrix(pose);
+    if (stereo) {
+      // The tracker's "Camera2" is the sequence's stereo camera "Camera3".
+      tracker->setCameraParameters(cam1, cam3);
+      tracker->setCameraTransformationMatrix("Camera2", c3Mc1);
+      tracker->initFromPose(I1, I2, c1Mo0, c3Mc1 * c1Mo0);
+    } else if (cameras == Cameras::kStereoAlone) {
+      tracker->setCameraParameters(cam3);
+      tracker->initFromPose(I1, c3Mc1 * c1Mo0);
+    } else {
+      tracker->setCameraParameters(cam1);
+      tracker->initFromPose(I1, c1Mo0);
     }
+  };
+  const auto track = [&](const Frame& frame) {
+    convert(frame);
+    TrackedFrame outcome;
     const auto begin = Clock::now();
     if (stereo)
       tracker->track(I1, I2);
     else
       tracker->track(I1);
-    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - begin).count();
+    outcome.ms = std::chrono::duration<double, std::milli>(Clock::now() - begin).count();
+    vpHomogeneousMatrix cMo;
     tracker->getPose(cMo);
     if (cameras == Cameras::kStereoAlone) cMo = c3Mc1.inverse() * cMo;
-    bool tracked = true;
+    outcome.reference_T_body = to_pose(cMo);
     try {
       tracker->testTracking();
     } catch (const vpTrackingException&) {
-      tracked = false;
-      ++row.lost;
+      outcome.tracked = false;
     }
-    const Pose estimate = to_pose(cMo);
-    const Pose* truth = frame.truth(object.name);
-    evaluation.add(i, estimate, truth ? std::optional<Pose>(*truth) : std::nullopt, tracked, ms,
-                   tracker->getTrackingQuality());
-    if (truth) row.mean_abs_axis_mm += (estimate.translation() - truth->translation()).cwiseAbs() * 1000.0;
-    progress.done(i + 1);
-  }
+    outcome.quality = tracker->getTrackingQuality();
+    return outcome;
+  };
+
+  // Times are of track() alone, single thread, as every icgp benchmark reports them; the
+  // viewpoint models were generated (or read) above, with every core.
+  const SingleThreadScope single_thread;
+  StereoRow row{name, stereo ? 2 : 1};
+  Progress progress(name, n_frames);
+  const FrameSource frames = FrameSource::of(sequence, n_frames);
+  const Pose first_truth = *frames.load(0).truth(object.name);
+  const TrackingEvaluation evaluation = evaluate_sequence(
+      frames, object.name, mesh, {start, track}, first_truth,
+      [&](const Frame& frame, const TrackedFrame& outcome, const FrameEvaluation&) {
+        row.lost += !outcome.tracked;
+        if (const Pose* truth = frame.truth(object.name))
+          row.mean_abs_axis_mm += (outcome.reference_T_body.translation() - truth->translation()).cwiseAbs() * 1000.0;
+        progress.done(frame.index + 1);
+      });
   row.summary = evaluation.summary();
   if (!csv_path.empty()) evaluation.write_csv(csv_path);
   if (row.summary.frames_with_truth > 0) row.mean_abs_axis_mm /= row.summary.frames_with_truth;

@@ -15,12 +15,12 @@
 #include <sstream>
 #include <visp3/core/vpException.h>
 
-#include "bench_runner.h"
 #include "commands.h"
 #include "icgp/tracker/cue_registry.h"
 #include "icgp/eval/gnuplot.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/eval/single_body_tracker.h"
 #include "icgp/eval/sequence_writer.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/visp_baseline.h"
@@ -240,7 +240,7 @@ class CellTrackers {
 
   static Job icgp_job(const std::string& name, const TrackerConfig& config) {
     return {name, [config](const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh) {
-              return evaluate_icgp(frames, body, mesh, config);
+              return evaluate_tracker(FrameSource::of(frames), body, mesh, config, *frames.front().truth(body));
             }};
   }
 
@@ -251,23 +251,8 @@ class CellTrackers {
     const std::string mesh_path = model.mesh_path;
     return {name, [=](const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh) {
               VispRgbdTracker tracker(configuration, VispModelFiles::written_for_mesh(mesh_path, files_dir));
-              Pose last;
-              return evaluate_configuration(
-                  frames, body, mesh,
-                  [&](const Frame& f, const Pose& pose) {
-                    tracker.start(f, pose);
-                    last = pose;
-                  },
-                  [&](const Frame& f, double* ms) {
-                    const auto begin = Clock::now();
-                    try {
-                      last = tracker.track(f, ms);
-                      return TrackedPose{last, true};
-                    } catch (const vpException&) {
-                      *ms = std::chrono::duration<double, std::milli>(Clock::now() - begin).count();
-                      return TrackedPose{last, false};
-                    }
-                  });
+              return evaluate_sequence(FrameSource::of(frames), body, mesh, tracker.as_run_tracker(),
+                                       *frames.front().truth(body));
             }};
   }
 

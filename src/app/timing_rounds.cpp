@@ -7,6 +7,7 @@
 #include <exception>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 namespace icgp::app {
 
@@ -65,6 +66,13 @@ const TimedRow* find_row(const std::vector<TimedRow>& rows, const std::string& n
   for (const TimedRow& row : rows)
     if (row.name == name) return &row;
   return nullptr;
+}
+
+void throw_if_failed(const std::vector<std::string>& failures) {
+  if (failures.empty()) return;
+  std::string names;
+  for (const std::string& name : failures) names += (names.empty() ? "" : ", ") + name;
+  throw std::runtime_error(std::to_string(failures.size()) + " configuration(s) failed: " + names);
 }
 
 std::vector<TableColumn> timing_columns() { return {{"median ms", 10}, {"Hz", 8}, {"speed vs ViSP", 14}}; }

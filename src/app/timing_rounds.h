@@ -45,6 +45,9 @@ double speed_ratio(const TimedRow* reference, const TimedRow& row);
 /// The row named `name`, or nullptr.
 const TimedRow* find_row(const std::vector<TimedRow>& rows, const std::string& name);
 
+/// After the table: throws naming the configurations that failed, if any.
+void throw_if_failed(const std::vector<std::string>& failures);
+
 /// "median ms", "Hz" and "speed vs ViSP": the columns of timing_cells.
 std::vector<TableColumn> timing_columns();
 /// Appends `row`'s median ms, Hz and speed against `reference` to the table's row and ends it.

@@ -18,13 +18,13 @@
 #include "icgp/eval/joint_evaluation.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/eval/single_body_tracker.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/tracker/tracker_builder.h"
 #include "icgp/visp/visp_camera_xml.h"
 #include "overlay_video.h"
 #include "sequence_model.h"
 #include "single_thread_scope.h"
-#include "timed_icg_tracker.h"
 
 namespace icgp::app {
 namespace {
@@ -163,8 +163,7 @@ void run_single_body_track(const TrackOptions& o, const Sequence& sequence) {
             << (detect ? "detection (no pose given)" : o.init_pose.empty() ? "first ground-truth pose" : o.init_pose)
             << "\n" << std::flush;
 
-  TimedIcgTracker tracker(config, mesh, body);
-  TrackingEvaluation evaluation(mesh);
+  SingleBodyTracker tracker(config, mesh, body);
   std::optional<OverlayVideo> video;
   if (!o.video.empty()) video.emplace(o.video, mesh, sequence.frame_rate());
 
@@ -173,14 +172,13 @@ void run_single_body_track(const TrackOptions& o, const Sequence& sequence) {
   const SingleThreadScope single_thread;
   // Detection: frames until the body is found are reported lost at the identity pose.
   bool started = !detect;
-  if (!detect) tracker.start(first, initial_pose);
+  BodyResult result;  // the last frame's, for its cue columns
+  bool found_again = false;
   int frames_without_depth = 0, frames_found_again = 0;
-  for (int i = 0; i < sequence.size(); ++i) {
-    const Frame frame = i == 0 ? first : sequence.load(i);
-    if (has_no_depth(frame)) ++frames_without_depth;
-    double ms = 0.0;
-    BodyResult result;
-    bool found_again = false;
+  const auto start = [&](const Frame& frame, const Pose& pose) { tracker.start(frame, pose); };
+  const auto track = [&](const Frame& frame) {
+    TrackedFrame outcome;
+    found_again = false;
     if (!started) {
       const auto begin = std::chrono::steady_clock::now();
       const Detection detection = tracker.start_by_detection(frame);
@@ -188,20 +186,31 @@ void run_single_body_track(const TrackOptions& o, const Sequence& sequence) {
       if (started) {
         result = tracker.track(frame);
       } else {
-        result.body = body;
+        result = BodyResult{body};
         if (!o.quiet) std::cout << "frame " << frame.index << ": not found: " << detection.why_not << "\n";
       }
-      ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+      outcome.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
     } else {
-      result = tracker.track(frame, &ms, &found_again);
+      result = tracker.track(frame, &outcome.ms, &found_again);
       frames_found_again += found_again;
     }
-    const std::optional<Pose> truth = truth_of(frame, body);
-    const FrameEvaluation& e =
-        evaluation.add(frame.index, result.reference_T_body, truth, result.tracked, ms, result.quality);
-    if (!o.quiet) std::cout << frame_line(e) << "  " << cue_columns(result) << (found_again ? "  found again" : "") << "\n";
-    if (video) video->write(frame.colors.at(0), result.reference_T_body, truth ? &*truth : nullptr, caption(e));
-  }
+    outcome.reference_T_body = result.reference_T_body;
+    outcome.tracked = result.tracked;
+    outcome.quality = result.quality;
+    return outcome;
+  };
+  // The first frame was read above: the run reads it from memory.
+  FrameSource frames = FrameSource::of(sequence);
+  frames.load = [&](int index) { return index == 0 ? first : sequence.load(index); };
+  const TrackingEvaluation evaluation = evaluate_sequence(
+      frames, body, mesh, {start, track}, detect ? std::nullopt : std::optional<Pose>(initial_pose),
+      [&](const Frame& frame, const TrackedFrame& outcome, const FrameEvaluation& e) {
+        if (has_no_depth(frame)) ++frames_without_depth;
+        if (!o.quiet)
+          std::cout << frame_line(e) << "  " << cue_columns(result) << (found_again ? "  found again" : "") << "\n";
+        const std::optional<Pose> truth = truth_of(frame, body);
+        if (video) video->write(frame.colors.at(0), outcome.reference_T_body, truth ? &*truth : nullptr, caption(e));
+      });
 
   const TrackingSummary summary = evaluation.summary();
   print_summary(summary);
@@ -339,15 +348,27 @@ void run_multi_body_track(const TrackOptions& o, const Sequence& sequence) {
   if (!o.quiet)
     std::printf("\nframe      t mm    r deg  quality  tracked       ms  body  joint estimate/truth  cue score/sigma\n");
   const SingleThreadScope single_thread;
-  tracker->start(first);
   int frames_without_depth = 0;
   std::vector<double> frame_ms;
-  for (int i = 0; i < sequence.size(); ++i) {
-    const Frame frame = i == 0 ? first : sequence.load(i);
-    if (has_no_depth(frame)) ++frames_without_depth;
+  std::vector<BodyResult> results;  // every body's, of the frame being reported
+  // Every body's pose and joint values are set above: starting reads them all.
+  const auto start = [&](const Frame& frame, const Pose&) { tracker->start(frame); };
+  const auto track = [&](const Frame& frame) {
+    TrackedFrame outcome;
     const auto begin = std::chrono::steady_clock::now();
-    const std::vector<BodyResult> results = tracker->track(frame);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    results = tracker->track(frame);
+    outcome.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    const BodyResult& main_result = result_of(results, main.name);
+    outcome.reference_T_body = main_result.reference_T_body;
+    outcome.tracked = main_result.tracked;
+    outcome.quality = main_result.quality;
+    return outcome;
+  };
+  FrameSource frames = FrameSource::of(sequence);
+  frames.load = [&](int index) { return index == 0 ? first : sequence.load(index); };
+  run_sequence(frames, {start, track}, *first.truth(main.name), [&](const Frame& frame, const TrackedFrame& outcome) {
+    if (has_no_depth(frame)) ++frames_without_depth;
+    const double ms = outcome.ms;
     frame_ms.push_back(ms);
     for (TrackedBody& body : bodies) {
       const std::string& name = body.object->name;
@@ -366,7 +387,7 @@ void run_multi_body_track(const TrackOptions& o, const Sequence& sequence) {
         std::cout << frame_line(e) << "  " << name << joint_columns(body, joint_values, joint_truth) << "  "
                   << cue_columns(result) << "\n";
     }
-  }
+  });
 
   for (const TrackedBody& body : bodies) print_body_summary(body);
   const double median_ms = median(frame_ms);

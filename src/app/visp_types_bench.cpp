@@ -7,11 +7,11 @@
 #include <iostream>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
-#include "bench_runner.h"
 #include "timing_rounds.h"
 #include "single_thread_scope.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
+#include "icgp/eval/sequence_run.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/visp_baseline.h"
@@ -68,8 +68,10 @@ TrackingSummary run_class(const std::vector<Frame>& frames, const SequenceObject
   // without PCL (Debian's) refuses at the first frame: both classes get ViSP's own method.
   if (types.depth & kNormal)
     tracker.setDepthNormalFeatureEstimationMethod(vpMbtFaceDepthNormal::ROBUST_FEATURE_ESTIMATION);
-  const vpHomogeneousMatrix cMo0 = to_homogeneous_matrix(*frames.front().truth(object.name));
-  return summarise_visp_run(frames, object.name, mesh, track_visp_sequence(tracker, frames, files, cMo0, types, colour));
+  VispProgram<TrackerT> program(tracker, files, types, colour);
+  return evaluate_sequence(FrameSource::of(frames), object.name, mesh, program.as_run_tracker(),
+                           *frames.front().truth(object.name))
+      .summary();
 }
 
 struct ResultRow {

@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpException.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
@@ -170,18 +171,23 @@ Pose VispRgbdTracker::track(const Frame& frame, double* track_ms) {
   return to_pose(tracker_->getPose());
 }
 
-VispBaselineRun run_visp_baseline(const std::vector<Frame>& frames, const VispTrackerConfiguration& configuration,
-                                  const VispModelFiles& files, const Pose& reference_T_body) {
-  VispBaselineRun run;
-  if (frames.empty()) return run;
-  VispRgbdTracker tracker(configuration, files);
-  tracker.start(frames.front(), reference_T_body);
-  for (const Frame& frame : frames) {
-    double ms = 0.0;
-    run.poses.push_back(tracker.track(frame, &ms));
-    run.ms.push_back(ms);
-  }
-  return run;
+RunTracker VispRgbdTracker::as_run_tracker() {
+  return {[this](const Frame& frame, const Pose& pose) {
+            start(frame, pose);
+            last_ = pose;
+          },
+          [this](const Frame& frame) {
+            TrackedFrame outcome;
+            const auto begin = std::chrono::steady_clock::now();
+            try {
+              last_ = track(frame, &outcome.ms);
+            } catch (const vpException&) {
+              outcome.tracked = false;
+              outcome.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+            }
+            outcome.reference_T_body = last_;
+            return outcome;
+          }};
 }
 
 }  // namespace icgp

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// ViSP's own vpMbGenericTracker through icgp's baseline runner on the teabox-blender frames:
+// ViSP's own vpMbGenericTracker through icgp's baseline adapter and sequence runner on the teabox-blender frames:
 // it must track as ViSP's tutorial does (tests/data/README.md: 0.66 mm mean on edge + dense depth).
 #include <catch2/catch.hpp>
 #include <filesystem>
 
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
+#include "icgp/eval/sequence_run.h"
 #include "icgp/visp/visp_baseline.h"
 #include "icgp/visp/visp_camera_xml.h"
 
@@ -29,16 +30,19 @@ TEST_CASE("vpMbGenericTracker edge + dense depth follows 10 teabox-blender frame
   REQUIRE(edge_depth.edge);
   REQUIRE(edge_depth.dense_depth);
   const VispModelFiles files = VispModelFiles::beside_model((kBlender / "teabox.cao").string());
-  const VispBaselineRun run = run_visp_baseline(frames, edge_depth, files, *frames.front().truth());
-
-  REQUIRE(run.poses.size() == frames.size());
-  REQUIRE(run.ms.size() == frames.size());
+  VispRgbdTracker tracker(edge_depth, files);
+  int tracked_frames = 0;
   double sum_t_mm = 0.0, sum_r_deg = 0.0;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    sum_t_mm += translation_error_mm(run.poses[i], *frames[i].truth());
-    sum_r_deg += rotation_error_deg(run.poses[i], *frames[i].truth());
-    CHECK(run.ms[i] > 0.0);
-  }
+  run_sequence(FrameSource::of(frames), tracker.as_run_tracker(), *frames.front().truth(),
+               [&](const Frame& frame, const TrackedFrame& outcome) {
+                 CHECK(frame.index == 20 + tracked_frames);
+                 CHECK(outcome.tracked);
+                 CHECK(outcome.ms > 0.0);
+                 sum_t_mm += translation_error_mm(outcome.reference_T_body, *frame.truth());
+                 sum_r_deg += rotation_error_deg(outcome.reference_T_body, *frame.truth());
+                 ++tracked_frames;
+               });
+  REQUIRE(tracked_frames == static_cast<int>(frames.size()));
   CHECK(sum_t_mm / frames.size() < 2.0);
   CHECK(sum_r_deg / frames.size() < 0.5);
 }

@@ -23,6 +23,7 @@
 #include "icgp/base/pose.h"
 #include "icgp/visp/conversions.h"
 #include "icgp/base/standard_stream_capture.h"
+#include "icgp/eval/sequence_run.h"
 #include "icgp/visp/visp_baseline.h"
 
 namespace icgp {
@@ -101,13 +102,6 @@ class StdoutSilencer {
 
 }  // namespace detail
 
-/// A run of track_rgbd_sequence, one entry per frame.
-struct RgbdRun {
-  std::vector<Pose> poses;         ///< cMo (getPose) after the frame
-  std::vector<double> track_ms;    ///< the track() call alone
-  std::vector<double> convert_ms;  ///< building the grey image and the point cloud
-};
-
 /// Which of ViSP's tracker types a program gives its colour camera (kColorCamera, with
 /// EDGE_TRACKER and/or KLT_TRACKER) and its depth camera (kDepthCamera, with
 /// DEPTH_DENSE_TRACKER and/or DEPTH_NORMAL_TRACKER); 0 leaves that camera out. The colour
@@ -131,109 +125,159 @@ struct VispCameraTypes {
   }
 };
 
-/// Tracks `frames` as a ViSP program of the cameras `types` does, using only calls that
-/// vpMbGenericTracker and vpMbIcgTracker share with identical signatures: the model for each
-/// camera, the cameras of the first frame (the depth camera at depth_M_color), initFromPose
-/// at `cMo0` (the colour camera's pose) on the first frame's grey image, then per frame
-/// track() with the colour camera's grey image (`colour`: its RGBa image) and the depth
-/// camera's organised point cloud, and getPose(). The poses returned are the colour
-/// camera's, whichever camera is the reference.
+/// A tracker driven as a ViSP program of the cameras `types` drives it, using only calls that
+/// vpMbGenericTracker and vpMbIcgTracker share with identical signatures: start() loads the
+/// model for each camera, sets the cameras of the first frame (the depth camera at
+/// depth_M_color) and calls initFromPose at the colour camera's pose on the first frame's
+/// grey image; track() calls track() with the colour camera's grey image (`colour`: its
+/// RGBa image) and the depth camera's organised point cloud, then getPose(). Poses given
+/// and returned are the colour camera's, whichever camera is the reference.
 ///
 /// The tracker's own parameters are the caller's business and must be set before (a ViSP
 /// XML with loadConfigFile, icgp's YAML or setTrackerConfig): the cameras set here override
 /// the camera blocks of those files, so both trackers see the calibration of the frames.
-/// Both trackers run OpenMP / OpenCV loops: limit threads around this call for timings
+/// Both trackers run OpenMP / OpenCV loops: limit threads around a run for timings
 /// comparable with a single-threaded tracker.
+template <class TrackerT>
+class VispProgram {
+ public:
+  VispProgram(TrackerT& tracker, const VispModelFiles& files, const VispCameraTypes& types, bool colour = false)
+      : tracker_(tracker), files_(files), types_(types), colour_(colour && types.color) {}
+  // track() hands ViSP pointers into this object's own buffers.
+  VispProgram(const VispProgram&) = delete;
+  VispProgram& operator=(const VispProgram&) = delete;
+
+  void start(const Frame& first, const Pose& color_T_body) {
+    const bool with_depth = types_.depth != 0;
+    input_.convert(first, with_depth);
+    // The depth camera's pose from the colour camera's, and back: a tracker without the
+    // colour camera gives and takes the depth camera's.
+    const vpHomogeneousMatrix depth_M_color =
+        with_depth ? to_homogeneous_matrix(first.depths.front().camera_T_reference) : vpHomogeneousMatrix();
+    reference_M_color_ = types_.color ? vpHomogeneousMatrix() : depth_M_color;
+    std::map<std::string, std::string> models;
+    std::map<std::string, vpCameraParameters> cameras;
+    std::map<std::string, vpHomogeneousMatrix> camera_M_reference;
+    if (types_.color) {
+      models[kColorCamera] = files_.model;
+      cameras[kColorCamera] = to_camera_parameters(first.colors.front().intrinsics);
+      camera_M_reference[kColorCamera] = vpHomogeneousMatrix();
+    }
+    if (with_depth) {
+      models[kDepthCamera] = files_.model;
+      cameras[kDepthCamera] = to_camera_parameters(first.depths.front().intrinsics);
+      camera_M_reference[kDepthCamera] = depth_M_color * reference_M_color_.inverse();
+    }
+    {
+      const detail::StdoutSilencer quiet_parser;
+      tracker_.loadModel(models);
+    }
+    tracker_.setCameraParameters(cameras);
+    tracker_.setCameraTransformationMatrix(camera_M_reference);
+    // A depth camera alone still takes an image of its size: its depth features read only that.
+    if (!types_.color)
+      depth_sized_.resize(static_cast<unsigned int>(first.depths.front().depth.rows),
+                          static_cast<unsigned int>(first.depths.front().depth.cols), 0);
+    tracker_.initFromPose(reference_image(), reference_M_color_ * to_homogeneous_matrix(color_T_body));
+    images_ = {{types_.color ? kColorCamera : kDepthCamera, &reference_image()}};
+  }
+
+  TrackedFrame track(const Frame& frame) {
+    using Clock = std::chrono::steady_clock;
+    const auto ms_between = [](Clock::time_point a, Clock::time_point b) {
+      return std::chrono::duration<double, std::milli>(b - a).count();
+    };
+    const bool with_depth = types_.depth != 0;
+    const auto begin = Clock::now();
+    input_.convert(frame, with_depth);
+    widths_[kDepthCamera] = input_.depth_width;
+    heights_[kDepthCamera] = input_.depth_height;
+    if (colour_) {
+      const cv::Mat& image = frame.colors.front().image;
+      if (image.channels() == 1) cv::cvtColor(image, bgr_, cv::COLOR_GRAY2BGR);
+      to_vp_image(image.channels() == 1 ? bgr_ : image, rgba_);
+    }
+    const auto converted = Clock::now();
+    if (colour_ && with_depth)
+      tracker_.track(colour_images_, clouds_, widths_, heights_);
+    else if (colour_)
+      tracker_.track(colour_images_);
+    else if (with_depth)
+      tracker_.track(images_, clouds_, widths_, heights_);
+    else
+      tracker_.track(images_);
+    const auto tracked = Clock::now();
+    vpHomogeneousMatrix cMo;
+    tracker_.getPose(cMo);
+    convert_ms_.push_back(ms_between(begin, converted));
+    TrackedFrame outcome;
+    outcome.reference_T_body = to_pose(reference_M_color_.inverse() * cMo);
+    outcome.ms = ms_between(converted, tracked);
+    return outcome;
+  }
+
+  /// This program as run_sequence drives it.
+  RunTracker as_run_tracker() {
+    return {[this](const Frame& first, const Pose& pose) { start(first, pose); },
+            [this](const Frame& frame) { return track(frame); }};
+  }
+
+  /// Building the grey image and the point cloud (the RGBa image too), per frame tracked.
+  const std::vector<double>& convert_ms() const { return convert_ms_; }
+
+ private:
+  const vpImage<unsigned char>& reference_image() const { return types_.color ? input_.grey : depth_sized_; }
+
+  TrackerT& tracker_;
+  VispModelFiles files_;
+  VispCameraTypes types_;
+  bool colour_;
+  VispRgbdFrame input_;
+  vpHomogeneousMatrix reference_M_color_;
+  vpImage<unsigned char> depth_sized_;
+  vpImage<vpRGBa> rgba_;
+  cv::Mat bgr_;
+  // What track() is given, in ViSP's shapes, kept from frame to frame.
+  std::map<std::string, const vpImage<unsigned char>*> images_;
+  std::map<std::string, const vpImage<vpRGBa>*> colour_images_{{kColorCamera, &rgba_}};
+  std::map<std::string, const std::vector<vpColVector>*> clouds_{{kDepthCamera, &input_.point_cloud}};
+  std::map<std::string, unsigned int> widths_, heights_;
+  std::vector<double> convert_ms_;
+};
+
+/// A run of track_visp_sequence, one entry per frame.
+struct RgbdRun {
+  std::vector<Pose> poses;         ///< cMo (getPose) after the frame
+  std::vector<double> track_ms;    ///< the track() call alone
+  std::vector<double> convert_ms;  ///< building the grey image and the point cloud
+};
+
+/// Runs `frames` through VispProgram from the colour camera's pose `cMo0` on the first
+/// frame (run_sequence), keeping every frame's pose and times.
 template <class TrackerT>
 RgbdRun track_visp_sequence(TrackerT& tracker, const std::vector<Frame>& frames, const VispModelFiles& files,
                             const vpHomogeneousMatrix& cMo0, const VispCameraTypes& types, bool colour = false) {
-  using Clock = std::chrono::steady_clock;
-  const auto ms_between = [](Clock::time_point a, Clock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-  };
-
+  VispProgram<TrackerT> program(tracker, files, types, colour);
   RgbdRun run;
-  if (frames.empty()) return run;
-  const bool with_depth = types.depth != 0;
-  VispRgbdFrame input;
-  input.convert(frames.front(), with_depth);
-  // The depth camera's pose from the colour camera's, and back: a tracker without the
-  // colour camera gives and takes the depth camera's.
-  const vpHomogeneousMatrix depth_M_color =
-      with_depth ? to_homogeneous_matrix(frames.front().depths.front().camera_T_reference) : vpHomogeneousMatrix();
-  const vpHomogeneousMatrix reference_M_color = types.color ? vpHomogeneousMatrix() : depth_M_color;
-  std::map<std::string, std::string> models;
-  std::map<std::string, vpCameraParameters> cameras;
-  std::map<std::string, vpHomogeneousMatrix> camera_M_reference;
-  if (types.color) {
-    models[kColorCamera] = files.model;
-    cameras[kColorCamera] = to_camera_parameters(frames.front().colors.front().intrinsics);
-    camera_M_reference[kColorCamera] = vpHomogeneousMatrix();
-  }
-  if (with_depth) {
-    models[kDepthCamera] = files.model;
-    cameras[kDepthCamera] = to_camera_parameters(frames.front().depths.front().intrinsics);
-    camera_M_reference[kDepthCamera] = depth_M_color * reference_M_color.inverse();
-  }
-  {
-    const detail::StdoutSilencer quiet_parser;
-    tracker.loadModel(models);
-  }
-  tracker.setCameraParameters(cameras);
-  tracker.setCameraTransformationMatrix(camera_M_reference);
-  // A depth camera alone still takes an image of its size: its depth features read only that.
-  vpImage<unsigned char> depth_sized;
-  if (!types.color)
-    depth_sized.resize(static_cast<unsigned int>(frames.front().depths.front().depth.rows),
-                       static_cast<unsigned int>(frames.front().depths.front().depth.cols), 0);
-  const vpImage<unsigned char>& reference_image = types.color ? input.grey : depth_sized;
-  tracker.initFromPose(reference_image, reference_M_color * cMo0);
-
-  vpImage<vpRGBa> rgba;
-  cv::Mat bgr;
-  std::map<std::string, const vpImage<unsigned char>*> images = {
-      {types.color ? kColorCamera : kDepthCamera, &reference_image}};
-  std::map<std::string, const vpImage<vpRGBa>*> colour_images = {{kColorCamera, &rgba}};
-  std::map<std::string, const std::vector<vpColVector>*> clouds = {{kDepthCamera, &input.point_cloud}};
-  std::map<std::string, unsigned int> widths, heights;
-  vpHomogeneousMatrix cMo;
-  // The first frame is tracked too, as ViSP's tutorials do after initFromPose.
-  for (const Frame& frame : frames) {
-    const auto begin = Clock::now();
-    input.convert(frame, with_depth);
-    widths[kDepthCamera] = input.depth_width;
-    heights[kDepthCamera] = input.depth_height;
-    const bool track_colour = colour && types.color;
-    if (track_colour) {
-      const cv::Mat& image = frame.colors.front().image;
-      if (image.channels() == 1) cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
-      to_vp_image(image.channels() == 1 ? bgr : image, rgba);
-    }
-    const auto converted = Clock::now();
-    if (track_colour && with_depth)
-      tracker.track(colour_images, clouds, widths, heights);
-    else if (track_colour)
-      tracker.track(colour_images);
-    else if (with_depth)
-      tracker.track(images, clouds, widths, heights);
-    else
-      tracker.track(images);
-    const auto tracked = Clock::now();
-    tracker.getPose(cMo);
-    run.poses.push_back(to_pose(reference_M_color.inverse() * cMo));
-    run.convert_ms.push_back(ms_between(begin, converted));
-    run.track_ms.push_back(ms_between(converted, tracked));
-  }
+  run_sequence(FrameSource::of(frames), program.as_run_tracker(), to_pose(cMo0),
+               [&](const Frame&, const TrackedFrame& outcome) {
+                 run.poses.push_back(outcome.reference_T_body);
+                 run.track_ms.push_back(outcome.ms);
+               });
+  run.convert_ms = program.convert_ms();
   return run;
 }
 
-/// Tracks `frames` as a ViSP RGB-D program does (track_visp_sequence with kRgbdTrackerTypes):
+/// The cameras of ViSP's RGB-D programs (kRgbdTrackerTypes).
+inline const VispCameraTypes kRgbdCameraTypes{kRgbdTrackerTypes[0], kRgbdTrackerTypes[1]};
+
+/// Tracks `frames` as a ViSP RGB-D program does (track_visp_sequence with kRgbdCameraTypes):
 /// colour camera "Camera1" as reference with its grey image, depth camera "Camera2" with
 /// its organised point cloud.
 template <class TrackerT>
 RgbdRun track_rgbd_sequence(TrackerT& tracker, const std::vector<Frame>& frames, const VispModelFiles& files,
                             const vpHomogeneousMatrix& cMo0) {
-  return track_visp_sequence(tracker, frames, files, cMo0, VispCameraTypes{kRgbdTrackerTypes[0], kRgbdTrackerTypes[1]});
+  return track_visp_sequence(tracker, frames, files, cMo0, kRgbdCameraTypes);
 }
 
 }  // namespace icgp

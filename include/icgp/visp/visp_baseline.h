@@ -7,6 +7,7 @@
 
 #include "icgp/base/frame.h"
 #include "icgp/base/pose.h"
+#include "icgp/eval/sequence_run.h"
 
 class vpMbGenericTracker;
 
@@ -74,6 +75,10 @@ class VispRgbdTracker {
   /// vpMbGenericTracker::track alone: image conversion and the point cloud are excluded.
   Pose track(const Frame& frame, double* track_ms = nullptr);
 
+  /// This tracker as run_sequence drives it. ViSP throws when it cannot track (too few
+  /// features): that frame is lost and keeps the last pose.
+  RunTracker as_run_tracker();
+
  private:
   void convert(const Frame& frame);
 
@@ -81,17 +86,7 @@ class VispRgbdTracker {
   VispTrackerConfiguration configuration_;
   std::unique_ptr<vpMbGenericTracker> tracker_;
   std::unique_ptr<Buffers> buffers_;
+  Pose last_;  ///< the pose a frame ViSP could not track keeps
 };
-
-/// One configuration over a run of frames, as ViSP's tutorial does it: start on the first
-/// frame at `reference_T_body`, then track every frame, the first included.
-struct VispBaselineRun {
-  std::vector<Pose> poses;  ///< cMo per frame
-  std::vector<double> ms;   ///< vpMbGenericTracker::track per frame
-};
-/// ViSP is built with OpenMP and OpenCV with threads: for timings comparable to a
-/// single-threaded tracker, call this with both limited to one thread (icgp bench does).
-VispBaselineRun run_visp_baseline(const std::vector<Frame>& frames, const VispTrackerConfiguration& configuration,
-                                  const VispModelFiles& files, const Pose& reference_T_body);
 
 }  // namespace icgp

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The one loop that runs a tracker over a sequence: every command, benchmark, ViSP program
+// and binding that tracks a sequence goes through run_sequence, so that they start, time and
+// evaluate a tracker alike.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "icgp/base/frame.h"
+#include "icgp/base/mesh.h"
+#include "icgp/base/pose.h"
+#include "icgp/eval/metrics.h"
+
+namespace icgp {
+
+class Sequence;
+
+/// What a tracker reports for its body after one frame.
+struct TrackedFrame {
+  Pose reference_T_body;
+  /// Whether the tracker holds the body as tracked. vpMbGenericTracker has no such flag: a
+  /// frame it tracks without throwing counts as tracked.
+  bool tracked = true;
+  double quality = std::numeric_limits<double>::quiet_NaN();
+  double ms = 0.0;  ///< the tracking call alone, not loading or converting the frame
+};
+
+/// A tracker as a run drives it: `start` puts the body at a pose on the first frame and
+/// starts the tracker there; `track` tracks one frame.
+struct RunTracker {
+  std::function<void(const Frame& first, const Pose& reference_T_body)> start;
+  std::function<TrackedFrame(const Frame&)> track;
+};
+
+/// The frames of a run, read one at a time in order.
+struct FrameSource {
+  int count = 0;
+  std::function<Frame(int index)> load;
+
+  /// The first `count` frames of `sequence` (all of them when count < 0 or beyond its end).
+  static FrameSource of(const Sequence& sequence, int count = -1);
+  /// Frames already in memory.
+  static FrameSource of(const std::vector<Frame>& frames);
+};
+
+/// Loads each frame, starts the tracker on the first at `start_pose` (none: the tracker finds
+/// the body itself, e.g. by detection, and `tracker.start` is not called), tracks every frame
+/// with the first included, as ViSP's programs do after initFromPose, and hands each frame
+/// and its outcome to `on_frame`.
+void run_sequence(const FrameSource& frames, const RunTracker& tracker, const std::optional<Pose>& start_pose,
+                  const std::function<void(const Frame&, const TrackedFrame&)>& on_frame);
+
+/// Sees each frame of evaluate_sequence with its outcome and its evaluation.
+using EvaluatedFrameObserver = std::function<void(const Frame&, const TrackedFrame&, const FrameEvaluation&)>;
+
+/// run_sequence, with the pose of `body` evaluated against each frame's ground truth (ADD and
+/// ADD-S on `mesh`).
+TrackingEvaluation evaluate_sequence(const FrameSource& frames, const std::string& body, const Mesh& mesh,
+                                     const RunTracker& tracker, const std::optional<Pose>& start_pose,
+                                     const EvaluatedFrameObserver& on_frame = nullptr);
+
+}  // namespace icgp
