@@ -12,6 +12,7 @@
 Tracker      the tracker on NumPy images (help(icgp.Tracker))
 Sequence     RGB-D sequences as `icgp track` reads them; make_sequence renders one
 Evaluation   the errors and AUCs `icgp track` reports, for poses tracked here
+evaluate_tracker  a sequence tracked and evaluated as `icgp bench` does, in one call
 servo        scenarios, closed-loop runs and batch trials (local or on a Dask cluster)
 Error        every error of icgp's C++ core, with the message the icgp program prints
 """
@@ -39,6 +40,7 @@ from ._icgp import (  # noqa: E402,F401  (the package's public names)
     Tracker,
     TrackResult,
     __version__,
+    evaluate_tracker,
     make_sequence,
     models_dir,
     set_num_threads,

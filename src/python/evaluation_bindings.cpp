@@ -8,9 +8,14 @@
 
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
+#include <utility>
 
 #include "bindings.h"
 #include "icgp/eval/metrics.h"
+#include "icgp/eval/sequence.h"
+#include "icgp/eval/sequence_run.h"
+#include "icgp/eval/single_body_tracker.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "numpy_conversions.h"
 
@@ -23,8 +28,34 @@ namespace py = pybind11;
 struct Evaluation {
   explicit Evaluation(const std::filesystem::path& model, double scale)
       : evaluation(load_any_mesh(model.string(), scale)) {}
+  explicit Evaluation(TrackingEvaluation done) : evaluation(std::move(done)) {}
   TrackingEvaluation evaluation;
 };
+
+/// icgp.evaluate_tracker: the sequence's object tracked by icgp's tracker from the first
+/// frame's ground truth, as `icgp bench` runs it (eval/single_body_tracker.h).
+Evaluation evaluate(const Sequence& sequence, const py::object& model, const py::object& config, int frames,
+                    const py::dict& settings) {
+  if (sequence.objects().size() != 1)
+    throw std::invalid_argument("evaluate_tracker: the sequence in " + sequence.directory() + " has " +
+                                std::to_string(sequence.objects().size()) + " objects; expected one");
+  const SequenceObject& object = sequence.objects().front();
+  const std::string model_path = model.is_none() ? object.mesh_path : py::str(model).cast<std::string>();
+  if (model_path.empty())
+    throw std::invalid_argument("evaluate_tracker: the sequence in " + sequence.directory() +
+                                " names no model for '" + object.name + "': give model=");
+  const FrameSource source = FrameSource::of(sequence, frames);
+  if (source.count == 0) throw std::invalid_argument("evaluate_tracker: no frames to track");
+  const Frame first = source.load(0);
+  const Pose* start = first.truth(object.name);
+  if (!start)
+    throw std::invalid_argument("evaluate_tracker: the first frame of " + sequence.directory() +
+                                " has no ground truth for '" + object.name + "' to start from");
+  const Mesh mesh = load_any_mesh(model_path);
+  const TrackerConfig tracker_config = icgp::python::tracker_config(config, settings);
+  py::gil_scoped_release released;
+  return Evaluation(evaluate_tracker(source, object.name, mesh, tracker_config, *start));
+}
 
 py::dict summary_dict(const TrackingSummary& s) {
   py::dict d;
@@ -81,6 +112,19 @@ median and mean ms, as `icgp track --summary` writes them.
            "The summary `icgp track --summary` writes, as a dict.")
       .def("write_csv", [](const Evaluation& e, const std::filesystem::path& path) { e.evaluation.write_csv(path.string()); },
            py::arg("path"), "Writes the per-frame CSV `icgp track --csv` writes.");
+
+  m.def(
+      "evaluate_tracker",
+      [](const Sequence& sequence, const py::object& model, const py::object& config, int frames,
+         const py::kwargs& settings) { return evaluate(sequence, model, config, frames, settings); },
+      py::arg("sequence"), py::arg("model") = py::none(), py::arg("config") = py::none(), py::kw_only(),
+      py::arg("frames") = -1,
+      R"doc(Tracks a sequence's object with icgp's tracker as `icgp bench` does, and returns its Evaluation.
+
+The same loop as every icgp command and benchmark: start at the first frame's ground truth, track
+every frame (the first included), time the tracking call alone. `model` defaults to the
+sequence's; `config` is None, a YAML file or a dict, keyword settings read over it (as Tracker);
+`frames` limits the run to the first frames (-1: all).)doc");
 }
 
 }  // namespace icgp::python

@@ -36,8 +36,8 @@ std::string yaml_text(const YAML::Node& node) {
   return out.c_str();
 }
 
-/// The configuration: `config` (None, a YAML file or a dict of its keys), then the keyword
-/// settings read over it, each checked by the file's rules.
+}  // namespace
+
 TrackerConfig tracker_config(const py::object& config, const py::dict& settings) {
   TrackerConfig result;
   if (py::isinstance<py::dict>(config)) {
@@ -50,6 +50,8 @@ TrackerConfig tracker_config(const py::object& config, const py::dict& settings)
                                  std::filesystem::current_path().string(), result);
   return result;
 }
+
+namespace {
 
 /// A joint given as a dict of the keys a configuration's body entry takes for it (parent,
 /// joint, axis, origin, limits_deg, ...), read by the configuration's own reader.

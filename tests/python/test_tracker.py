@@ -257,3 +257,22 @@ def test_the_edge_cue_alone_follows_the_grey_teabox(teabox):
     # A frozen pose would be this far off by the last frame.
     frozen = np.linalg.norm(teabox[0].truth()[:3, 3] - teabox[29].truth()[:3, 3])
     assert max(errors) < 5e-3 < frozen
+
+
+def test_evaluate_tracker_runs_the_benchmarks_loop_and_beats_a_frozen_pose(teabox):
+    """icgp.evaluate_tracker is the loop of `icgp bench`: started at the first truth, every frame
+    tracked and evaluated. A pose frozen at the start scores far worse on the same frames."""
+    evaluation = icgp.evaluate_tracker(teabox, config=COARSE, frames=30)
+    summary = evaluation.summary()
+    assert summary["frames"] == 30 and summary["frames_with_truth"] == 30
+    assert summary["tracked"] == 30
+    assert summary["median_ms"] > 0.0
+
+    frozen = icgp.Evaluation(teabox.objects[0]["model"])
+    start = teabox[0].truth()
+    for i in range(30):
+        frozen.add(i, start, teabox[i].truth())
+    assert summary["mean_t_mm"] < 0.5 * frozen.summary()["mean_t_mm"], (summary, frozen.summary())
+
+    with pytest.raises(icgp.Error, match="no frames to track"):
+        icgp.evaluate_tracker(teabox, config=COARSE, frames=0)
