@@ -2,6 +2,7 @@
 #include "icgp/tracker/cue_registry.h"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 
@@ -60,12 +61,13 @@ std::unique_ptr<Modality> make_edge(const CueContext& c) {
 
 CueRegistry::CueRegistry() {
   // The contour cues read EDGE_TRACKER's cameras, the point cues KLT_TRACKER's, depth the
-  // depth types'. The colour cues also read a depth camera's measured occlusions.
-  add({cue::kRegion, visp_type::kEdge, true, false, ViewpointModel::Kind::kRegion, VispFeatures::kEdge, make_region});
-  add({cue::kDepth, visp_type::kDepth, false, true, ViewpointModel::Kind::kDepth, VispFeatures::kDepth, make_depth});
-  add({cue::kTexture, visp_type::kKlt, true, false, std::nullopt, VispFeatures::kKlt, make_texture});
-  add({cue::kFlow, visp_type::kKlt, true, false, std::nullopt, VispFeatures::kKlt, make_flow});
-  add({cue::kEdge, visp_type::kEdge, true, false, std::nullopt, VispFeatures::kEdge, make_edge});
+  // depth types'. The colour cues also read a depth camera's measured occlusions. Their
+  // parameters are TrackerConfig's typed sections, not CueEntry::parameters.
+  add({cue::kRegion, visp_type::kEdge, true, false, ViewpointModel::Kind::kRegion, VispFeatures::kEdge, {}, make_region});
+  add({cue::kDepth, visp_type::kDepth, false, true, ViewpointModel::Kind::kDepth, VispFeatures::kDepth, {}, make_depth});
+  add({cue::kTexture, visp_type::kKlt, true, false, std::nullopt, VispFeatures::kKlt, {}, make_texture});
+  add({cue::kFlow, visp_type::kKlt, true, false, std::nullopt, VispFeatures::kKlt, {}, make_flow});
+  add({cue::kEdge, visp_type::kEdge, true, false, std::nullopt, VispFeatures::kEdge, {}, make_edge});
   n_built_in_ = entries_.size();
 }
 
@@ -80,6 +82,33 @@ CueRegistry& CueRegistry::instance() {
   return registry;
 }
 
+namespace {
+
+/// A cue's parameters become a section of the configuration: its name must be free there,
+/// and each key must be one a file can set to its default.
+void check_parameters(const CueEntry& entry) {
+  if (entry.parameters.empty()) return;
+  const std::string cue = "cue registry: cue '" + entry.name + "'";
+  const std::vector<std::string>& keys = tracker_config_keys();
+  if (std::find(keys.begin(), keys.end(), entry.name) != keys.end())
+    throw std::invalid_argument(cue + " has parameters, so its name would be a section of the configuration, "
+                                "where '" + entry.name + "' is a key already");
+  std::vector<std::string> seen;
+  for (const CueParameter& p : entry.parameters) {
+    const std::string parameter = cue + ": parameter '" + p.key + "'";
+    if (p.key.empty()) throw std::invalid_argument(cue + ": a parameter needs a key");
+    if (std::find(seen.begin(), seen.end(), p.key) != seen.end()) throw std::invalid_argument(parameter + " is given twice");
+    seen.push_back(p.key);
+    if (!std::isfinite(p.min) || !std::isfinite(p.max) || p.min > p.max)
+      throw std::invalid_argument(parameter + ": expected finite bounds min <= max");
+    if (!(p.default_value >= p.min && p.default_value <= p.max) ||
+        (p.integer && p.default_value != std::floor(p.default_value)))
+      throw std::invalid_argument(parameter + ": its default is outside its range");
+  }
+}
+
+}  // namespace
+
 void CueRegistry::add(CueEntry entry) {
   if (entry.name.empty()) throw std::invalid_argument("cue registry: a cue needs a name");
   if (find(entry.name)) throw std::invalid_argument("cue registry: a cue named '" + entry.name + "' is registered already");
@@ -87,6 +116,7 @@ void CueRegistry::add(CueEntry entry) {
   if ((entry.reads_image || entry.reads_depth) && entry.visp_types == 0)
     throw std::invalid_argument("cue registry: cue '" + entry.name +
                                 "' reads images or depth but no camera type (visp_types)");
+  check_parameters(entry);
   entries_.push_back(std::move(entry));
 }
 
@@ -127,6 +157,19 @@ const char* cue_list_expected() {
   static std::string text;
   text = "a non-empty list of distinct names from " + registered_cue_names();
   return text.c_str();
+}
+
+double cue_parameter(const TrackerConfig& config, const std::string& cue, const std::string& key) {
+  const CueEntry* entry = CueRegistry::instance().find(cue);
+  const auto parameter = entry ? std::find_if(entry->parameters.begin(), entry->parameters.end(),
+                                              [&](const CueParameter& p) { return p.key == key; })
+                               : std::vector<CueParameter>::const_iterator{};
+  if (!entry || parameter == entry->parameters.end())
+    throw std::invalid_argument("cue '" + cue + "' has no parameter '" + key + "'");
+  const auto given = config.cue_parameters.find(cue);
+  if (given != config.cue_parameters.end())
+    if (const auto value = given->second.find(key); value != given->second.end()) return value->second;
+  return parameter->default_value;
 }
 
 }  // namespace icgp

@@ -6,8 +6,6 @@
 
 #include "body_config_yaml.h"
 
-#include "icgp/tracker/cue_registry.h"
-
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -16,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 
 #include "icgp/base/resource_limits.h"
@@ -377,7 +376,80 @@ const Fields<TrackerConfig> kConfigFields = {
     field("cache_dir", &TrackerConfig::cache_dir, yaml::kString),
 };
 
+/// The section of a registered cue with parameters: its keys read as numbers in their
+/// ranges into TrackerConfig::cue_parameters, every key written (the default where unset).
+Field<TrackerConfig> cue_section(const CueEntry& cue) {
+  const std::string name = cue.name;
+  const std::vector<CueParameter> parameters = cue.parameters;
+  const auto range = [](const CueParameter& p) { return yaml::Interval{p.min, p.max}; };
+  const auto expected = [range](const CueParameter& p) {
+    return (p.integer ? "an integer in " : "a number in ") + range(p).text();
+  };
+  const auto fits = [range](const CueParameter& p, double v) { return range(p).contains(v) && (!p.integer || v == std::floor(v)); };
+  return {name,
+          [name, parameters, expected, fits](const yaml::Value& section, TrackerConfig& c) {
+            std::vector<std::string> keys;
+            for (const CueParameter& p : parameters) keys.push_back(p.key);
+            yaml::for_each_entry(section, keys, [&](const std::string& key, const yaml::Value& v) {
+              const CueParameter& p = *std::find_if(parameters.begin(), parameters.end(),
+                                                    [&](const CueParameter& q) { return q.key == key; });
+              const std::optional<double> value = yaml::convert<double>(v.node);
+              if (!value || !fits(p, *value)) v.expected(expected(p));
+              c.cue_parameters[name][key] = *value;
+            });
+          },
+          [name, parameters](YAML::Emitter& out, const TrackerConfig& c) {
+            out << YAML::BeginMap;
+            for (const CueParameter& p : parameters) {
+              out << YAML::Key << p.key << YAML::Value;
+              const double value = cue_parameter(c, name, p.key);
+              if (p.integer)
+                out << static_cast<long long>(value);
+              else
+                emit(out, value);
+            }
+            out << YAML::EndMap;
+          },
+          [name, parameters, expected, fits](const TrackerConfig& c, const yaml::Location& at) {
+            const auto given = c.cue_parameters.find(name);
+            if (given == c.cue_parameters.end()) return;
+            for (const auto& [key, value] : given->second) {
+              const auto p = std::find_if(parameters.begin(), parameters.end(),
+                                          [&](const CueParameter& q) { return q.key == key; });
+              if (p == parameters.end()) at.child(name).child(key).fail("cue '" + name + "' has no such parameter");
+              if (!fits(*p, value)) yaml::Value{YAML::Node(value), at.child(name).child(key)}.expected(expected(*p));
+            }
+          }};
+}
+
+/// The configuration's fields: the fixed ones, then a section per registered cue with
+/// parameters.
+Fields<TrackerConfig> config_fields() {
+  Fields<TrackerConfig> fields = kConfigFields;
+  for (const CueEntry& cue : CueRegistry::instance().entries())
+    if (!cue.parameters.empty()) fields.push_back(cue_section(cue));
+  return fields;
+}
+
+/// Cue parameters set in code for a cue that is not registered, or has no parameters.
+void check_cue_parameter_sections(const TrackerConfig& config, const yaml::Location& at) {
+  for (const auto& [cue, values] : config.cue_parameters) {
+    const CueEntry* entry = CueRegistry::instance().find(cue);
+    if (!entry || entry->parameters.empty())
+      at.child(cue).fail("no registered cue of that name takes parameters (cues: " + registered_cue_names() + ")");
+  }
+}
+
 }  // namespace
+
+const std::vector<std::string>& tracker_config_keys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> names;
+    for (const Field<TrackerConfig>& f : kConfigFields) names.push_back(f.name);
+    return names;
+  }();
+  return keys;
+}
 
 const std::vector<std::string>& tracker_config_presets() {
   static const std::vector<std::string> names = {"default", "icg_reference"};
@@ -409,7 +481,7 @@ TrackerConfig read_over(const yaml::Value& root, const std::filesystem::path& fo
     if (!known_preset(name)) preset.at.fail("expected one of " + preset_list() + " (got '" + name + "')");
     config = tracker_config_preset(name);
   }
-  read_map(root, kConfigFields, config);
+  read_map(root, config_fields(), config);
   auto resolve = [&](std::string& file) {
     if (std::filesystem::path(file).is_relative()) file = (folder / file).lexically_normal().string();
   };
@@ -441,12 +513,14 @@ TrackerConfig read_tracker_config(const std::string& yaml_text, const std::strin
 }
 
 void validate(const TrackerConfig& config, const std::string& source) {
-  check_map(kConfigFields, config, yaml::Location{source, "", kWording});
+  const yaml::Location document{source, "", kWording};
+  check_cue_parameter_sections(config, document);
+  check_map(config_fields(), config, document);
 }
 
 std::string to_yaml(const TrackerConfig& config) {
   YAML::Emitter out;
-  write_map(out, kConfigFields, config);
+  write_map(out, config_fields(), config);
   return std::string(out.c_str()) + "\n";
 }
 

@@ -17,20 +17,23 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kSigma = 0.001;  // metres: a precise external position sensor
+constexpr double kSigma = 0.001;  // metres: a precise external position sensor, by default
 
 /// What the position sensor measures when a tracker builds its cue: the body origin in
 /// the reference camera.
 Eigen::Vector3d measured_position;
 
-/// The example cue as a program registers it: it reads no camera, and vpMbIcgTracker
-/// counts and shows its one correspondence as a KLT point (a marker's centre).
+/// The example cue as a program registers it: it reads no camera, vpMbIcgTracker counts
+/// and shows its one correspondence as a KLT point (a marker's centre), and a
+/// configuration's `position:` section sets the sensor's standard deviation.
 CueEntry position_entry() {
   CueEntry entry;
   entry.name = "position";
   entry.visp_features = VispFeatures::kKlt;
+  entry.parameters = {{"standard_deviation", kSigma, 1e-6, 1.0}};
   entry.make = [](const CueContext& c) {
-    return std::make_unique<example::PositionCue>(c.body, measured_position, kSigma);
+    return std::make_unique<example::PositionCue>(c.body, measured_position,
+                                                  cue_parameter(c.config, "position", "standard_deviation"));
   };
   return entry;
 }
@@ -138,4 +141,46 @@ TEST_CASE("cue registry: vpMbIcgTracker::addCue registers a cue and fuses it") {
   shadow.name = cue::kDepth;
   const vpException e = test::vp_exception_of([&] { rig.tracker.addCue(shadow); });
   CHECK_THAT(e.getStringMessage(), Contains("'depth' is a built-in cue"));
+}
+
+TEST_CASE("cue registry: a registered cue's parameters are a section of the configuration, read, written and checked") {
+  register_position_cue();
+  const test::TempDir dir("icgp-cue-parameters");
+  const auto read = [&](const std::string& yaml) {
+    const std::string file = dir.file("config.yaml");
+    std::ofstream(file) << yaml;
+    return load_tracker_config(file);
+  };
+  // The default, until a file sets it.
+  CHECK(cue_parameter(TrackerConfig(), "position", "standard_deviation") == kSigma);
+  const TrackerConfig config = read("modalities: [region, position]\nposition: {standard_deviation: 0.004}\n");
+  CHECK(cue_parameter(config, "position", "standard_deviation") == 0.004);
+  CHECK_THAT(to_yaml(config), Contains("position:\n  standard_deviation: 0.004"));
+  CHECK(cue_parameter(read(to_yaml(config)), "position", "standard_deviation") == 0.004);  // written as read
+
+  // The factory reads it: the cue's Hessian is −1/σ² of the configured σ.
+  Body body{"teabox", Mesh{}, Pose()};
+  const std::unique_ptr<Modality> cue = CueRegistry::instance().find("position")->make(CueContext{body, config});
+  CHECK(cue->gradient_hessian(0, 0).hessian(3, 3) == Approx(-1.0 / (0.004 * 0.004)));
+
+  // A file's bad values are refused naming the key and the range.
+  CHECK_THROWS_WITH(read("position: {standard_deviation: 5}\n"),
+                    Contains("position.standard_deviation: expected a number in [1e-06, 1], got 5"));
+  CHECK_THROWS_WITH(read("position: {sigma: 0.002}\n"), Contains("standard_deviation"));
+  CHECK_THROWS_WITH(cue_parameter(config, "position", "sigma"), Contains("cue 'position' has no parameter 'sigma'"));
+  // So are values set in code.
+  TrackerConfig in_code;
+  in_code.cue_parameters["position"]["standard_deviation"] = 0.0;
+  CHECK_THROWS_WITH(validate(in_code, "code"), Contains("code: position.standard_deviation: expected a number in"));
+  in_code.cue_parameters = {{"gps", {{"standard_deviation", 1.0}}}};
+  CHECK_THROWS_WITH(validate(in_code, "code"), Contains("code: gps: no registered cue of that name takes parameters"));
+
+  // A cue with parameters cannot take a configuration key's name, nor a default out of range.
+  CueEntry clash = position_entry();
+  clash.name = "tracker";
+  CHECK_THROWS_WITH(CueRegistry::instance().add(clash), Contains("where 'tracker' is a key already"));
+  CueEntry bad_default = position_entry();
+  bad_default.name = "position-2";
+  bad_default.parameters.front().default_value = 2.0;
+  CHECK_THROWS_WITH(CueRegistry::instance().add(bad_default), Contains("its default is outside its range"));
 }

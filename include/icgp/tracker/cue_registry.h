@@ -44,6 +44,19 @@ struct CueContext {
   bool only_cue = false;
 };
 
+/// A number a registered cue takes from its section of a tracker configuration: a file's
+/// `<cue name>: {<key>: <value>}`, TrackerConfig::cue_parameters in code. Read, written and
+/// checked with the configuration (load_tracker_config, to_yaml, validate); the cue's
+/// factory reads it with cue_parameter().
+struct CueParameter {
+  std::string key;
+  double default_value = 0.0;
+  /// The numbers it may take, both included and finite: a file's value outside is refused
+  /// naming the key and the range.
+  double min = 0.0, max = 0.0;
+  bool integer = false;  ///< whole numbers only
+};
+
 /// One cue of the registry: everything the tracker builder, the camera rigs and
 /// vpMbIcgTracker need to know of it.
 struct CueEntry {
@@ -61,8 +74,10 @@ struct CueEntry {
   /// the cache with the configuration's parameters of that kind; none: one per camera.
   std::optional<ViewpointModel::Kind> model;
   VispFeatures visp_features = VispFeatures::kNone;
-  /// Makes the cue. Parameters come from the configuration's section of the cue (the
-  /// built-ins' TrackerConfig::region, depth, texture, flow, edge) or from the factory.
+  /// The keys of a registered cue's section of a configuration. The built-in cues have
+  /// typed sections of their own (TrackerConfig::region, depth, texture, flow, edge).
+  std::vector<CueParameter> parameters;
+  /// Makes the cue, with the parameters of its section of `CueContext::config`.
   std::function<std::unique_ptr<Modality>(const CueContext&)> make;
 };
 
@@ -75,8 +90,9 @@ class CueRegistry {
   /// The process's registry, with the built-in cues.
   static CueRegistry& instance();
 
-  /// Adds `entry`. Throws std::invalid_argument for an empty or taken name, no factory, or
-  /// a cue that reads images or depth but no camera type.
+  /// Adds `entry`. Throws std::invalid_argument for an empty or taken name, no factory, a
+  /// cue that reads images or depth but no camera type, or parameters whose section would
+  /// take a key of the configuration, repeat a key, or whose default is outside its range.
   void add(CueEntry entry);
   /// The cue called `name`; null for none.
   const CueEntry* find(const std::string& name) const;
@@ -91,6 +107,11 @@ class CueRegistry {
   std::vector<CueEntry> entries_;
   std::size_t n_built_in_ = 0;
 };
+
+/// The value of parameter `key` of registered cue `cue` in `config`: the configuration's
+/// (TrackerConfig::cue_parameters) or the parameter's default. Throws std::invalid_argument
+/// when the cue has no such parameter.
+double cue_parameter(const TrackerConfig& config, const std::string& cue, const std::string& key);
 
 /// "region, depth, texture, flow, edge" and the registered cues' names.
 std::string registered_cue_names();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,6 +45,9 @@ struct TrackerConfig {
   std::vector<BodyConfig> bodies;
   /// Detection without a given pose and recovery after a loss (docs/detection.md).
   DetectionParams detection;
+  /// The parameters of cues a program registered (CueEntry::parameters) that a file or the
+  /// program set: cue name -> key -> value. A key not set takes its default (cue_parameter).
+  std::map<std::string, std::map<std::string, double>> cue_parameters;
   std::string cache_dir;  ///< empty: $ICGP_CACHE_DIR, else $XDG_CACHE_HOME/icgp, else ~/.cache/icgp
 };
 
@@ -57,6 +61,10 @@ struct TrackerConfig {
 TrackerConfig tracker_config_preset(const std::string& name);
 /// The preset names tracker_config_preset() knows, "default" first.
 const std::vector<std::string>& tracker_config_presets();
+
+/// The keys a configuration file has besides the sections of registered cues: a cue with
+/// parameters cannot be named after one.
+const std::vector<std::string>& tracker_config_keys();
 
 /// Reads a YAML configuration over `base` (the defaults unless given). Unknown keys and
 /// values of the wrong type or range throw std::runtime_error naming the file and the key.
