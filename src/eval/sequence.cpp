@@ -1,120 +1,19 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "icgp/eval/sequence.h"
 
-#include <algorithm>
-#include <cctype>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <limits>
-#include <optional>
-#include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "icgp/base/camera_names.h"
-#include "icgp/io/file_extension.h"
-#include "icgp/io/joint_yaml.h"
-#include "icgp/io/yaml_reader.h"
+#include "icgp/eval/sequence_layout.h"
+#include "sequence_files.h"
 
 namespace icgp {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-[[noreturn]] void fail(const fs::path& file, const std::string& what) {
-  throw std::runtime_error(file.string() + ": " + what);
-}
-
-std::string size_text(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
-
-std::string read_text_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void require_file(const fs::path& path, const std::string& what) {
-  if (!fs::is_regular_file(path)) fail(path, "missing " + what);
-}
-
-/// "prefix" + index zero-padded to `digits` + "suffix", e.g. ("Image", 7, 4, ".exr").
-std::string numbered(const std::string& prefix, int index, int digits, const std::string& suffix) {
-  char number[32];
-  std::snprintf(number, sizeof number, "%0*d", digits, index);
-  return prefix + number + suffix;
-}
-
-/// Number of frames named prefix + %0<digits>d + suffix in `folder`, numbered contiguously
-/// from `first`. A gap would silently shorten the sequence, so it is an error naming the
-/// first missing file.
-int count_numbered_files(const fs::path& folder, const std::string& prefix, int digits, const std::string& suffix,
-                         int first) {
-  std::set<int> indices;
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    const std::string name = entry.path().filename().string();
-    if (name.size() != prefix.size() + digits + suffix.size()) continue;
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    if (name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
-    const std::string number = name.substr(prefix.size(), digits);
-    if (!std::all_of(number.begin(), number.end(), [](unsigned char c) { return std::isdigit(c); })) continue;
-    indices.insert(std::stoi(number));
-  }
-  if (indices.empty() || *indices.begin() != first)
-    fail(folder / numbered(prefix, first, digits, suffix), "missing first frame file");
-  int expected = first;
-  for (const int index : indices) {
-    if (index != expected)
-      fail(folder / numbered(prefix, expected, digits, suffix),
-           "missing frame file (the folder has frames up to " + numbered(prefix, *indices.rbegin(), digits, suffix) +
-               ")");
-    ++expected;
-  }
-  return static_cast<int>(indices.size());
-}
-
-/// Parses whitespace-separated numbers of one line, requiring exactly `expected` of them.
-std::vector<double> parse_numbers(const std::string& line, std::size_t expected, const fs::path& file, int line_no) {
-  const std::string where = "line " + std::to_string(line_no) + ": ";
-  std::vector<double> values;
-  std::istringstream tokens(line);
-  std::string token;
-  while (tokens >> token) {
-    char* end = nullptr;
-    const double value = std::strtod(token.c_str(), &end);
-    if (end == token.c_str() || *end != '\0') fail(file, where + "'" + token + "' is not a number");
-    values.push_back(value);
-  }
-  if (values.size() != expected)
-    fail(file, where + "expected " + std::to_string(expected) + " numbers, found " + std::to_string(values.size()));
-  return values;
-}
-
-bool is_blank(const std::string& line) {
-  return std::all_of(line.begin(), line.end(), [](unsigned char c) { return std::isspace(c); });
-}
-
-/// A rigid transform from 16 row-major numbers. Blender and ViSP write rotations in
-/// single precision, so orthonormality is only checked loosely: the check is there to
-/// catch a wrong file (a projection matrix, a transposed layout), not rounding.
-Pose pose_from_row_major(const std::vector<double>& v, const fs::path& file, const std::string& where) {
-  Eigen::Matrix4d m;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m(r, c) = v[4 * r + c];
-  if (!m.allFinite()) fail(file, where + "matrix has non-finite entries");
-  if (!m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-9))
-    fail(file, where + "last row of the 4x4 matrix must be 0 0 0 1");
-  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-  if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-4) || R.determinant() < 0.0)
-    fail(file, where + "top-left 3x3 block is not a rotation");
-  return Pose(m);
-}
 
 /// Depth in place: 0 wherever there is no trustworthy measurement.
 void clear_invalid_depth(cv::Mat& depth, double max_depth) {
@@ -131,33 +30,6 @@ void check_size(const cv::Mat& image, const Intrinsics& expected, const fs::path
                    size_text(expected.width, expected.height) + " (" + origin + ")");
 }
 
-/// libjpeg decodes a JPEG cut short with only a warning on stderr, filling the missing rows
-/// with grey, which tracks wrong. A complete file ends with the EOI marker (FF D9); only
-/// padding may follow it.
-bool jpeg_cut_short(const std::string& bytes) {
-  const std::size_t end = bytes.find_last_not_of(std::string("\0 \r\n", 5));
-  return end == std::string::npos || end < 1 || static_cast<unsigned char>(bytes[end - 1]) != 0xFF ||
-         static_cast<unsigned char>(bytes[end]) != 0xD9;
-}
-
-/// The file is read once: its bytes are checked, then decoded.
-cv::Mat read_color_image(const fs::path& path) {
-  require_file(path, "colour image");
-  std::error_code error;
-  if (fs::file_size(path, error) > std::uintmax_t(std::numeric_limits<int>::max()))
-    fail(path, "larger than 2 GiB (expected a colour image file)");
-  const std::string bytes = read_text_file(path);
-  const std::string extension = lower_extension(path.string());
-  if ((extension == ".jpg" || extension == ".jpeg") && jpeg_cut_short(bytes))
-    fail(path, "the JPEG file is cut short (it does not end with the end-of-image marker FF D9); expected a complete image");
-  cv::Mat image;
-  if (!bytes.empty())
-    image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
-                         cv::IMREAD_COLOR);
-  if (image.empty()) fail(path, "cannot decode colour image");
-  return image;
-}
-
 /// A principal point outside the image means the images are not the size the intrinsics
 /// were calibrated for (depth frames of half the size, say).
 void check_principal_point(const fs::path& dir, const Intrinsics& k, const std::string& what) {
@@ -167,449 +39,19 @@ void check_principal_point(const fs::path& dir, const Intrinsics& k, const std::
                   " images (expected images of the size the intrinsics were calibrated for)");
 }
 
-/// OpenCV 4.6 refuses to decode OpenEXR unless OPENCV_IO_ENABLE_OPENEXR is set when the
-/// codec is first used (a security default for untrusted files). Depth sequences need it,
-/// so enable it unless the user decided otherwise.
-void enable_openexr_decoding() { setenv("OPENCV_IO_ENABLE_OPENEXR", "1", /*overwrite=*/0); }
-
-cv::Mat read_exr_depth(const fs::path& path) {
-  require_file(path, "depth image");
-  cv::Mat image;
-  try {
-    image = cv::imread(path.string(), cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR);
-  } catch (const cv::Exception& e) {
-    fail(path, std::string("cannot decode OpenEXR depth: ") + e.what());
-  }
-  if (image.empty()) {
-    const char* flag = std::getenv("OPENCV_IO_ENABLE_OPENEXR");
-    fail(path, std::string("cannot decode OpenEXR depth (OpenCV needs OPENCV_IO_ENABLE_OPENEXR=1 before its first "
-                           "EXR read; it is ") +
-                   (flag ? std::string("'") + flag + "'" : std::string("unset")) + ")");
-  }
-  cv::Mat z;
-  cv::extractChannel(image, z, 0);  // Blender's EXR: channel 0 is Z in metres
-  z.convertTo(z, CV_32F);
-  return z;
+/// The first registered layout whose probe recognises `dir`.
+const SequenceLayoutEntry& detect_layout(const fs::path& dir) {
+  const std::vector<SequenceLayoutEntry>& layouts = SequenceLayouts::instance().entries();
+  for (const SequenceLayoutEntry& layout : layouts)
+    if (layout.probe(dir)) return layout;
+  std::string looked_for;  // "a (x), b (y) and c (z)"
+  for (std::size_t i = 0; i < layouts.size(); ++i)
+    looked_for += std::string(i == 0 ? "" : i + 1 == layouts.size() ? " and " : ", ") + layouts[i].looks_for + " (" +
+                  layouts[i].name + ")";
+  fail(dir, "unknown sequence layout: looked for " + looked_for);
 }
-
-std::uint32_t little_endian_u32(const unsigned char* p) {
-  return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
-}
-
-/// ViSP's RealSense tutorial depth dump: uint32 height, uint32 width, H*W uint16 in mm,
-/// all little-endian.
-cv::Mat read_realsense_bin_depth(const fs::path& path) {
-  require_file(path, "depth file");
-  const std::string bytes = read_text_file(path);
-  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  if (bytes.size() < 8)
-    fail(path, "truncated: " + std::to_string(bytes.size()) + " bytes, expected at least the 8-byte header");
-  const std::uint32_t height = little_endian_u32(data);
-  const std::uint32_t width = little_endian_u32(data + 4);
-  constexpr std::uint32_t kMaxSide = 1u << 15;  // rejects garbage headers before allocating
-  if (height == 0 || width == 0 || height > kMaxSide || width > kMaxSide)
-    fail(path, "implausible depth image size " + std::to_string(width) + "x" + std::to_string(height) + " in header");
-  const std::size_t expected = 8 + std::size_t(2) * height * width;
-  if (bytes.size() != expected)
-    fail(path, std::string(bytes.size() < expected ? "truncated" : "too long") + ": " + std::to_string(bytes.size()) +
-                   " bytes, expected " + std::to_string(expected) + " for a " +
-                   size_text(int(width), int(height)) + " depth image");
-  cv::Mat z(int(height), int(width), CV_32F);
-  const unsigned char* p = data + 8;
-  for (int r = 0; r < z.rows; ++r) {
-    auto* row = z.ptr<float>(r);
-    for (int c = 0; c < z.cols; ++c, p += 2) row[c] = float((p[0] | p[1] << 8) * 0.001);
-  }
-  return z;
-}
-
-cv::Mat read_png_depth(const fs::path& path, double depth_scale) {
-  require_file(path, "depth image");
-  const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
-  if (raw.empty()) fail(path, "cannot decode depth image");
-  if (raw.type() != CV_16UC1) fail(path, "depth image must be single-channel 16-bit");
-  cv::Mat z;
-  raw.convertTo(z, CV_32F, depth_scale);
-  return z;
-}
-
-// ---------------------------------------------------------------------------------------
-// Layouts
-
-/// Everything open() learns about a sequence besides how to read its frames.
-struct Description {
-  std::string layout;
-  int frame_count = 0;
-  double frame_rate = 0.0;
-  Intrinsics color_intrinsics, depth_intrinsics;
-  Pose depth_T_color;
-  bool stereo = false;
-  Intrinsics stereo_intrinsics;
-  Pose stereo_T_color;
-  std::vector<SequenceObject> objects;
-  bool has_ground_truth = false;
-};
 
 }  // namespace
-
-/// Reads the frame files of one layout. Sizes are checked by the caller.
-class Sequence::Layout {
- public:
-  virtual ~Layout() = default;
-  virtual fs::path color_file(int index) const = 0;
-  virtual fs::path depth_file(int index) const = 0;
-  /// The second colour camera's image (layouts that have one).
-  virtual fs::path stereo_color_file(int) const { return {}; }
-  /// Metres as stored, invalid values not yet cleared; CV_32FC1.
-  virtual cv::Mat read_depth(int index) const = 0;
-  virtual std::map<std::string, Pose> read_ground_truth(int index) const = 0;
-  /// The joint values of each link (layouts that have links).
-  virtual std::map<std::string, std::vector<double>> read_joint_truth(int) const { return {}; }
-  /// Where the expected image sizes came from, for messages.
-  virtual std::string size_origin() const = 0;
-};
-
-namespace {
-
-struct IntrinsicsFiles {
-  fs::path color, depth;
-};
-
-/// The `<name>.xml` files of `folder` that have a `<name>_depth.xml` beside them.
-std::vector<IntrinsicsFiles> xml_pairs_in(const fs::path& folder) {
-  std::vector<IntrinsicsFiles> pairs;
-  if (!fs::is_directory(folder)) return pairs;
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    const fs::path& p = entry.path();
-    if (p.extension() != ".xml") continue;
-    const std::string stem = p.stem().string();
-    if (stem.size() > 6 && stem.compare(stem.size() - 6, 6, "_depth") == 0) continue;
-    const fs::path depth = folder / (stem + "_depth.xml");
-    if (fs::is_regular_file(depth)) pairs.push_back({p, depth});
-  }
-  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.color < b.color; });
-  return pairs;
-}
-
-/// Relative option paths may be relative to the working directory or to the sequence.
-fs::path resolve_option_path(const std::string& path, const fs::path& dir) {
-  const fs::path given(path);
-  if (given.is_absolute() || fs::exists(given)) return given;
-  return dir / given;
-}
-
-IntrinsicsFiles find_intrinsics_files(const fs::path& dir, const SequenceOptions& options) {
-  if (!options.color_intrinsics_file.empty()) {
-    IntrinsicsFiles files;
-    files.color = resolve_option_path(options.color_intrinsics_file, dir);
-    files.depth = options.depth_intrinsics_file.empty()
-                      ? files.color.parent_path() / (files.color.stem().string() + "_depth.xml")
-                      : resolve_option_path(options.depth_intrinsics_file, dir);
-    require_file(files.color, "colour intrinsics file (SequenceOptions::color_intrinsics_file)");
-    require_file(files.depth, "depth intrinsics file (SequenceOptions::depth_intrinsics_file, or <stem>_depth.xml "
-                              "beside the colour one)");
-    return files;
-  }
-  if (!options.depth_intrinsics_file.empty())
-    fail(dir, "SequenceOptions::depth_intrinsics_file is set but color_intrinsics_file is not");
-
-  std::vector<IntrinsicsFiles> candidates = xml_pairs_in(dir);
-  if (candidates.empty() && fs::is_directory(dir / "models")) {
-    std::vector<fs::path> model_folders;
-    for (const auto& entry : fs::directory_iterator(dir / "models"))
-      if (entry.is_directory()) model_folders.push_back(entry.path());
-    std::sort(model_folders.begin(), model_folders.end());
-    for (const auto& folder : model_folders) {
-      const auto pairs = xml_pairs_in(folder);
-      candidates.insert(candidates.end(), pairs.begin(), pairs.end());
-    }
-  }
-  if (candidates.size() == 1) return candidates.front();
-  if (candidates.empty())
-    fail(dir, "no intrinsics found: looked for a <name>.xml + <name>_depth.xml pair (ViSP <camera> blocks) in the "
-              "folder and in models/*/; set SequenceOptions::color_intrinsics_file and depth_intrinsics_file");
-  std::string list;
-  for (const auto& c : candidates) list += "\n  " + c.color.string() + " + " + c.depth.filename().string();
-  fail(dir, "ambiguous intrinsics, " + std::to_string(candidates.size()) + " candidate pairs:" + list +
-                "\nchoose one with SequenceOptions::color_intrinsics_file and depth_intrinsics_file");
-}
-
-/// ViSP models of the sequence: the top-level .cao files, else the .cao named like the
-/// colour intrinsics file beside it (models/cube/cube.xml -> models/cube/cube.cao).
-std::vector<SequenceObject> find_visp_objects(const fs::path& dir, const fs::path& color_xml) {
-  std::vector<SequenceObject> objects;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".cao") objects.push_back({entry.path().stem().string(), entry.path().string()});
-  std::sort(objects.begin(), objects.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  const fs::path beside = color_xml.parent_path() / (color_xml.stem().string() + ".cao");
-  if (objects.empty() && fs::is_regular_file(beside)) objects.push_back({color_xml.stem().string(), beside.string()});
-  return objects;
-}
-
-/// Calibration shared by the ViSP layouts: XML intrinsics, depth_M_color.txt, image sizes
-/// from the first colour and depth images.
-void describe_visp_calibration(const fs::path& dir, const SequenceOptions& options, const Sequence::Layout& files,
-                               Description& d) {
-  if (!options.read_camera_xml)
-    fail(dir, "a " + d.layout + " sequence keeps its intrinsics in ViSP XML files, which the core library does not "
-              "read: set SequenceOptions::read_camera_xml, e.g. to icgp::read_visp_camera_xml of icgp::visp "
-              "(icgp/visp/visp_camera_xml.h; icgp::visp_sequence_options() sets it)");
-  const IntrinsicsFiles xml = find_intrinsics_files(dir, options);
-  d.color_intrinsics = options.read_camera_xml(xml.color.string());
-  d.depth_intrinsics = options.read_camera_xml(xml.depth.string());
-  require_file(dir / "depth_M_color.txt", "colour-to-depth transform");
-  d.depth_T_color = read_pose_matrix_file((dir / "depth_M_color.txt").string());
-  const cv::Mat color = read_color_image(files.color_file(0));
-  d.color_intrinsics.width = color.cols;
-  d.color_intrinsics.height = color.rows;
-  const cv::Mat depth = files.read_depth(0);
-  d.depth_intrinsics.width = depth.cols;
-  d.depth_intrinsics.height = depth.rows;
-  d.color_intrinsics.validate(xml.color.string());
-  d.depth_intrinsics.validate(xml.depth.string());
-  d.objects = find_visp_objects(dir, xml.color);
-  d.frame_rate = options.frame_rate;
-}
-
-class VispBlenderLayout : public Sequence::Layout {
- public:
-  explicit VispBlenderLayout(fs::path dir) : dir_(std::move(dir)) { enable_openexr_decoding(); }
-  fs::path color_file(int i) const override { return dir_ / "images" / numbered("", i + 1, 4, ".jpg"); }
-  fs::path depth_file(int i) const override { return dir_ / "depth" / numbered("Image", i + 1, 4, ".exr"); }
-  fs::path pose_file(int i) const { return dir_ / "camera_poses" / numbered("Camera_", i + 1, 3, ".txt"); }
-  cv::Mat read_depth(int i) const override { return read_exr_depth(depth_file(i)); }
-  std::map<std::string, Pose> read_ground_truth(int i) const override {
-    if (object_.empty()) return {};
-    return {{object_, read_pose_matrix_file(pose_file(i).string())}};
-  }
-  std::string size_origin() const override { return "size of the first frame"; }
-
-  static std::pair<Description, std::shared_ptr<const Sequence::Layout>> open(const fs::path& dir,
-                                                                             const SequenceOptions& options) {
-    Description d;
-    d.layout = "visp-blender";
-    d.frame_count = count_numbered_files(dir / "images", "", 4, ".jpg", 1);
-    d.has_ground_truth = fs::is_directory(dir / "camera_poses");
-    auto layout = std::make_shared<VispBlenderLayout>(dir);
-    describe_visp_calibration(dir, options, *layout, d);
-    if (options.blender_principal_point) {
-      // Blender puts the principal point at the sensor's centre, the pixel-edge coordinate
-      // (W/2, H/2); in ViSP's convention (pixel centres at integers) that is
-      // ((W-1)/2, (H-1)/2), half a pixel left of and above the XML's W/2, H/2. Rendering the
-      // ground truth shows it: the depth images match to 0.01 mm with the shift and are off
-      // by 0.2-0.35 mm without (docs/accuracy.md).
-      for (Intrinsics* k : {&d.color_intrinsics, &d.depth_intrinsics}) {
-        k->pu -= 0.5;
-        k->pv -= 0.5;
-      }
-    }
-    if (d.has_ground_truth) {
-      if (d.objects.size() != 1)
-        fail(dir, "camera_poses/ holds the ground truth of one object, named after the top-level .cao file, but "
-                  "found " + std::to_string(d.objects.size()) + " .cao files");
-      layout->object_ = d.objects.front().name;
-    }
-    for (int i = 0; i < d.frame_count; ++i) {
-      require_file(layout->depth_file(i), "depth image of frame " + std::to_string(i));
-      if (d.has_ground_truth) require_file(layout->pose_file(i), "ground-truth pose of frame " + std::to_string(i));
-    }
-    return {d, layout};
-  }
-
- private:
-  fs::path dir_;
-  std::string object_;
-};
-
-class VispRealsenseLayout : public Sequence::Layout {
- public:
-  explicit VispRealsenseLayout(fs::path dir) : dir_(std::move(dir)) {}
-  fs::path color_file(int i) const override { return dir_ / numbered("color_image_", i, 4, ".jpg"); }
-  fs::path depth_file(int i) const override { return dir_ / numbered("depth_image_", i, 4, ".bin"); }
-  cv::Mat read_depth(int i) const override { return read_realsense_bin_depth(depth_file(i)); }
-  std::map<std::string, Pose> read_ground_truth(int) const override { return {}; }
-  std::string size_origin() const override { return "size of the first frame"; }
-
-  static std::pair<Description, std::shared_ptr<const Sequence::Layout>> open(const fs::path& dir,
-                                                                             const SequenceOptions& options) {
-    Description d;
-    d.layout = "visp-realsense";
-    d.frame_count = count_numbered_files(dir, "color_image_", 4, ".jpg", 0);
-    auto layout = std::make_shared<VispRealsenseLayout>(dir);
-    describe_visp_calibration(dir, options, *layout, d);
-    for (int i = 0; i < d.frame_count; ++i)
-      require_file(layout->depth_file(i), "depth file of frame " + std::to_string(i));
-    return {d, layout};
-  }
-
- private:
-  fs::path dir_;
-};
-
-/// A camera of sequence.yaml: {fu, fv, pu, pv, width, height} (other keys, such as the
-/// writer's camera name, are not read).
-Intrinsics yaml_camera(const yaml::Value& value) {
-  const yaml::Map camera(value);
-  Intrinsics k;
-  k.fu = camera.required("fu").as(yaml::kPositive);
-  k.fv = camera.required("fv").as(yaml::kPositive);
-  k.pu = camera.required("pu").as(yaml::kNumber);
-  k.pv = camera.required("pv").as(yaml::kNumber);
-  k.width = camera.required("width").as(yaml::kPositiveInt);
-  k.height = camera.required("height").as(yaml::kPositiveInt);
-  return k;
-}
-
-/// A rigid transform of sequence.yaml: 16 row-major numbers.
-Pose yaml_transform(const yaml::Value& value) {
-  const yaml::Rule<std::vector<double>> sixteen{"a list of 16 numbers (4x4 row-major)",
-                                                [](const std::vector<double>& v) { return v.size() == 16; }};
-  return pose_from_row_major(value.as(sixteen), value.at.file, value.at.key + ": ");
-}
-
-/// One line per frame of 16 row-major numbers (reference_T_object).
-std::vector<Pose> read_pose_lines(const fs::path& file, int frame_count) {
-  require_file(file, "ground-truth poses");
-  std::ifstream in(file);
-  std::vector<Pose> poses;
-  std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    if (is_blank(line)) continue;
-    const std::string where = "line " + std::to_string(line_no) + ": ";
-    poses.push_back(pose_from_row_major(parse_numbers(line, 16, file, line_no), file, where));
-  }
-  if (static_cast<int>(poses.size()) != frame_count)
-    fail(file, "has " + std::to_string(poses.size()) + " poses, expected one per frame (" +
-                   std::to_string(frame_count) + ")");
-  return poses;
-}
-
-/// One line per frame of the joint's `size` values.
-std::vector<std::vector<double>> read_joint_lines(const fs::path& file, int frame_count, std::size_t size) {
-  require_file(file, "ground-truth joint values");
-  std::ifstream in(file);
-  std::vector<std::vector<double>> values;
-  std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    if (is_blank(line)) continue;
-    values.push_back(parse_numbers(line, size, file, line_no));
-  }
-  if (static_cast<int>(values.size()) != frame_count)
-    fail(file, "has " + std::to_string(values.size()) + " lines of joint values, expected one per frame (" +
-                   std::to_string(frame_count) + ")");
-  return values;
-}
-
-/// The joint of an object entry, checked against the objects listed before it: a link's
-/// parent comes first, so the objects form trees (no cycle can be written).
-std::optional<Joint> read_object_joint(const yaml::Map& fields, const yaml::Value& entry, const std::string& name,
-                                       const std::vector<SequenceObject>& earlier) {
-  std::optional<Joint> joint = read_joint(fields);
-  if (!joint) return joint;
-  const yaml::Location parent = entry.at.child("parent");
-  if (std::none_of(earlier.begin(), earlier.end(), [&](const SequenceObject& o) { return o.name == joint->parent; }))
-    parent.fail("'" + joint->parent + "' is not an object listed before '" + name + "'");
-  try {
-    validate(*joint, name);
-  } catch (const std::invalid_argument& e) {
-    entry.at.fail(e.what());
-  }
-  return joint;
-}
-
-class IcgpLayout : public Sequence::Layout {
- public:
-  fs::path color_file(int i) const override { return dir_ / "color" / numbered("", i, 6, ".png"); }
-  fs::path depth_file(int i) const override { return dir_ / "depth" / numbered("", i, 6, ".png"); }
-  fs::path stereo_color_file(int i) const override { return dir_ / "color2" / numbered("", i, 6, ".png"); }
-  cv::Mat read_depth(int i) const override { return read_png_depth(depth_file(i), depth_scale_); }
-  std::map<std::string, Pose> read_ground_truth(int i) const override {
-    std::map<std::string, Pose> truth;
-    for (const auto& [object, poses] : poses_) truth.emplace(object, poses[i]);
-    return truth;
-  }
-  std::map<std::string, std::vector<double>> read_joint_truth(int i) const override {
-    std::map<std::string, std::vector<double>> truth;
-    for (const auto& [object, values] : joint_values_) truth.emplace(object, values[i]);
-    return truth;
-  }
-  std::string size_origin() const override { return "size in sequence.yaml"; }
-
-  static std::pair<Description, std::shared_ptr<const Sequence::Layout>> open(const fs::path& dir,
-                                                                             const SequenceOptions&) {
-    // Any keys: the writer adds some (the seed, the cameras' names) that reading needs not.
-    const yaml::Map root(yaml::load_file((dir / "sequence.yaml").string()));
-    root.required("format").as(yaml::Rule<std::string>{
-        "icgp-sequence", [](const std::string& format) { return format == "icgp-sequence"; }});
-    root.required("version").as(
-        yaml::Rule<int>{"1 (the version this reader knows)", [](const int& version) { return version == 1; }});
-
-    auto layout = std::make_shared<IcgpLayout>();
-    layout->dir_ = dir;
-    Description d;
-    d.layout = "icgp";
-    d.frame_count = root.required("frame_count").as(yaml::kPositiveInt);
-    d.frame_rate = root.required("frame_rate").as(yaml::kPositive);
-    layout->depth_scale_ = root.required("depth_scale").as(yaml::kPositive);
-    d.color_intrinsics = yaml_camera(root.required("color_camera"));
-    d.depth_intrinsics = yaml_camera(root.required("depth_camera"));
-    d.depth_T_color = yaml_transform(root.required("depth_T_color"));
-    // The optional stereo camera: both keys or neither.
-    if (root.get("stereo_camera") || root.get("stereo_T_color")) {
-      d.stereo = true;
-      d.stereo_intrinsics = yaml_camera(root.required("stereo_camera"));
-      d.stereo_T_color = yaml_transform(root.required("stereo_T_color"));
-    }
-
-    if (const std::optional<yaml::Value> objects = root.get("objects"))
-      for (const yaml::Value& entry : objects->elements("a list of objects")) {
-        const yaml::Map fields(entry);
-        SequenceObject object;
-        object.name = fields.required("name").as(yaml::kNonEmptyString);
-        if (const std::optional<yaml::Value> mesh = fields.get("mesh")) {
-          const fs::path mesh_path = mesh->as(yaml::kNonEmptyString);
-          object.mesh_path = (mesh_path.is_absolute() ? mesh_path : dir / mesh_path).string();
-        }
-        object.joint = read_object_joint(fields, entry, object.name, d.objects);
-        layout->poses_[object.name] = read_pose_lines(dir / "poses" / (object.name + ".txt"), d.frame_count);
-        if (object.joint && object.joint->size() > 0)
-          layout->joint_values_[object.name] = read_joint_lines(dir / "joints" / (object.name + ".txt"), d.frame_count,
-                                                                object.joint->directions.size());
-        d.objects.push_back(object);
-      }
-    d.has_ground_truth = !d.objects.empty();
-    for (int i = 0; i < d.frame_count; ++i) {
-      require_file(layout->color_file(i), "colour image of frame " + std::to_string(i));
-      require_file(layout->depth_file(i), "depth image of frame " + std::to_string(i));
-      if (d.stereo) require_file(layout->stereo_color_file(i), "stereo colour image of frame " + std::to_string(i));
-    }
-    return {d, layout};
-  }
-
- private:
-  fs::path dir_;
-  double depth_scale_ = 0.0;
-  std::map<std::string, std::vector<Pose>> poses_;
-  std::map<std::string, std::vector<std::vector<double>>> joint_values_;
-};
-
-}  // namespace
-
-Pose read_pose_matrix_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) fail(path, "cannot open file");
-  std::vector<double> values;
-  std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    if (is_blank(line)) continue;
-    if (values.size() == 16) fail(path, "line " + std::to_string(line_no) + ": more than 4 rows");
-    const std::vector<double> row = parse_numbers(line, 4, path, line_no);
-    values.insert(values.end(), row.begin(), row.end());
-  }
-  if (values.size() != 16)
-    fail(path, "expected 4 rows of 4 numbers, found " + std::to_string(values.size() / 4) + " rows");
-  return pose_from_row_major(values, path, "");
-}
 
 Sequence Sequence::open(const std::string& dir_name, const SequenceOptions& options) {
   const fs::path dir(dir_name);
@@ -618,48 +60,29 @@ Sequence Sequence::open(const std::string& dir_name, const SequenceOptions& opti
   if (!(options.max_depth > 0.0)) fail(dir, "SequenceOptions::max_depth must be positive");
   if (!(options.frame_rate > 0.0)) fail(dir, "SequenceOptions::frame_rate must be positive");
 
-  std::pair<Description, std::shared_ptr<const Layout>> opened;
-  if (fs::is_regular_file(dir / "sequence.yaml"))
-    opened = IcgpLayout::open(dir, options);
-  else if (fs::is_directory(dir / "images") && fs::is_directory(dir / "depth"))
-    opened = VispBlenderLayout::open(dir, options);
-  else if (fs::is_regular_file(dir / "color_image_0000.jpg"))
-    opened = VispRealsenseLayout::open(dir, options);
-  else
-    fail(dir, "unknown sequence layout: looked for sequence.yaml (icgp), images/ + depth/ folders (visp-blender) "
-              "and color_image_0000.jpg (visp-realsense)");
-
-  const Description& d = opened.first;
+  const SequenceLayoutEntry& layout = detect_layout(dir);
+  const auto [d, files] = layout.open(dir, options);
   check_principal_point(dir, d.color_intrinsics, "colour");
   if (!options.grey_without_depth) check_principal_point(dir, d.depth_intrinsics, "depth");
   if (d.stereo) check_principal_point(dir, d.stereo_intrinsics, "stereo colour");
   if (!d.depth_T_color.matrix().allFinite()) fail(dir, "the colour-to-depth transform is not finite");
   Sequence s;
   s.directory_ = dir.string();
-  s.layout_ = d.layout;
-  s.frame_count_ = d.frame_count;
-  s.frame_rate_ = d.frame_rate;
+  s.layout_ = layout.name;
+  s.description_ = d;
   s.max_depth_ = options.max_depth;
   s.grey_without_depth_ = options.grey_without_depth;
-  s.color_intrinsics_ = d.color_intrinsics;
-  s.depth_intrinsics_ = d.depth_intrinsics;
-  s.depth_T_color_ = d.depth_T_color;
-  s.has_stereo_ = d.stereo;
-  s.stereo_intrinsics_ = d.stereo_intrinsics;
-  s.stereo_T_color_ = d.stereo_T_color;
-  s.objects_ = d.objects;
-  s.has_ground_truth_ = d.has_ground_truth;
-  s.files_ = opened.second;
+  s.files_ = files;
   return s;
 }
 
 Frame Sequence::load(int index) const {
-  if (index < 0 || index >= frame_count_)
+  if (index < 0 || index >= size())
     throw std::out_of_range(directory_ + ": frame " + std::to_string(index) + " out of range [0, " +
-                            std::to_string(frame_count_) + ")");
+                            std::to_string(size()) + ")");
   Frame frame;
   frame.index = index;
-  frame.timestamp = index / frame_rate_;
+  frame.timestamp = index / frame_rate();
 
   const auto add_color = [&](const char* camera, const Intrinsics& intrinsics, const Pose& camera_T_color,
                               const fs::path& file, const char* what) {
@@ -672,19 +95,20 @@ Frame Sequence::load(int index) const {
     if (grey_without_depth_) cv::cvtColor(color.image, color.image, cv::COLOR_BGR2GRAY);
     frame.colors.push_back(std::move(color));
   };
-  add_color(kColorCamera, color_intrinsics_, Pose(), files_->color_file(index), "colour image");
-  if (has_stereo_)
-    add_color(kStereoCamera, stereo_intrinsics_, stereo_T_color_, files_->stereo_color_file(index), "stereo colour image");
+  add_color(kColorCamera, color_intrinsics(), Pose(), files_->color_file(index), "colour image");
+  if (has_stereo())
+    add_color(kStereoCamera, stereo_intrinsics(), stereo_T_color(), files_->stereo_color_file(index),
+              "stereo colour image");
   frame.ground_truth = files_->read_ground_truth(index);
   frame.joint_ground_truth = files_->read_joint_truth(index);
   if (grey_without_depth_) return frame;
 
   DepthImage depth;
   depth.camera = kDepthCamera;
-  depth.intrinsics = depth_intrinsics_;
-  depth.camera_T_reference = depth_T_color_;
+  depth.intrinsics = depth_intrinsics();
+  depth.camera_T_reference = depth_T_color();
   depth.depth = files_->read_depth(index);
-  check_size(depth.depth, depth_intrinsics_, files_->depth_file(index), "depth image", files_->size_origin());
+  check_size(depth.depth, depth_intrinsics(), files_->depth_file(index), "depth image", files_->size_origin());
   clear_invalid_depth(depth.depth, max_depth_);
   frame.depths.push_back(std::move(depth));
   return frame;

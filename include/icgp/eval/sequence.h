@@ -3,14 +3,13 @@
 
 #include <functional>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "icgp/base/frame.h"
 #include "icgp/base/intrinsics.h"
 #include "icgp/base/pose.h"
-#include "icgp/geometry/joint.h"
+#include "icgp/eval/sequence_layout.h"
 
 namespace icgp {
 
@@ -40,29 +39,17 @@ struct SequenceOptions {
   bool grey_without_depth = false;
 };
 
-/// An object of a sequence: the name its ground truth is stored under and, when known,
-/// the mesh or ViSP model file describing it; for a link of an articulated object, the
-/// joint it hangs from its parent (an object listed before it) by.
-struct SequenceObject {
-  std::string name;
-  std::string mesh_path;
-  std::optional<Joint> joint;
-};
-
 /// An RGB-D image sequence on disk, read frame by frame into icgp::Frame.
 ///
-/// Layouts, detected from the files in the folder (in this order):
-///  * "icgp" — `sequence.yaml` (see SequenceWriter): color/%06d.png, depth/%06d.png
-///    (uint16, Z = value * depth_scale), ground truth poses/<object>.txt; when the YAML has
-///    stereo_camera and stereo_T_color, a second colour camera's color2/%06d.png; links
-///    (objects with a parent and a joint, io/joint_yaml.h) whose joint has free
-///    directions have their joint values in joints/<object>.txt (Frame::joint_truth).
-///  * "visp-blender" — images/%04d.jpg from 0001, depth/Image%04d.exr (channel 0 = Z),
-///    ground truth camera_poses/Camera_%03d.txt (cMo, 4x4) named after the single
-///    top-level .cao file, depth_M_color.txt.
-///  * "visp-realsense" — color_image_%04d.jpg from 0000, depth_image_%04d.bin
-///    (little-endian uint32 height, uint32 width, H*W uint16, Z = value * 1 mm),
-///    depth_M_color.txt, no ground truth.
+/// Layouts: open() asks the layouts of the registry, SequenceLayouts
+/// (icgp/eval/sequence_layout.h), in their order, and the first that recognises the folder
+/// reads it. A program may add its own; the built-in ones, each described in its file:
+///  * "icgp" (src/eval/icgp_layout.cpp) — `sequence.yaml` (see SequenceWriter), PNG colour
+///    and 16-bit PNG depth, ground truth poses and joint values, optionally a stereo camera.
+///  * "visp-blender" (src/eval/visp_blender_layout.cpp) — images/ + depth/ folders: JPEG
+///    colour, OpenEXR depth, ground truth camera_poses/ for the single top-level .cao file.
+///  * "visp-realsense" (src/eval/visp_realsense_layout.cpp) — color_image_0000.jpg: JPEG
+///    colour, RealSense .bin depth, no ground truth.
 ///
 /// Intrinsics of the ViSP layouts come from the <camera> block of ViSP XML files, read by
 /// SequenceOptions::read_camera_xml (without one, open() fails saying so): the explicit
@@ -83,48 +70,37 @@ class Sequence {
   static Sequence open(const std::string& dir, const SequenceOptions& options = {});
 
   const std::string& directory() const { return directory_; }
-  /// "icgp", "visp-blender" or "visp-realsense".
+  /// The name of its layout (SequenceLayoutEntry::name): "icgp", "visp-blender",
+  /// "visp-realsense" or one a program registered.
   const std::string& layout() const { return layout_; }
-  int size() const { return frame_count_; }
-  double frame_rate() const { return frame_rate_; }
-  const Intrinsics& color_intrinsics() const { return color_intrinsics_; }
-  const Intrinsics& depth_intrinsics() const { return depth_intrinsics_; }
+  int size() const { return description_.frame_count; }
+  double frame_rate() const { return description_.frame_rate; }
+  const Intrinsics& color_intrinsics() const { return description_.color_intrinsics; }
+  const Intrinsics& depth_intrinsics() const { return description_.depth_intrinsics; }
   /// Colour camera -> depth camera (ViSP depth_M_color).
-  const Pose& depth_T_color() const { return depth_T_color_; }
+  const Pose& depth_T_color() const { return description_.depth_T_color; }
   /// Whether frames have the second colour camera "Camera3" (icgp layout with color2/).
-  bool has_stereo() const { return has_stereo_; }
+  bool has_stereo() const { return description_.stereo; }
   /// Its calibration and pose (colour camera -> stereo camera, ViSP c3_M_c1); only
   /// meaningful with has_stereo().
-  const Intrinsics& stereo_intrinsics() const { return stereo_intrinsics_; }
-  const Pose& stereo_T_color() const { return stereo_T_color_; }
-  const std::vector<SequenceObject>& objects() const { return objects_; }
-  bool has_ground_truth() const { return has_ground_truth_; }
+  const Intrinsics& stereo_intrinsics() const { return description_.stereo_intrinsics; }
+  const Pose& stereo_T_color() const { return description_.stereo_T_color; }
+  const std::vector<SequenceObject>& objects() const { return description_.objects; }
+  bool has_ground_truth() const { return description_.has_ground_truth; }
 
   /// Reads frame `index` in [0, size()). Frame::index is `index`, the timestamp
   /// index / frame_rate().
   Frame load(int index) const;
-
-  /// Reads the files of one layout; defined in sequence.cpp.
-  class Layout;
 
  private:
   Sequence() = default;
 
   std::string directory_;
   std::string layout_;
-  int frame_count_ = 0;
-  double frame_rate_ = 0.0;
+  SequenceDescription description_;
   double max_depth_ = 0.0;
   bool grey_without_depth_ = false;
-  Intrinsics color_intrinsics_;
-  Intrinsics depth_intrinsics_;
-  Pose depth_T_color_;
-  bool has_stereo_ = false;
-  Intrinsics stereo_intrinsics_;
-  Pose stereo_T_color_;
-  std::vector<SequenceObject> objects_;
-  bool has_ground_truth_ = false;
-  std::shared_ptr<const Layout> files_;
+  std::shared_ptr<const SequenceLayout> files_;
 };
 
 /// Reads a 4x4 homogeneous matrix written as 4 lines of 4 numbers (ViSP's cMo and
