@@ -177,7 +177,7 @@ void run_single_body_track(const TrackOptions& o, const Sequence& sequence) {
   int frames_without_depth = 0, frames_found_again = 0;
   const auto start = [&](const Frame& frame, const Pose& pose) { tracker.start(frame, pose); };
   const auto track = [&](const Frame& frame) {
-    TrackedFrame outcome;
+    double ms = 0.0;
     found_again = false;
     if (!started) {
       const auto begin = std::chrono::steady_clock::now();
@@ -189,21 +189,15 @@ void run_single_body_track(const TrackOptions& o, const Sequence& sequence) {
         result = BodyResult{body};
         if (!o.quiet) std::cout << "frame " << frame.index << ": not found: " << detection.why_not << "\n";
       }
-      outcome.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+      ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
     } else {
-      result = tracker.track(frame, &outcome.ms, &found_again);
+      result = tracker.track(frame, &ms, &found_again);
       frames_found_again += found_again;
     }
-    outcome.reference_T_body = result.reference_T_body;
-    outcome.tracked = result.tracked;
-    outcome.quality = result.quality;
-    return outcome;
+    return TrackedFrame::of(result, ms);
   };
-  // The first frame was read above: the run reads it from memory.
-  FrameSource frames = FrameSource::of(sequence);
-  frames.load = [&](int index) { return index == 0 ? first : sequence.load(index); };
   const TrackingEvaluation evaluation = evaluate_sequence(
-      frames, body, mesh, {start, track}, detect ? std::nullopt : std::optional<Pose>(initial_pose),
+      FrameSource::of(sequence, first), body, mesh, {start, track}, detect ? std::nullopt : std::optional<Pose>(initial_pose),
       [&](const Frame& frame, const TrackedFrame& outcome, const FrameEvaluation& e) {
         if (has_no_depth(frame)) ++frames_without_depth;
         if (!o.quiet)
@@ -354,19 +348,12 @@ void run_multi_body_track(const TrackOptions& o, const Sequence& sequence) {
   // Every body's pose and joint values are set above: starting reads them all.
   const auto start = [&](const Frame& frame, const Pose&) { tracker->start(frame); };
   const auto track = [&](const Frame& frame) {
-    TrackedFrame outcome;
     const auto begin = std::chrono::steady_clock::now();
     results = tracker->track(frame);
-    outcome.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-    const BodyResult& main_result = result_of(results, main.name);
-    outcome.reference_T_body = main_result.reference_T_body;
-    outcome.tracked = main_result.tracked;
-    outcome.quality = main_result.quality;
-    return outcome;
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    return TrackedFrame::of(result_of(results, main.name), ms);
   };
-  FrameSource frames = FrameSource::of(sequence);
-  frames.load = [&](int index) { return index == 0 ? first : sequence.load(index); };
-  run_sequence(frames, {start, track}, *first.truth(main.name), [&](const Frame& frame, const TrackedFrame& outcome) {
+  run_sequence(FrameSource::of(sequence, first), {start, track}, *first.truth(main.name), [&](const Frame& frame, const TrackedFrame& outcome) {
     if (has_no_depth(frame)) ++frames_without_depth;
     const double ms = outcome.ms;
     frame_ms.push_back(ms);

@@ -12,6 +12,10 @@ FrameSource FrameSource::of(const Sequence& sequence, int count) {
   return {n, [&sequence](int index) { return sequence.load(index); }};
 }
 
+FrameSource FrameSource::of(const Sequence& sequence, const Frame& first) {
+  return {sequence.size(), [&sequence, &first](int index) { return index == 0 ? first : sequence.load(index); }};
+}
+
 FrameSource FrameSource::of(const std::vector<Frame>& frames) {
   return {static_cast<int>(frames.size()), [&frames](int index) { return frames[static_cast<std::size_t>(index)]; }};
 }

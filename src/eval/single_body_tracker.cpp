@@ -35,12 +35,9 @@ BodyResult SingleBodyTracker::track(const Frame& frame, double* track_ms, bool* 
 RunTracker SingleBodyTracker::as_run_tracker() {
   return {[this](const Frame& frame, const Pose& pose) { start(frame, pose); },
           [this](const Frame& frame) {
-            TrackedFrame outcome;
-            const BodyResult result = track(frame, &outcome.ms);
-            outcome.reference_T_body = result.reference_T_body;
-            outcome.tracked = result.tracked;
-            outcome.quality = result.quality;
-            return outcome;
+            double ms = 0.0;
+            const BodyResult result = track(frame, &ms);
+            return TrackedFrame::of(result, ms);
           }};
 }
 

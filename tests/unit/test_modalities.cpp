@@ -191,6 +191,21 @@ TEST_CASE("tracker: region + depth converge on a grey image too") {
   check_convergence(frame);
 }
 
+/// Makes `image` convert its pixels on read from the points `point_of(row, col)`, one at a
+/// time or many at once, counting the pixels read each way.
+template <class PointOf, class Count>
+void set_counting_point_reader(DepthImage& image, PointOf point_of, Count& single_reads, Count& many_reads) {
+  image.source.set_point_reader(
+      [point_of, &single_reads](int row, int col) {
+        ++single_reads;
+        return point_of(row, col);
+      },
+      [point_of, &many_reads](const std::vector<cv::Point>& pixels, std::vector<Eigen::Vector3f>& points) {
+        many_reads += static_cast<int>(pixels.size());
+        for (const cv::Point& p : pixels) points.push_back(point_of(p.y, p.x));
+      });
+}
+
 TEST_CASE("depth image: pixels not converted are read once from their source, then kept") {
   DepthImage image{"Camera2", Intrinsics{500.0, 500.0, 2.0, 1.5, 4, 3}, Pose(),
                    cv::Mat(3, 4, CV_32FC1, cv::Scalar(DepthImage::kNotConverted))};
@@ -241,16 +256,7 @@ TEST_CASE("depth image: a source that reads many pixels at once reads ahead what
   };
   int single_reads = 0, many_reads = 0;
   const auto start_frame = [&] {
-    image.source.set_point_reader(
-        [&](int row, int col) {
-          ++single_reads;
-          return point_of(row, col);
-        },
-        [&](const std::vector<cv::Point>& pixels, std::vector<Eigen::Vector3f>& points) {
-          many_reads += static_cast<int>(pixels.size());
-          points.clear();
-          for (const cv::Point& p : pixels) points.push_back(point_of(p.y, p.x));
-        });
+    set_counting_point_reader(image, point_of, single_reads, many_reads);
     image.rays.create(image.depth.size(), CV_32FC2);
     image.source.read_ahead(image.depth, image.rays);
   };
@@ -319,15 +325,7 @@ TEST_CASE("depth image: several threads read one image converted on read, each p
   };
   std::atomic<int> single_reads{0}, many_reads{0};
   const auto start_frame = [&] {
-    image.source.set_point_reader(
-        [&](int row, int col) {
-          ++single_reads;
-          return point_of(row, col);
-        },
-        [&](const std::vector<cv::Point>& pixels, std::vector<Eigen::Vector3f>& points) {
-          many_reads += static_cast<int>(pixels.size());
-          for (const cv::Point& p : pixels) points.push_back(point_of(p.y, p.x));
-        });
+    set_counting_point_reader(image, point_of, single_reads, many_reads);
     image.rays.create(image.depth.size(), CV_32FC2);
     image.source.read_ahead(image.depth, image.rays);
   };

@@ -14,6 +14,7 @@
 #include "icgp/base/mesh.h"
 #include "icgp/base/pose.h"
 #include "icgp/eval/metrics.h"
+#include "icgp/tracker/tracker.h"
 
 namespace icgp {
 
@@ -27,6 +28,11 @@ struct TrackedFrame {
   bool tracked = true;
   double quality = std::numeric_limits<double>::quiet_NaN();
   double ms = 0.0;  ///< the tracking call alone, not loading or converting the frame
+
+  /// An icgp tracker's result for the body, which took `ms`.
+  static TrackedFrame of(const BodyResult& result, double ms) {
+    return {result.reference_T_body, result.tracked, result.quality, ms};
+  }
 };
 
 /// A tracker as a run drives it: `start` puts the body at a pose on the first frame and
@@ -43,6 +49,8 @@ struct FrameSource {
 
   /// The first `count` frames of `sequence` (all of them when count < 0 or beyond its end).
   static FrameSource of(const Sequence& sequence, int count = -1);
+  /// Every frame of `sequence`, its first one read already as `first`.
+  static FrameSource of(const Sequence& sequence, const Frame& first);
   /// Frames already in memory.
   static FrameSource of(const std::vector<Frame>& frames);
 };
