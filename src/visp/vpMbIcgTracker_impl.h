@@ -228,6 +228,10 @@ inline bool has_measurement(const DepthInput& depth) {
   return false;
 }
 
+/// Throws vpException::ioError naming `what` and `path` when the file does not exist, is no
+/// regular file or cannot be read: before ViSP's parsers or assimp see the path.
+void require_file(const std::string& path, const std::string& what);
+
 /// What a failure of icgp's core or of a library under it means in a call (see guarded).
 enum class Failure {
   kError,     ///< an error of the call: vpException::fatalError

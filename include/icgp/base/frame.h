@@ -99,12 +99,20 @@ class LazyDepthSource {
   /// DepthImage::at of a pixel that holds no converted depth: reads it from the source,
   /// or takes the depth read ahead; either way the frame read it. 0 without a source.
   float resolve(cv::Mat& depth, cv::Mat& rays, int row, int col);
-  /// A pixel's value as another thread may be storing it (resolve): the load pairs with
-  /// that store, so the pixel's ray, written first, is seen with it.
+  /// A pixel's value as another thread may be storing it (resolve). Relaxed: a plain load,
+  /// left free for the compiler to schedule, on the hot path of every cue that reads depth;
+  /// DepthImage::point orders the pixel's ray after it (ordered_after_depth) where there are
+  /// rays.
   static float load(const float& held) {
     float z;
-    __atomic_load(&held, &z, __ATOMIC_ACQUIRE);
+    __atomic_load(&held, &z, __ATOMIC_RELAXED);
     return z;
+  }
+  /// Loads the pixel again, pairing with the store that converted it (a release store after
+  /// its ray): what is read after this call sees the pixel's ray.
+  static void ordered_after_depth(const float& held) {
+    float z;
+    __atomic_load(&held, &z, __ATOMIC_ACQUIRE);
   }
   /// Makes the pixels converted so far kNotConverted again, so that the next frame of the
   /// source is read without converting or clearing the whole image.
@@ -186,6 +194,7 @@ struct DepthImage {
     if (rays.empty())
       return {static_cast<float>((col - intrinsics.pu) / intrinsics.fu) * z,
               static_cast<float>((row - intrinsics.pv) / intrinsics.fv) * z, z};
+    LazyDepthSource::ordered_after_depth(depth.ptr<float>(row)[col]);
     const cv::Vec2f& r = rays.ptr<cv::Vec2f>(row)[col];
     return {r[0] * z, r[1] * z, z};
   }
