@@ -26,6 +26,7 @@
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/keypoint_baseline.h"
 #include "sweep.h"
+#include "text_table.h"
 
 namespace icgp::app {
 namespace {
@@ -322,17 +323,32 @@ void plot_occlusion(const std::vector<OcclusionLine>& lines, const fs::path& scr
   draw_with_gnuplot(s.str(), script, {png});
 }
 
-void print_row(const std::string& object, const Row& row, const Tally& icgp, const std::optional<Tally>& baseline) {
-  std::printf("%-16s %-11s %-15s %6d %6.1f%% %6.1f%% %6.1f%% %6.1f%% %5.2f %5.2f %6.0f %6.0f", object.c_str(),
-              scene_name(row.scene).c_str(), row.sensor.name.c_str(), icgp.frames, icgp.share(icgp.right),
-              icgp.share(icgp.equivalent), icgp.share(icgp.wrong), icgp.share(icgp.not_found),
-              icgp.t_mm.empty() ? -1.0 : median(icgp.t_mm), icgp.r_deg.empty() ? -1.0 : median(icgp.r_deg),
-              median(icgp.ms), percentile(icgp.ms, 0.9));
-  if (baseline)
-    std::printf(" | %6.1f%% %6.1f%% %6.1f%% %6.1f%% %6.0f", baseline->share(baseline->right),
-                baseline->share(baseline->equivalent), baseline->share(baseline->wrong),
-                baseline->share(baseline->not_found), median(baseline->ms));
-  std::printf("\n");
+/// The table of outcomes, printed a row at a time as each finishes.
+TextTable outcome_table() {
+  const std::vector<TableColumn> shares = {{"right", 7}, {"equiv", 7}, {"wrong", 7}, {"miss", 7}};
+  return TextTable(columns({{"object", 16, true}, {"scene", 11, true}, {"sensor", 15, true}, {"frames", 6}},
+                           {shares, {{"t mm", 5}, {"r deg", 5}, {"ms", 6}, {"p90", 6}, {"|", 1}}, shares, {{"ms", 6}}}),
+                   {{"", 4}, {"icgp", 8}, {"|", 1}, {"vpKeyPoint", 5}});
+}
+
+void print_row(TextTable& table, const std::string& object, const Row& row, const Tally& icgp,
+               const std::optional<Tally>& baseline) {
+  const auto shares = [&table](const Tally& t) {
+    table.percent(t.share(t.right)).percent(t.share(t.equivalent)).percent(t.share(t.wrong)).percent(t.share(t.not_found));
+  };
+  table.text(object).text(scene_name(row.scene)).text(row.sensor.name).integer(icgp.frames);
+  shares(icgp);
+  table.number(icgp.t_mm.empty() ? -1.0 : median(icgp.t_mm), 2).number(icgp.r_deg.empty() ? -1.0 : median(icgp.r_deg), 2);
+  table.number(median(icgp.ms), 0).number(percentile(icgp.ms, 0.9), 0);
+  if (baseline) {
+    table.text("|");
+    shares(*baseline);
+    table.number(median(baseline->ms), 0);
+  } else {
+    for (int i = 0; i < 6; ++i) table.text("");
+  }
+  table.end_row();
+  table.print_last_row();
   std::fflush(stdout);
 }
 
@@ -353,8 +369,8 @@ void run_detect_bench(const DetectBenchOptions& options) {
                                   "' is none of the sweep's objects (textured_box, two_region, labelled_can, "
                                   "textureless_mug)");
   const std::vector<Row> row_list = rows();
-  std::printf("%-16s %-11s %-15s %6s %7s %7s %7s %7s %5s %5s %6s %6s | %-36s\n", "object", "scene", "sensor", "frames",
-              "right", "equiv", "wrong", "miss", "t mm", "r deg", "ms", "p90", "vpKeyPoint: right equiv wrong miss ms");
+  TextTable table = outcome_table();
+  table.print_header();
   std::vector<JsonObject> json_rows;
   OcclusionLine icgp_rgbd{"icgp, RealSense-class RGB-D (4 objects)"}, icgp_grey{"icgp, grey (textured objects)"},
       vp_grey{"vpKeyPoint, grey (textured objects)"};
@@ -394,7 +410,7 @@ void run_detect_bench(const DetectBenchOptions& options) {
           }
         }
       }
-      print_row(object.name, row, icgp, vp);
+      print_row(table, object.name, row, icgp, vp);
       JsonObject json = JsonObject()
                             .add("object", object.name)
                             .add("scene", scene_name(row.scene))

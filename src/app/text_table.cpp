@@ -25,6 +25,12 @@ TextTable& TextTable::ratio(double value) {
   return text(cell);
 }
 
+TextTable& TextTable::percent(double value) {
+  char cell[64];
+  std::snprintf(cell, sizeof cell, "%.1f%%", value);
+  return text(cell);
+}
+
 TextTable& TextTable::accuracy(const TrackingSummary& s, int deg_decimals) {
   return number(s.mean_t_mm, 2).number(s.max_t_mm, 2).number(s.mean_r_deg, deg_decimals).number(s.max_r_deg, deg_decimals);
 }
@@ -46,13 +52,36 @@ std::string TextTable::line(const std::vector<std::string>& cells) const {
     if (i > 0) out += ' ';
     out += column.left ? cells[i] + padding : padding + cells[i];
   }
+  out.erase(out.find_last_not_of(' ') + 1);  // empty cells at the end leave no blanks
   return out + "\n";
 }
 
-void TextTable::print() const {
+void TextTable::print_header() const {
+  if (!groups_.empty()) {
+    // Each caption spans its columns and the spaces between them, left-aligned.
+    std::string out;
+    std::size_t first = 0;
+    for (const ColumnGroup& group : groups_) {
+      std::size_t width = static_cast<std::size_t>(group.n_columns - 1);
+      for (int k = 0; k < group.n_columns; ++k) width += static_cast<std::size_t>(columns_.at(first + k).width);
+      first += static_cast<std::size_t>(group.n_columns);
+      if (!out.empty()) out += ' ';
+      out += group.caption + std::string(group.caption.size() < width ? width - group.caption.size() : 0, ' ');
+    }
+    out.erase(out.find_last_not_of(' ') + 1);
+    std::fputs((out + "\n").c_str(), stdout);
+  }
   std::vector<std::string> headers;
   for (const TableColumn& column : columns_) headers.push_back(column.header);
   std::fputs(line(headers).c_str(), stdout);
+}
+
+void TextTable::print_last_row() const {
+  if (!rows_.empty()) std::fputs(line(rows_.back()).c_str(), stdout);
+}
+
+void TextTable::print() const {
+  print_header();
   for (const std::vector<std::string>& row : rows_) std::fputs(line(row).c_str(), stdout);
 }
 

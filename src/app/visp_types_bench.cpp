@@ -7,6 +7,7 @@
 #include <iostream>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
+#include "text_table.h"
 #include "timing_rounds.h"
 #include "single_thread_scope.h"
 #include "icgp/eval/json_object.h"
@@ -91,23 +92,28 @@ std::string verdict(const ResultRow& r) {
 }
 
 void print_rows(const std::vector<ResultRow>& rows) {
-  std::printf("\n%-16s %-21s %-6s | %-29s | %-29s | %6s  %s\n", "sequence", "tracker types", "image",
-              "vpMbGenericTracker mm / deg", "vpMbIcgTracker mm / deg", "speed", "verdict");
-  std::printf("%-16s %-21s %-6s | %6s %6s %6s %6s %6s | %6s %6s %6s %6s %6s |\n", "", "", "", "mean", "max", "mean",
-              "max", "ms", "mean", "max", "mean", "max", "ms");
+  const std::vector<TableColumn> errors = {{"mean", 6}, {"max", 6}, {"mean", 6}, {"max", 6}, {"ms", 6}};
+  TextTable table(columns({{"sequence", 16, true}, {"tracker types", 21, true}, {"image", 6, true}, {"|", 1}},
+                          {errors, {{"|", 1}}, errors, {{"|", 1}, {"speed", 6}, {"verdict", 0, true}}}),
+                  {{"", 3}, {"|", 1}, {"vpMbGenericTracker mm / deg", 5}, {"|", 1}, {"vpMbIcgTracker mm / deg", 5},
+                   {"|", 1}});
+  const auto error_cells = [&table](const TimedRow* row) {
+    if (!row) {
+      table.text("").text("").text("failed").text("").text("");
+      return;
+    }
+    const TrackingSummary& s = row->summary;
+    table.accuracy(s).number(s.median_ms, 2);
+  };
   for (const ResultRow& r : rows) {
-    const auto cells = [](const TimedRow* row) {
-      char text[64];
-      if (!row) return std::string("                failed        ");
-      const TrackingSummary& s = row->summary;
-      std::snprintf(text, sizeof text, "%6.2f %6.2f %6.2f %6.2f %6.2f", s.mean_t_mm, s.max_t_mm, s.mean_r_deg,
-                    s.max_r_deg, s.median_ms);
-      return std::string(text);
-    };
-    const double speed = r.visp && r.icgp ? speed_ratio(r.visp, *r.icgp) : NAN;
-    std::printf("%-16s %-21s %-6s | %s | %s | %5.1fx  %s\n", r.sequence.c_str(), r.types.c_str(), r.image.c_str(),
-                cells(r.visp).c_str(), cells(r.icgp).c_str(), speed, verdict(r).c_str());
+    table.text(r.sequence).text(r.types).text(r.image).text("|");
+    error_cells(r.visp);
+    table.text("|");
+    error_cells(r.icgp);
+    table.text("|").ratio(r.visp && r.icgp ? speed_ratio(r.visp, *r.icgp) : NAN).text(verdict(r)).end_row();
   }
+  std::printf("\n");
+  table.print();
   std::printf(
       "\nBoth classes: constructed with the row's types (colour camera Camera1, depth camera Camera2), the\n"
       "sequence's ViSP XML per camera (loadConfigFile), the .cao, the frames' cameras, initFromPose at the first\n"
