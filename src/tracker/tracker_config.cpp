@@ -413,7 +413,9 @@ Field<TrackerConfig> cue_section(const CueEntry& cue) {
           [name, parameters, expected, fits](const TrackerConfig& c, const yaml::Location& at) {
             const auto given = c.cue_parameters.find(name);
             if (given == c.cue_parameters.end()) return;
-            for (const auto& [key, value] : given->second) {
+            for (const auto& entry : given->second) {
+              const std::string& key = entry.first;  // not a structured binding: the lambda below reads it
+              const double value = entry.second;
               const auto p = std::find_if(parameters.begin(), parameters.end(),
                                           [&](const CueParameter& q) { return q.key == key; });
               if (p == parameters.end()) at.child(name).child(key).fail("cue '" + name + "' has no such parameter");
