@@ -16,6 +16,7 @@
 #include "single_thread_scope.h"
 #include "timing_rounds.h"
 #include "detect_bench.h"
+#include "model_bench.h"
 #include "sweep.h"
 #include "visp_types_bench.h"
 
@@ -30,7 +31,7 @@ struct BenchOptions {
   std::string config;
   std::string summary;
   std::string plot;  ///< --plot for --sweep or --detect; empty: each one's default
-  std::string out;   ///< --out for --sweep or --detect; empty: each one's default
+  std::string out;   ///< --out for --sweep, --detect or --model; empty: each one's default
   int frames = 0;
   int rounds = 3;
   bool ablation = false;
@@ -40,6 +41,7 @@ struct BenchOptions {
   std::vector<std::string> detect_objects;
   bool visp_types = false;
   std::vector<std::string> more_sequences;  ///< --visp-types: sequences after --sequence
+  bool model = false;
   SequenceOptions sequence_options = visp_sequence_options();
 };
 
@@ -153,7 +155,8 @@ void register_bench_command(CLI::App& app) {
   cmd->add_option("--out", o->out,
                   "--sweep: folder of the cached sequences, ViSP models and plot script (default " +
                       SweepOptions().out + "); --detect: of its cached sequences and plot script (default " +
-                      DetectBenchOptions().out + ")");
+                      DetectBenchOptions().out + "); --model: of its caches and frames (default " +
+                      ModelBenchOptions().out + ")");
   cmd->add_option("--plot", o->plot,
                   "--sweep: PNG of the mean error against depth noise (default " + SweepOptions().plot +
                       "); --detect: PNG of success against occlusion (default " + DetectBenchOptions().plot + ")");
@@ -166,6 +169,12 @@ void register_bench_command(CLI::App& app) {
       "Instead: every ViSP tracker type alone and combined (EDGE, KLT, EDGE+KLT, DEPTH_DENSE, DEPTH_NORMAL, each "
       "colour type + DEPTH_DENSE) with vpMbGenericTracker and vpMbIcgTracker on the same frames (docs/visp.md)");
   visp_types->excludes("--ablation")->excludes(sweep)->excludes(detect);
+  CLI::Option* model = cmd->add_flag(
+      "--model", o->model,
+      "Instead: what a new object costs before its first tracked frame: viewpoint-model generation per kind for "
+      "models/ and a 10k-triangle torus, the first frame through vpMbIcgTracker on an empty cache, cache size, "
+      "memory");
+  model->excludes("--ablation")->excludes(sweep)->excludes(detect)->excludes(visp_types)->excludes(rounds);
   cmd->add_option("--and-sequence", o->more_sequences,
                   "--visp-types: a further sequence with ground truth (repeatable); its ViSP files are written for "
                   "its mesh when it has no .cao")
@@ -179,7 +188,12 @@ void register_bench_command(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->needs(sweep);
   cmd->callback([o] {
-    if (o->visp_types) {
+    if (o->model) {
+      ModelBenchOptions model_options;
+      model_options.summary = o->summary;
+      if (!o->out.empty()) model_options.out = o->out;
+      run_model_bench(model_options);
+    } else if (o->visp_types) {
       VispTypesBenchOptions types_options;
       types_options.sequences.push_back(o->sequence);
       for (const std::string& dir : o->more_sequences) types_options.sequences.push_back(dir);
