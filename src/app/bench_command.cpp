@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // `icgp bench`: icgp's tracker and ViSP's vpMbGenericTracker on the same frames, in one
 // process and one thread, so accuracy and speed compare directly.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -58,6 +59,50 @@ void print_table(const std::vector<TimedRow>& rows, int rounds) {
               rounds, kReferenceRow.c_str());
 }
 
+/// Where icgp's time goes with `config`: one more run over `frames` with the tracker's cost
+/// timing, each cue's and the render step's median ms per frame, and the rest of the frame
+/// (the solve and the tracker's bookkeeping).
+void print_cue_costs(const std::vector<Frame>& frames, const std::string& body, const Mesh& mesh,
+                     const TrackerConfig& config, const std::string& name) {
+  SingleBodyTracker tracker(config, mesh, body);
+  tracker.tracker().set_cost_timing(true);
+  std::vector<std::string> parts;
+  std::vector<std::vector<double>> part_ms;
+  std::vector<double> frame_ms, rest_ms;
+  const auto add = [&](const std::string& part, double ms) {
+    const auto at = std::find(parts.begin(), parts.end(), part);
+    if (at == parts.end()) {
+      parts.push_back(part);
+      part_ms.emplace_back();
+    }
+    part_ms[static_cast<std::size_t>(std::find(parts.begin(), parts.end(), part) - parts.begin())].push_back(ms);
+  };
+  run_sequence(FrameSource::of(frames), tracker.as_run_tracker(), *frames.front().truth(body),
+               [&](const Frame&, const TrackedFrame& outcome) {
+                 const FrameCosts& costs = tracker.tracker().last_costs();
+                 double counted = costs.render_ms;
+                 for (const FrameCosts::Cue& cue : costs.cues) {
+                   add(cue.cue + (cue.camera.empty() ? "" : " (" + cue.camera + ")"), cue.ms);
+                   counted += cue.ms;
+                 }
+                 add("render step", costs.render_ms);
+                 frame_ms.push_back(outcome.ms);
+                 rest_ms.push_back(outcome.ms - counted);
+               });
+  TextTable table({{"part of " + name, 34, true}, {"median ms", 10}, {"share", 7}});
+  const double frame = median(frame_ms);
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    table.text(parts[i]).number(median(part_ms[i]), 3).percent(100.0 * median(part_ms[i]) / frame).end_row();
+  table.text("rest (solve, bookkeeping)").number(median(rest_ms), 3).percent(100.0 * median(rest_ms) / frame).end_row();
+  table.text("whole frame").number(frame, 3).percent(100.0).end_row();
+  std::printf("\n");
+  table.print();
+  std::printf("\nOne more run of %s with the tracker's cost timing (Tracker::set_cost_timing), single thread:\n"
+              "a cue's time is its correspondences, gradients and finish; medians over frames, so the parts\n"
+              "need not add up to the whole.\n",
+              name.c_str());
+}
+
 void run_bench(const BenchOptions& o) {
   const Sequence sequence = Sequence::open(o.sequence, o.sequence_options);
   if (!sequence.has_ground_truth() || sequence.objects().size() != 1 || sequence.objects().front().mesh_path.empty())
@@ -101,6 +146,9 @@ void run_bench(const BenchOptions& o) {
   const SingleThreadScope single_thread;
   const std::vector<TimedRow> rows = run_rounds(jobs, o.rounds, n_frames, failures);
   print_table(rows, o.rounds);
+  std::string cues;
+  for (const std::string& cue : base_config.modalities) cues += (cues.empty() ? "" : " + ") + cue;
+  print_cue_costs(frames, object.name, mesh, base_config, "icgp " + cues);
   const TimedRow* reference = find_row(rows, kReferenceRow);
 
   if (!o.summary.empty()) {

@@ -2,6 +2,7 @@
 #include "icgp/optimizer/optimizer.h"
 
 #include <Eigen/Cholesky>
+#include <chrono>
 #include <stdexcept>
 
 namespace icgp {
@@ -20,8 +21,11 @@ Vec6 OptimizerParams::diagonal() const {
 void CueTermSum::collect(const std::vector<Modality*>& cues, int corr_iter, int update_iter) {
   per_cue_.clear();
   total_ = CueTerms{};
-  for (Modality* cue : cues) {
-    per_cue_.push_back(cue->gradient_hessian(corr_iter, update_iter));
+  if (timed_) cue_ms_.resize(cues.size(), 0.0);
+  for (std::size_t i = 0; i < cues.size(); ++i) {
+    const auto begin = timed_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
+    per_cue_.push_back(cues[i]->gradient_hessian(corr_iter, update_iter));
+    if (timed_) cue_ms_[i] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
     total_.gradient += per_cue_.back().gradient;
     total_.hessian += per_cue_.back().hessian;
     total_.n_correspondences += per_cue_.back().n_correspondences;

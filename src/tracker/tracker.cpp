@@ -2,6 +2,7 @@
 #include "icgp/tracker/tracker.h"
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -22,6 +23,7 @@ struct Tracker::BodyState {
   std::vector<std::unique_ptr<Modality>> modalities;
   std::vector<Modality*> cues;  ///< the same modalities, as the optimizer takes them
   CueTermSum terms;             ///< of the last update
+  std::vector<double> cue_ms;   ///< with cost timing: each cue's correspondences and finish this frame
 };
 
 Tracker::Tracker(TrackerParams params, std::shared_ptr<SceneRenderer> renderer)
@@ -41,8 +43,28 @@ Tracker::BodyState& Tracker::add_state(Body body) {
   for (const auto& s : states_)
     if (s->body->name == body.name) throw std::invalid_argument("tracker already has a body named '" + body.name + "'");
   states_.push_back(std::make_unique<BodyState>(std::move(body)));
+  states_.back()->terms.time_cues(timed_);
   trees_.clear();
   return *states_.back();
+}
+
+namespace {
+
+/// Runs `work`, adding its milliseconds to `*ms`; a null `ms` reads no clock.
+template <typename Work>
+void add_time(double* ms, Work&& work) {
+  if (!ms) return work();
+  const auto begin = std::chrono::steady_clock::now();
+  work();
+  *ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+}
+
+}  // namespace
+
+void Tracker::set_cost_timing(bool on) {
+  timed_ = on;
+  for (auto& s : states_) s->terms.time_cues(on);
+  costs_ = FrameCosts();
 }
 
 Body& Tracker::add_body(Body body) { return *add_state(std::move(body)).body; }
@@ -191,10 +213,20 @@ void Tracker::start(const Frame& frame) {
 }
 
 std::vector<BodyResult> Tracker::track(const Frame& frame) {
+  double* const render_ms = timed_ ? &costs_.render_ms : nullptr;
+  if (timed_) {
+    costs_.render_ms = 0.0;
+    for (auto& s : states_) {
+      s->cue_ms.assign(s->cues.size(), 0.0);
+      s->terms.reset_cue_ms();
+    }
+  }
+  const auto cue_ms = [&](BodyState& s, std::size_t i) { return timed_ ? &s.cue_ms[i] : nullptr; };
   for (int c = 0; c < params_.n_corr_iterations; ++c) {
-    render(frame, {Stage::kCorrespondences, c});
+    add_time(render_ms, [&] { render(frame, {Stage::kCorrespondences, c}); });
     for (auto& s : states_)
-      for (Modality* m : s->cues) m->correspondences(frame, renders_, c);
+      for (std::size_t i = 0; i < s->cues.size(); ++i)
+        add_time(cue_ms(*s, i), [&] { s->cues[i]->correspondences(frame, renders_, c); });
     for (int u = 0; u < params_.n_update_iterations; ++u)
       for (const std::vector<TreeLink>& tree : trees()) {
         if (tree.size() == 1)
@@ -204,7 +236,7 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
       }
   }
 
-  render(frame, {Stage::kFinish});
+  add_time(render_ms, [&] { render(frame, {Stage::kFinish}); });
   std::vector<BodyResult> results;
   for (auto& s : states_) {
     if (s->occluder) continue;
@@ -213,8 +245,9 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
     r.joint_values = s->joint_values;
     double score_sum = 0.0;
     int n_scored = 0;
-    for (Modality* m : s->cues) {
-      m->finish(frame, renders_);
+    for (std::size_t i = 0; i < s->cues.size(); ++i) {
+      Modality* m = s->cues[i];
+      add_time(cue_ms(*s, i), [&] { m->finish(frame, renders_); });
       r.modalities.push_back(m->quality());
       if (r.modalities.back().abstained) continue;
       score_sum += r.modalities.back().score;
@@ -229,6 +262,15 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
     if (n_scored == 0 && all_just_started && !r.modalities.empty()) r.quality = 1.0;
     r.tracked = r.quality >= params_.quality_threshold;
     results.push_back(std::move(r));
+  }
+  if (timed_) {
+    costs_.cues.clear();
+    for (auto& s : states_)
+      for (std::size_t i = 0; i < s->cues.size(); ++i) {
+        const std::vector<double>& solve_ms = s->terms.cue_ms();
+        costs_.cues.push_back({s->body->name, s->cues[i]->name(), s->cues[i]->camera(),
+                               s->cue_ms[i] + (i < solve_ms.size() ? solve_ms[i] : 0.0)});
+      }
   }
   return results;
 }

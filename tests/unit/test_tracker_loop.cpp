@@ -3,6 +3,7 @@
 // cue written outside the library (docs/architecture.md's example), and the render step
 // that hands each cue the renders it asked for.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 
 #include "example_position_cue.h"
@@ -150,4 +151,62 @@ TEST_CASE("render step: a render nobody asked for is a clear error") {
   request.camera = "Camera1";
   CHECK_THROWS_WITH(renders.at(request), Catch::Contains("no render of camera 'Camera1'"));
   CHECK_THROWS_WITH(renders.id("box"), Catch::Contains("'box' was not rendered"));
+}
+
+namespace {
+
+/// The example cue, slowed down by `ms_per_call` in each gradient_hessian: a cue whose cost
+/// the profile must find.
+class SlowPositionCue final : public Modality {
+ public:
+  SlowPositionCue(Body& body, double ms_per_call)
+      : Modality(body), cue_(body, Eigen::Vector3d(0.05, 0.03, 0.55), 0.001), ms_per_call_(ms_per_call) {}
+  std::string name() const override { return "slow"; }
+  const std::string& camera() const override { return cue_.camera(); }
+  void start(const Frame& f, const Renders& r) override { cue_.start(f, r); }
+  void correspondences(const Frame& f, const Renders& r, int c) override { cue_.correspondences(f, r, c); }
+  CueTerms gradient_hessian(int c, int u) override {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(ms_per_call_);
+    while (std::chrono::steady_clock::now() < until) {
+    }
+    return cue_.gradient_hessian(c, u);
+  }
+  double log_likelihood(int c) const override { return cue_.log_likelihood(c); }
+  void finish(const Frame& f, const Renders& r) override { cue_.finish(f, r); }
+  ModalityQuality quality() const override { return cue_.quality(); }
+  void append_residuals(std::vector<double>& residuals, std::vector<double>& weights) const override {
+    cue_.append_residuals(residuals, weights);
+  }
+
+ private:
+  example::PositionCue cue_;
+  double ms_per_call_;
+};
+
+}  // namespace
+
+TEST_CASE("cost timing: each cue's time is found where it is spent, and nothing is timed by default") {
+  Tracker tracker;
+  Body& body = tracker.add_body({"object", Mesh{}, some_pose()});
+  tracker.add_modality(std::make_unique<example::PositionCue>(body, Eigen::Vector3d(0.05, 0.03, 0.55), 0.001));
+  tracker.add_modality(std::make_unique<SlowPositionCue>(body, 0.5));
+  tracker.start(Frame{});
+  tracker.track(Frame{});
+  CHECK(tracker.last_costs().cues.empty());
+
+  tracker.set_cost_timing(true);
+  tracker.track(Frame{});
+  const FrameCosts& costs = tracker.last_costs();
+  REQUIRE(costs.cues.size() == 2);
+  CHECK(costs.cues[0].cue == "position");
+  CHECK(costs.cues[1].cue == "slow");
+  CHECK(costs.cues[1].body == "object");
+  // 5 correspondence iterations × 2 updates × 0.5 ms in the slow cue's gradient_hessian.
+  CHECK(costs.cues[1].ms >= 5.0);
+  CHECK(costs.cues[0].ms < 0.5);
+  CHECK(costs.render_ms >= 0.0);
+
+  tracker.set_cost_timing(false);
+  tracker.track(Frame{});
+  CHECK(tracker.last_costs().cues.empty());
 }

@@ -31,6 +31,8 @@ class SingleBodyTracker {
 
   /// This tracker as run_sequence drives it.
   RunTracker as_run_tracker();
+  /// The tracker itself (its costs, its cues' diagnostics).
+  Tracker& tracker() { return *tracker_; }
 
  private:
   std::unique_ptr<Tracker> tracker_;

@@ -35,9 +35,18 @@ class CueTermSum {
   /// θ = [θ_r; θ_t].
   const CueTerms& total() const { return total_; }
 
+  /// With `on`, collect() adds each cue's time to cue_ms() (a profile: off by default, so
+  /// that tracking reads no clock).
+  void time_cues(bool on) { timed_ = on; }
+  /// Milliseconds each cue spent in gradient_hessian since reset_cue_ms(), in cue order.
+  const std::vector<double>& cue_ms() const { return cue_ms_; }
+  void reset_cue_ms() { cue_ms_.assign(cue_ms_.size(), 0.0); }
+
  private:
   std::vector<CueTerms> per_cue_;
   CueTerms total_;
+  bool timed_ = false;
+  std::vector<double> cue_ms_;
 };
 
 /// The Newton–Tikhonov step of one body (ALGORITHMS.md §2, eq. θ = (−H + diag(λ))⁻¹ g):

@@ -36,6 +36,18 @@ struct BodyResult {
   std::vector<double> joint_values;
 };
 
+/// Where one frame's tracking time went (Tracker::set_cost_timing): each cue's own work
+/// (correspondences, gradient and Hessian, finish), and the render step all cues share. The
+/// rest of the frame is the optimizer's solve and the tracker's bookkeeping.
+struct FrameCosts {
+  struct Cue {
+    std::string body, cue, camera;
+    double ms = 0.0;
+  };
+  std::vector<Cue> cues;  ///< every body's modalities, in the order they were added
+  double render_ms = 0.0;
+};
+
 /// Tracks any number of bodies with any number of modalities on frames from any number of
 /// cameras. Bodies are free (6 DoF) or links of kinematic trees: a link hangs from its
 /// parent by a Joint, and a tree's pose and joint values are solved in one Newton step per
@@ -104,6 +116,12 @@ class Tracker {
   /// The modalities of `body`, in the order they were added (for per-cue diagnostics).
   std::vector<const Modality*> modalities(const std::string& body) const;
 
+  /// With `on`, every track() times each cue and the render step (last_costs()); off by
+  /// default, so that tracking reads no clock.
+  void set_cost_timing(bool on);
+  /// The last track()'s costs; empty without set_cost_timing(true).
+  const FrameCosts& last_costs() const { return costs_; }
+
  private:
   struct BodyState;
   const BodyState& state(const std::string& body) const;
@@ -122,6 +140,8 @@ class Tracker {
   std::vector<std::vector<TreeLink>> trees_;
   Optimizer optimizer_;  ///< of a free body
   TreeOptimizer tree_optimizer_;
+  bool timed_ = false;
+  FrameCosts costs_;
 };
 
 }  // namespace icgp
