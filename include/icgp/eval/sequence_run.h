@@ -42,7 +42,8 @@ struct RunTracker {
   std::function<TrackedFrame(const Frame&)> track;
 };
 
-/// The frames of a run, read one at a time in order.
+/// The frames of a run, read one at a time in order. The sources below keep the sequence or
+/// the frames by reference: they must outlive the run.
 struct FrameSource {
   int count = 0;
   std::function<Frame(int index)> load;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// One RGB-D tracking loop written against ViSP's API alone, for any tracker that has
-// vpMbGenericTracker's two-camera calls. vpMbGenericTracker and vpMbIcgTracker run through
-// literally the same code, so whatever differs in their results comes from the trackers:
-// this is what "drop-in replacement" means in numbers.
+// A ViSP RGB-D program written against ViSP's API alone (VispProgram), for any tracker that
+// has vpMbGenericTracker's two-camera calls, run over a sequence by icgp's one sequence
+// runner. vpMbGenericTracker and vpMbIcgTracker run through literally the same code, so
+// whatever differs in their results comes from the trackers: this is what "drop-in
+// replacement" means in numbers.
 #pragma once
 
 #include <chrono>
