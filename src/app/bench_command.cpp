@@ -70,12 +70,12 @@ void print_cue_costs(const std::vector<Frame>& frames, const std::string& body, 
   std::vector<std::vector<double>> part_ms;
   std::vector<double> frame_ms, rest_ms;
   const auto add = [&](const std::string& part, double ms) {
-    const auto at = std::find(parts.begin(), parts.end(), part);
-    if (at == parts.end()) {
+    const std::size_t i = static_cast<std::size_t>(std::find(parts.begin(), parts.end(), part) - parts.begin());
+    if (i == parts.size()) {
       parts.push_back(part);
       part_ms.emplace_back();
     }
-    part_ms[static_cast<std::size_t>(std::find(parts.begin(), parts.end(), part) - parts.begin())].push_back(ms);
+    part_ms[i].push_back(ms);
   };
   run_sequence(FrameSource::of(frames), tracker.as_run_tracker(), *frames.front().truth(body),
                [&](const Frame&, const TrackedFrame& outcome) {

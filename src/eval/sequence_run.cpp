@@ -2,6 +2,7 @@
 #include "icgp/eval/sequence_run.h"
 
 #include <algorithm>
+#include <memory>
 
 #include "icgp/eval/sequence.h"
 
@@ -9,21 +10,26 @@ namespace icgp {
 
 FrameSource FrameSource::of(const Sequence& sequence, int count) {
   const int n = count < 0 ? sequence.size() : std::min(count, sequence.size());
-  return {n, [&sequence](int index) { return sequence.load(index); }};
+  auto read = std::make_shared<Frame>();
+  return {n, [&sequence, read](int index) -> const Frame& { return *read = sequence.load(index); }};
 }
 
 FrameSource FrameSource::of(const Sequence& sequence, const Frame& first) {
-  return {sequence.size(), [&sequence, &first](int index) { return index == 0 ? first : sequence.load(index); }};
+  auto read = std::make_shared<Frame>();
+  return {sequence.size(), [&sequence, &first, read](int index) -> const Frame& {
+            return index == 0 ? first : *read = sequence.load(index);
+          }};
 }
 
 FrameSource FrameSource::of(const std::vector<Frame>& frames) {
-  return {static_cast<int>(frames.size()), [&frames](int index) { return frames[static_cast<std::size_t>(index)]; }};
+  return {static_cast<int>(frames.size()),
+          [&frames](int index) -> const Frame& { return frames[static_cast<std::size_t>(index)]; }};
 }
 
 void run_sequence(const FrameSource& frames, const RunTracker& tracker, const std::optional<Pose>& start_pose,
                   const std::function<void(const Frame&, const TrackedFrame&)>& on_frame) {
   for (int i = 0; i < frames.count; ++i) {
-    const Frame frame = frames.load(i);
+    const Frame& frame = frames.load(i);
     if (i == 0 && start_pose) tracker.start(frame, *start_pose);
     const TrackedFrame outcome = tracker.track(frame);
     if (on_frame) on_frame(frame, outcome);

@@ -46,15 +46,15 @@ Evaluation evaluate(const Sequence& sequence, const py::object& model, const py:
                                 " names no model for '" + object.name + "': give model=");
   const FrameSource source = FrameSource::of(sequence, frames);
   if (source.count == 0) throw std::invalid_argument("evaluate_tracker: no frames to track");
-  const Frame first = source.load(0);
-  const Pose* start = first.truth(object.name);
-  if (!start)
+  const Pose* truth = source.load(0).truth(object.name);
+  if (!truth)
     throw std::invalid_argument("evaluate_tracker: the first frame of " + sequence.directory() +
                                 " has no ground truth for '" + object.name + "' to start from");
+  const Pose start = *truth;  // the run reads the frame again into the source's frame
   const Mesh mesh = load_any_mesh(model_path);
   const TrackerConfig tracker_config = icgp::python::tracker_config(config, settings);
   py::gil_scoped_release released;
-  return Evaluation(evaluate_tracker(source, object.name, mesh, tracker_config, *start));
+  return Evaluation(evaluate_tracker(source, object.name, mesh, tracker_config, start));
 }
 
 py::dict summary_dict(const TrackingSummary& s) {

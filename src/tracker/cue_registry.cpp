@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "icgp/io/yaml_reader.h"
 #include "icgp/modality/cue_kind.h"
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/edge_modality.h"
@@ -101,9 +102,7 @@ void check_parameters(const CueEntry& entry) {
     seen.push_back(p.key);
     if (!std::isfinite(p.min) || !std::isfinite(p.max) || p.min > p.max)
       throw std::invalid_argument(parameter + ": expected finite bounds min <= max");
-    if (!(p.default_value >= p.min && p.default_value <= p.max) ||
-        (p.integer && p.default_value != std::floor(p.default_value)))
-      throw std::invalid_argument(parameter + ": its default is outside its range");
+    if (!p.accepts(p.default_value)) throw std::invalid_argument(parameter + ": its default is outside its range");
   }
 }
 
@@ -159,13 +158,24 @@ const char* cue_list_expected() {
   return text.c_str();
 }
 
+bool CueParameter::accepts(double value) const {
+  return yaml::Interval{min, max}.contains(value) && (!integer || value == std::floor(value));
+}
+
+std::string CueParameter::expected() const {
+  return (integer ? "an integer in " : "a number in ") + yaml::Interval{min, max}.text();
+}
+
+const CueParameter* CueEntry::parameter(const std::string& key) const {
+  for (const CueParameter& p : parameters)
+    if (p.key == key) return &p;
+  return nullptr;
+}
+
 double cue_parameter(const TrackerConfig& config, const std::string& cue, const std::string& key) {
   const CueEntry* entry = CueRegistry::instance().find(cue);
-  const auto parameter = entry ? std::find_if(entry->parameters.begin(), entry->parameters.end(),
-                                              [&](const CueParameter& p) { return p.key == key; })
-                               : std::vector<CueParameter>::const_iterator{};
-  if (!entry || parameter == entry->parameters.end())
-    throw std::invalid_argument("cue '" + cue + "' has no parameter '" + key + "'");
+  const CueParameter* parameter = entry ? entry->parameter(key) : nullptr;
+  if (!parameter) throw std::invalid_argument("cue '" + cue + "' has no parameter '" + key + "'");
   const auto given = config.cue_parameters.find(cue);
   if (given != config.cue_parameters.end())
     if (const auto value = given->second.find(key); value != given->second.end()) return value->second;

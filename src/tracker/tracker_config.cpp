@@ -328,6 +328,9 @@ const Fields<EdgeParams> kEdgeFields = {
     field("render_size", &EdgeParams::render_size, int_range<16, 2048>()),
 };
 
+/// The registered cues' names, at least one, none twice (the registry's list, read each time).
+Rule<std::vector<std::string>> cue_list_rule() { return {cue_list_expected(), valid_cue_list}; }
+
 bool known_preset(const std::string& name) {
   const std::vector<std::string>& names = tracker_config_presets();
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -349,12 +352,10 @@ const Fields<TrackerConfig> kConfigFields = {
      }},
     section("tracker", &TrackerConfig::tracker, kTrackerFields),
     {"modalities",
-     [](const yaml::Value& v, TrackerConfig& c) {
-       c.modalities = parse_cue_list(v.as(Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}));
-     },
+     [](const yaml::Value& v, TrackerConfig& c) { c.modalities = parse_cue_list(v.as(cue_list_rule())); },
      [](YAML::Emitter& out, const TrackerConfig& c) { emit(out, c.modalities); },
      [](const TrackerConfig& c, const yaml::Location& at) {
-       check_value(c.modalities, Rule<std::vector<std::string>>{cue_list_expected(), valid_cue_list}, at.child("modalities"));
+       check_value(c.modalities, cue_list_rule(), at.child("modalities"));
      }},
     section("region_model", &TrackerConfig::region_model, kModelFields),
     section("depth_model", &TrackerConfig::depth_model, kModelFields),
@@ -378,31 +379,24 @@ const Fields<TrackerConfig> kConfigFields = {
 
 /// The section of a registered cue with parameters: its keys read as numbers in their
 /// ranges into TrackerConfig::cue_parameters, every key written (the default where unset).
-Field<TrackerConfig> cue_section(const CueEntry& cue) {
-  const std::string name = cue.name;
-  const std::vector<CueParameter> parameters = cue.parameters;
-  const auto range = [](const CueParameter& p) { return yaml::Interval{p.min, p.max}; };
-  const auto expected = [range](const CueParameter& p) {
-    return (p.integer ? "an integer in " : "a number in ") + range(p).text();
-  };
-  const auto fits = [range](const CueParameter& p, double v) { return range(p).contains(v) && (!p.integer || v == std::floor(v)); };
-  return {name,
-          [name, parameters, expected, fits](const yaml::Value& section, TrackerConfig& c) {
+Field<TrackerConfig> cue_section(const CueEntry& registered) {
+  const CueEntry cue = registered;  // the registry's entries may move as cues are added
+  return {cue.name,
+          [cue](const yaml::Value& section, TrackerConfig& c) {
             std::vector<std::string> keys;
-            for (const CueParameter& p : parameters) keys.push_back(p.key);
+            for (const CueParameter& p : cue.parameters) keys.push_back(p.key);
             yaml::for_each_entry(section, keys, [&](const std::string& key, const yaml::Value& v) {
-              const CueParameter& p = *std::find_if(parameters.begin(), parameters.end(),
-                                                    [&](const CueParameter& q) { return q.key == key; });
+              const CueParameter& p = *cue.parameter(key);
               const std::optional<double> value = yaml::convert<double>(v.node);
-              if (!value || !fits(p, *value)) v.expected(expected(p));
-              c.cue_parameters[name][key] = *value;
+              if (!value || !p.accepts(*value)) v.expected(p.expected());
+              c.cue_parameters[cue.name][key] = *value;
             });
           },
-          [name, parameters](YAML::Emitter& out, const TrackerConfig& c) {
+          [cue](YAML::Emitter& out, const TrackerConfig& c) {
             out << YAML::BeginMap;
-            for (const CueParameter& p : parameters) {
+            for (const CueParameter& p : cue.parameters) {
               out << YAML::Key << p.key << YAML::Value;
-              const double value = cue_parameter(c, name, p.key);
+              const double value = cue_parameter(c, cue.name, p.key);
               if (p.integer)
                 out << static_cast<long long>(value);
               else
@@ -410,16 +404,13 @@ Field<TrackerConfig> cue_section(const CueEntry& cue) {
             }
             out << YAML::EndMap;
           },
-          [name, parameters, expected, fits](const TrackerConfig& c, const yaml::Location& at) {
-            const auto given = c.cue_parameters.find(name);
+          [cue](const TrackerConfig& c, const yaml::Location& at) {
+            const auto given = c.cue_parameters.find(cue.name);
             if (given == c.cue_parameters.end()) return;
-            for (const auto& entry : given->second) {
-              const std::string& key = entry.first;  // not a structured binding: the lambda below reads it
-              const double value = entry.second;
-              const auto p = std::find_if(parameters.begin(), parameters.end(),
-                                          [&](const CueParameter& q) { return q.key == key; });
-              if (p == parameters.end()) at.child(name).child(key).fail("cue '" + name + "' has no such parameter");
-              if (!fits(*p, value)) yaml::Value{YAML::Node(value), at.child(name).child(key)}.expected(expected(*p));
+            for (const auto& [key, value] : given->second) {
+              const CueParameter* p = cue.parameter(key);
+              if (!p) at.child(cue.name).child(key).fail("cue '" + cue.name + "' has no such parameter");
+              if (!p->accepts(value)) yaml::Value{YAML::Node(value), at.child(cue.name).child(key)}.expected(p->expected());
             }
           }};
 }

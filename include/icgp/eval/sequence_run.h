@@ -43,10 +43,12 @@ struct RunTracker {
 };
 
 /// The frames of a run, read one at a time in order. The sources below keep the sequence or
-/// the frames by reference: they must outlive the run.
+/// the frames by reference: they must outlive the run. A frame `load` returns stays valid
+/// until the next call (frames in memory are not copied; a sequence's are read into one
+/// frame the source holds).
 struct FrameSource {
   int count = 0;
-  std::function<Frame(int index)> load;
+  std::function<const Frame&(int index)> load;
 
   /// The first `count` frames of `sequence` (all of them when count < 0 or beyond its end).
   static FrameSource of(const Sequence& sequence, int count = -1);

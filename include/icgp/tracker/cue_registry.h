@@ -55,6 +55,11 @@ struct CueParameter {
   /// naming the key and the range.
   double min = 0.0, max = 0.0;
   bool integer = false;  ///< whole numbers only
+
+  /// Whether `value` is one it may take: within [min, max], whole if `integer`.
+  bool accepts(double value) const;
+  /// What it may take, completing "expected …": "a number in [1e-06, 1]".
+  std::string expected() const;
 };
 
 /// One cue of the registry: everything the tracker builder, the camera rigs and
@@ -77,6 +82,8 @@ struct CueEntry {
   /// The keys of a registered cue's section of a configuration. The built-in cues have
   /// typed sections of their own (TrackerConfig::region, depth, texture, flow, edge).
   std::vector<CueParameter> parameters;
+  /// The parameter of `key`; null for none.
+  const CueParameter* parameter(const std::string& key) const;
   /// Makes the cue, with the parameters of its section of `CueContext::config`.
   std::function<std::unique_ptr<Modality>(const CueContext&)> make;
 };
