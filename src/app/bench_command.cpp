@@ -39,7 +39,7 @@ struct BenchOptions {
   bool sweep = false;
   SweepOptions sweep_options;
   bool detect = false;
-  std::vector<std::string> detect_objects;
+  std::vector<std::string> objects;  ///< --detect, --model: only these
   bool visp_types = false;
   std::vector<std::string> more_sequences;  ///< --visp-types: sequences after --sequence
   bool model = false;
@@ -208,10 +208,9 @@ void register_bench_command(CLI::App& app) {
   cmd->add_option("--plot", o->plot,
                   "--sweep: PNG of the mean error against depth noise (default " + SweepOptions().plot +
                       "); --detect: PNG of success against occlusion (default " + DetectBenchOptions().plot + ")");
-  cmd->add_option("--object", o->detect_objects,
+  cmd->add_option("--object", o->objects,
                   "--detect: only this one of the sweep's objects (textured_box, two_region, labelled_can, "
-                  "textureless_mug); repeatable")
-      ->needs(detect);
+                  "textureless_mug); --model: only this mesh (a folder of models/, or torus_10k); repeatable");
   CLI::Option* visp_types = cmd->add_flag(
       "--visp-types", o->visp_types,
       "Instead: every ViSP tracker type alone and combined (EDGE, KLT, EDGE+KLT, DEPTH_DENSE, DEPTH_NORMAL, each "
@@ -236,9 +235,12 @@ void register_bench_command(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->needs(sweep);
   cmd->callback([o] {
+    if (!o->objects.empty() && !o->detect && !o->model)
+      throw CLI::ValidationError("--object", "needs --detect or --model");
     if (o->model) {
       ModelBenchOptions model_options;
       model_options.summary = o->summary;
+      model_options.meshes = o->objects;
       if (!o->out.empty()) model_options.out = o->out;
       run_model_bench(model_options);
     } else if (o->visp_types) {
@@ -255,7 +257,7 @@ void register_bench_command(CLI::App& app) {
       detect_options.summary = o->summary;
       if (!o->plot.empty()) detect_options.plot = o->plot;
       if (!o->out.empty()) detect_options.out = o->out;
-      detect_options.objects = o->detect_objects;
+      detect_options.objects = o->objects;
       if (o->frames > 0) detect_options.frames = o->frames;
       run_detect_bench(detect_options);
     } else if (o->sweep) {

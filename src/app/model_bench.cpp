@@ -9,12 +9,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
+#include <stdexcept>
 
 #include "commands.h"
 #include "icgp/base/pose.h"
 #include "icgp/eval/json_object.h"
+#include "icgp/io/cao_file_check.h"
 #include "icgp/eval/sequence.h"
 #include "icgp/eval/sequence_run.h"
 #include "icgp/eval/sequence_writer.h"
@@ -63,9 +66,23 @@ struct BenchMesh {
   std::string path;
 };
 
+/// A Wavefront OBJ of the mesh's vertices and triangles.
+void write_obj(const Mesh& mesh, const fs::path& path) {
+  std::ofstream out(path);
+  std::size_t first_vertex = 1;
+  for (const MeshPart& part : mesh.parts) {
+    for (const Eigen::Vector3f& v : part.vertices) out << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
+    for (const auto& t : part.triangles)
+      out << "f " << first_vertex + t[0] << " " << first_vertex + t[1] << " " << first_vertex + t[2] << "\n";
+    first_vertex += part.vertices.size();
+  }
+  if (!out) throw std::runtime_error("bench --model: cannot write " + path.string());
+}
+
 /// Each folder of models/ by its main mesh (`<folder>.obj`, else object.obj, else base.obj),
-/// then the torus, written as a .cao beside the benchmark's other files.
-std::vector<BenchMesh> bench_meshes(const fs::path& out) {
+/// then the torus, written as an .obj and as a ViSP .cao beside the benchmark's other files;
+/// only those named in `only` when it is not empty.
+std::vector<BenchMesh> bench_meshes(const fs::path& out, const std::vector<std::string>& only) {
   std::vector<BenchMesh> meshes;
   std::vector<fs::path> folders;
   for (const fs::directory_entry& entry : fs::directory_iterator(models_dir()))
@@ -77,10 +94,23 @@ std::vector<BenchMesh> bench_meshes(const fs::path& out) {
         meshes.push_back({folder.filename().string(), (folder / file).string()});
         break;
       }
-  const fs::path torus_path = out / "torus_10k.cao";
-  write_cao(torus(100, 50, 0.06f, 0.025f), torus_path.string());
-  meshes.push_back({"torus_10k", torus_path.string()});
-  return meshes;
+  const Mesh ring = torus(100, 50, 0.06f, 0.025f);
+  write_obj(ring, out / "torus_10k.obj");
+  write_cao(ring, (out / "torus_10k.cao").string());
+  meshes.push_back({"torus_10k", (out / "torus_10k.obj").string()});
+  meshes.push_back({"torus_10k.cao", (out / "torus_10k.cao").string()});
+  if (only.empty()) return meshes;
+  std::vector<BenchMesh> chosen;
+  for (const std::string& name : only) {
+    const auto it = std::find_if(meshes.begin(), meshes.end(), [&](const BenchMesh& m) { return m.name == name; });
+    if (it == meshes.end()) {
+      std::string names;
+      for (const BenchMesh& m : meshes) names += (names.empty() ? "" : ", ") + m.name;
+      throw std::invalid_argument("bench --model: --object '" + name + "' is none of its meshes (" + names + ")");
+    }
+    chosen.push_back(*it);
+  }
+  return chosen;
 }
 
 /// An empty folder at `path`.
@@ -101,7 +131,7 @@ double file_mb(const std::string& path) { return fs::file_size(path) / 1e6; }
 
 struct GenerationCost {
   double seconds = 0.0;
-  double mb_per_model = 0.0;  ///< the largest cache file
+  double cache_mb = 0.0;  ///< the cache files together
 };
 
 GenerationCost generate(const Mesh& mesh, const std::string& name, const std::vector<ViewpointModel::Kind>& kinds,
@@ -115,7 +145,7 @@ GenerationCost generate(const Mesh& mesh, const std::string& name, const std::ve
   const auto start = Clock::now();
   load_or_generate(mesh, requests, empty_folder(cache), options, &info);
   GenerationCost cost{seconds_since(start), 0.0};
-  for (const CachedModelInfo& i : info) cost.mb_per_model = std::max(cost.mb_per_model, file_mb(i.path));
+  for (const CachedModelInfo& i : info) cost.cache_mb += file_mb(i.path);
   return cost;
 }
 
@@ -147,6 +177,16 @@ double first_frame_seconds(const BenchMesh& bench, const Frame& frame, const fs:
   return seconds_since(start);
 }
 
+/// vpMbGenericTracker::loadModel of a ViSP model file with the RGB-D programs' tracker
+/// types, seconds; NaN for files other than .cao (the benchmark's meshes are .obj otherwise).
+double visp_load_seconds(const BenchMesh& bench) {
+  if (!is_cao_path(bench.path)) return std::nan("");
+  vpMbGenericTracker tracker(kRgbdTrackerTypes);
+  const auto start = Clock::now();
+  tracker.loadModel(bench.path, bench.path);
+  return seconds_since(start);
+}
+
 }  // namespace
 
 void run_model_bench(const ModelBenchOptions& options) {
@@ -155,9 +195,9 @@ void run_model_bench(const ModelBenchOptions& options) {
   // As `icgp model`: generation renders on one thread per core, and llvmpipe's own raster
   // threads on top would oversubscribe them. Read when the first context is made.
   ::setenv("LP_NUM_THREADS", "0", 0);
-  const std::vector<BenchMesh> meshes = bench_meshes(out);
+  const std::vector<BenchMesh> meshes = bench_meshes(out, options.meshes);
   TextTable table({{"mesh", 18, true}, {"triangles", 9}, {"region s", 9}, {"depth s", 8}, {"both s", 7},
-                   {"MB/model", 8}, {"1st frame s", 11}, {"peak MB", 8}});
+                   {"cache MB", 8}, {"1st frame s", 11}, {"ViSP load s", 11}, {"peak MB", 8}});
   std::vector<JsonObject> rows;
   const auto start = Clock::now();
   for (std::size_t m = 0; m < meshes.size(); ++m) {
@@ -170,9 +210,14 @@ void run_model_bench(const ModelBenchOptions& options) {
         generate(mesh, bench.name, {ViewpointModel::Kind::kRegion, ViewpointModel::Kind::kDepth}, cache);
     const Frame frame = rendered_frame(bench, mesh, out / ("frame-" + bench.name));
     const double first_frame = first_frame_seconds(bench, frame, cache);
+    const double visp_load = visp_load_seconds(bench);
     const double peak_mb = peak_resident_mb();
     table.text(bench.name).integer(static_cast<long long>(mesh.triangle_count())).number(region.seconds, 1);
-    table.number(depth.seconds, 1).number(both.seconds, 1).number(both.mb_per_model, 1).number(first_frame, 1);
+    table.number(depth.seconds, 1).number(both.seconds, 1).number(both.cache_mb, 1).number(first_frame, 1);
+    if (std::isnan(visp_load))
+      table.text("-");
+    else
+      table.number(visp_load, 1);
     table.number(peak_mb, 0).end_row();
     rows.push_back(JsonObject()
                        .add("mesh", bench.name)
@@ -180,8 +225,9 @@ void run_model_bench(const ModelBenchOptions& options) {
                        .add("region_s", region.seconds)
                        .add("depth_s", depth.seconds)
                        .add("both_s", both.seconds)
-                       .add("mb_per_model", both.mb_per_model)
+                       .add("cache_mb", both.cache_mb)
                        .add("first_frame_s", first_frame)
+                       .add("visp_load_s", visp_load)
                        .add("peak_resident_mb", peak_mb));
     const double elapsed = seconds_since(start);
     std::fprintf(stderr, "bench --model: %zu/%zu meshes, %.0f s, about %.0f s left\n", m + 1, meshes.size(), elapsed,
@@ -192,9 +238,12 @@ void run_model_bench(const ModelBenchOptions& options) {
   table.print();
   std::printf(
       "\nregion s, depth s: one model kind alone; both s: the two together (one render per view), each into an\n"
-      "empty cache, with every core; MB/model: the larger cache file. 1st frame s: vpMbIcgTracker with the\n"
-      "defaults (region + depth + texture) on an empty cache, loadModel -> initFromPose -> the first track() on\n"
-      "one rendered frame at 0.5 m. peak MB: the process's largest resident set so far.\n");
+      "empty cache, with every core, before returning; cache MB: the object's two cache files. 1st frame s:\n"
+      "vpMbIcgTracker with the defaults (region + depth + texture) on an empty cache, loadModel -> initFromPose\n"
+      "-> the first track() on one rendered frame at 0.5 m; its models are made in the background, the views\n"
+      "the tracker needs first. ViSP load s: vpMbGenericTracker::loadModel (edge + KLT, dense depth) of the same\n"
+      "file, for the .cao that ViSP reads (vpMbIcgTracker parses a .cao with ViSP's parser too). peak MB: the\n"
+      "process's largest resident set so far.\n");
   if (!options.summary.empty()) {
     JsonObject().add("rows", rows).write(options.summary);
     std::cout << "wrote " << options.summary << "\n";

@@ -5,12 +5,14 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace icgp::app {
 
 struct ModelBenchOptions {
   std::string out = "out/model-bench";  ///< caches (emptied per measurement) and the rendered frames
   std::string summary;                  ///< JSON of the rows; empty: none
+  std::vector<std::string> meshes;      ///< only these (folder names of models/, torus_10k); empty: all
 };
 
 /// For each main mesh of models/ and a generated 10 000-triangle torus (not convex): the

@@ -35,6 +35,7 @@ std::vector<BodyContourPoint> spread_contour(const std::vector<const ViewpointMo
   double length = 0.0;
   for (const ViewpointModel* model : models) {
     const int v = model->closest_view(direction);
+    model->require_view(v);
     length += model->view(v).measure;
     const ModelPoint* points = model->points(v);
     for (int p = 0; p < model->view_point_count(v); ++p) all.push_back({points[p].position, points[p].normal});
@@ -64,6 +65,7 @@ ShapeTemplates::ShapeTemplates(const Mesh& mesh, const std::vector<const Viewpoi
     view.direction = direction;
     if (depth_model) {
       const int v = depth_model->closest_view(direction);
+      depth_model->require_view(v);
       const ModelPoint* surface = depth_model->points(v);
       for (int p = 0; p < std::min(kSurfacePoints, depth_model->view_point_count(v)); ++p)
         view.surface.push_back(surface[p].position);

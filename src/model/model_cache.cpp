@@ -18,11 +18,12 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <list>
+#include <memory>
 #include <optional>
 #include <sstream>
 
 #include "icgp/model/model_key.h"
+#include "stored_model.h"
 
 namespace icgp {
 namespace {
@@ -35,11 +36,10 @@ namespace fs = std::filesystem;
 //   n_divides image_size image_margin n_points min_contour_length normal_chord_offset: i32
 //   sphere_radius stride_depth_offset max_radius_depth_offset: f64   seed: u64
 //   n_views n_points n_depth_offsets reserved: u32   payload_bytes: u64   checksum: u64
-//   payload: ViewpointModel::payload(), i.e. views (direction xyz, measure: f32), point
-//   counts (i32), points (position, normal, foreground and background distance: f32),
-//   depth offsets (f32)
-// The checksum covers the header before it and the payload. The header is a multiple of 8
-// bytes, so the payload of a mapped file is aligned for the model to use it in place.
+//   payload: stored_payload() (stored_model.h): views (direction xyz, measure: f32), point
+//   counts (i32), points (position f32, normal in octahedral i16, foreground and
+//   background distance f16), depth offsets (a byte each)
+// The checksum covers the header before it and the payload.
 constexpr char kMagic[8] = {'I', 'C', 'G', 'P', 'M', 'O', 'D', 'L'};
 constexpr std::size_t kHeaderSize = 112;
 constexpr std::size_t kChecksumOffset = kHeaderSize - 8;
@@ -99,7 +99,7 @@ class HeaderReader {
   const unsigned char* p_;
 };
 
-std::string header(const ViewpointModel& m) {
+std::string header(const ViewpointModel& m, const std::string& payload) {
   const ViewpointModelParams& p = m.params();
   HeaderWriter w;
   w.bytes().append(kMagic, sizeof kMagic);
@@ -108,10 +108,10 @@ std::string header(const ViewpointModel& m) {
   w << p.sphere_radius << p.stride_depth_offset << p.max_radius_depth_offset << p.seed;
   w << static_cast<std::uint32_t>(m.n_views()) << static_cast<std::uint32_t>(m.n_points())
     << static_cast<std::uint32_t>(m.n_depth_offsets()) << std::uint32_t{0};
-  w << static_cast<std::uint64_t>(m.payload_size());
+  w << static_cast<std::uint64_t>(payload.size());
   std::string bytes = std::move(w.bytes());
   if (bytes.size() != kChecksumOffset) throw std::logic_error("model file header layout changed: update kHeaderSize");
-  const std::uint64_t sum = checksum(m.payload(), m.payload_size(), checksum(bytes.data(), bytes.size(), 0));
+  const std::uint64_t sum = checksum(payload.data(), payload.size(), checksum(bytes.data(), bytes.size(), 0));
   bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
   return bytes;
 }
@@ -171,7 +171,8 @@ std::string model_name(const Mesh& mesh, const ModelGenerationOptions& options) 
 void report(const std::string& line) { std::cerr << ("icgp: " + line + "\n") << std::flush; }
 
 /// A valid checksum only says the file is as written: a file written by another program
-/// (or a bug) can hold values no generator makes, which would track silently wrong.
+/// (or a bug) can hold values no generator makes, which would track silently wrong. (Normals
+/// and depth offsets are stored as codes that only decode to valid values.)
 void check_contents(const ViewpointModel& model, const std::string& path) {
   const auto corrupted = [&](int view, const std::string& what) {
     throw file_error(path, "is corrupted (view " + std::to_string(view) + ": " + what + ")");
@@ -189,9 +190,6 @@ void check_contents(const ViewpointModel& model, const std::string& path) {
       if (!point.position.allFinite() || !point.normal.allFinite() || !std::isfinite(point.foreground_distance) ||
           !non_negative(point.foreground_distance) || !non_negative(point.background_distance))
         corrupted(v, "point " + std::to_string(i) + " has a value that is not finite or negative");
-      const float* offsets = model.depth_offsets(v, i);
-      if (!std::all_of(offsets, offsets + model.n_depth_offsets(), [&](float x) { return std::isfinite(x) && x >= 0.f; }))
-        corrupted(v, "point " + std::to_string(i) + " has a depth offset that is not a finite number >= 0");
     }
   }
 }
@@ -227,15 +225,16 @@ std::optional<ViewpointModel> cached_model(const ModelRequest& request, std::uin
 /// before the lock is released, so none stays in the cache. A process that took the lock
 /// looks for the model file again before generating it, so a lock file removed under a waiter
 /// costs at most a second generation, and only when the first one was not saved.
+/// `wait` false: when another process holds the lock, go on without it (and generate too).
 class GenerationLock {
  public:
-  GenerationLock(const std::string& model_path, const std::string& what) : path_(model_path + ".lock") {
+  GenerationLock(const std::string& model_path, const std::string& what, bool wait) : path_(model_path + ".lock") {
     std::error_code ec;
     fs::create_directories(fs::path(path_).parent_path(), ec);
     fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
     if (fd_ < 0) return;
     if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
-    if (errno == EWOULDBLOCK) {
+    if (errno == EWOULDBLOCK && wait) {
       report(what + ": another process is generating it; waiting for it");
       int locked;
       while ((locked = ::flock(fd_, LOCK_EX)) != 0 && errno == EINTR) {
@@ -294,9 +293,10 @@ void save_viewpoint_model(const ViewpointModel& model, const std::string& path) 
     errno = 0;
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (out) {
-      const std::string head = header(model);
+      const std::string payload = stored_payload(model);
+      const std::string head = header(model, payload);
       out.write(head.data(), static_cast<std::streamsize>(head.size()));
-      out.write(reinterpret_cast<const char*>(model.payload()), static_cast<std::streamsize>(model.payload_size()));
+      out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
     }
     if (!out) {
       const std::string why = errno != 0 ? std::strerror(errno) : "the stream failed";
@@ -313,8 +313,7 @@ void save_viewpoint_model(const ViewpointModel& model, const std::string& path) 
 }
 
 ViewpointModel load_viewpoint_model(const std::string& path) {
-  const auto mapped = std::make_shared<const MappedFile>(path);
-  const MappedFile& file = *mapped;
+  const MappedFile file(path);
   const unsigned char* p = file.data();
   if (file.size() >= sizeof kMagic && std::memcmp(p, kMagic, sizeof kMagic) != 0)
     throw file_error(path, "is not an icgp model file (foreign magic)");
@@ -343,7 +342,7 @@ ViewpointModel load_viewpoint_model(const std::string& path) {
        kind == static_cast<std::uint32_t>(ViewpointModel::Kind::kDepth)) &&
       params.n_divides >= 0 && params.n_divides <= 6 && static_cast<int>(n_views) == params.n_views() &&
       static_cast<int>(n_points) == params.n_points && static_cast<int>(n_offsets) == params.n_depth_offsets() &&
-      payload == ViewpointModel::payload_size(params);
+      payload == stored_payload_size(params);
   if (!consistent) throw file_error(path, "is corrupted (inconsistent header)");
   if (file.size() < kHeaderSize + payload)
     throw file_error(path, "is truncated (" + std::to_string(file.size()) + " of " +
@@ -353,8 +352,7 @@ ViewpointModel load_viewpoint_model(const std::string& path) {
   if (checksum(p + kHeaderSize, payload, checksum(p, kChecksumOffset, 0)) != stored_sum)
     throw file_error(path, "is corrupted (checksum mismatch)");
 
-  // The model uses the mapped payload in place and keeps the mapping alive.
-  ViewpointModel model(static_cast<ViewpointModel::Kind>(kind), params, key, mapped, p + kHeaderSize);
+  ViewpointModel model = model_from_stored(static_cast<ViewpointModel::Kind>(kind), params, key, p + kHeaderSize);
   check_contents(model, path);
   return model;
 }
@@ -385,13 +383,15 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
   }
 
   // One process generates a model, the others wait for its file. Locks are taken in path
-  // order, so two processes that need the same models never wait for each other.
+  // order, so two processes that need the same models never wait for each other. A model
+  // made in the background is used at once: waiting for another process's would not be.
   std::vector<std::size_t> lock_order = missing_index;
   std::sort(lock_order.begin(), lock_order.end(),
             [&](std::size_t a, std::size_t b) { return outcome[a].path < outcome[b].path; });
-  std::list<GenerationLock> locks;
+  std::vector<std::unique_ptr<GenerationLock>> locks(requests.size());
   for (const std::size_t i : lock_order)
-    locks.emplace_back(outcome[i].path, to_string(requests[i].kind) + " model cache " + outcome[i].path);
+    locks[i] = std::make_unique<GenerationLock>(
+        outcome[i].path, to_string(requests[i].kind) + " model cache " + outcome[i].path, !options.in_background);
   std::vector<ModelRequest> missing;
   std::vector<std::size_t> still_missing;
   for (const std::size_t i : missing_index) {
@@ -405,18 +405,46 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
     missing.push_back(requests[i]);
     still_missing.push_back(i);
   }
-  if (!missing.empty()) {
-    std::vector<ViewpointModel> generated = generate_viewpoint_models(mesh, missing, options);
-    for (std::size_t m = 0; m < missing.size(); ++m) {
-      const std::size_t i = still_missing[m];
-      models[i] = std::move(generated[m]);
-      outcome[i].generated = true;
+  if (missing.empty()) {
+    if (info) *info = std::move(outcome);
+    return models;
+  }
+  if (options.in_background) {
+    // Each model is saved, and its lock released, once its last view is made.
+    struct PendingSave {
+      std::string path;
+      std::unique_ptr<GenerationLock> lock;
+    };
+    auto pending = std::make_shared<std::vector<PendingSave>>();
+    for (const std::size_t i : still_missing) pending->push_back({outcome[i].path, std::move(locks[i])});
+    ModelGenerationOptions background = options;
+    background.on_complete = [pending](std::size_t m, const ViewpointModel& model) {
+      PendingSave& save = (*pending)[m];
       try {
-        save_viewpoint_model(models[i], outcome[i].path);
-        outcome[i].saved = true;
+        save_viewpoint_model(model, save.path);
       } catch (const ModelFileError& e) {
         report("warning: " + std::string(e.what()) + "; continuing without the cache");
       }
+      save.lock.reset();
+    };
+    std::vector<ViewpointModel> generated = generate_viewpoint_models(mesh, missing, background);
+    for (std::size_t m = 0; m < missing.size(); ++m) {
+      models[still_missing[m]] = std::move(generated[m]);
+      outcome[still_missing[m]].generated = true;
+    }
+    if (info) *info = std::move(outcome);
+    return models;
+  }
+  std::vector<ViewpointModel> generated = generate_viewpoint_models(mesh, missing, options);
+  for (std::size_t m = 0; m < missing.size(); ++m) {
+    const std::size_t i = still_missing[m];
+    models[i] = std::move(generated[m]);
+    outcome[i].generated = true;
+    try {
+      save_viewpoint_model(models[i], outcome[i].path);
+      outcome[i].saved = true;
+    } catch (const ModelFileError& e) {
+      report("warning: " + std::string(e.what()) + "; continuing without the cache");
     }
   }
   if (info) *info = std::move(outcome);

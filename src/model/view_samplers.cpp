@@ -186,7 +186,7 @@ class RegionViewSampler : public ViewSampler {
       write_depth_offsets(view, params_, pixel, depth, view_offsets(model, view.index, p));
     }
     model.mutable_counts()[view.index] = n;
-    model.mutable_views()[view.index] = {view.direction, contour_length};
+    model.mutable_views()[view.index].measure = contour_length;
   }
 
  private:
@@ -328,7 +328,7 @@ class DepthViewSampler : public ViewSampler {
       ++count;
     }
     model.mutable_counts()[view.index] = count;
-    model.mutable_views()[view.index] = {view.direction, static_cast<float>(visible_surface_area(view))};
+    model.mutable_views()[view.index].measure = static_cast<float>(visible_surface_area(view));
   }
 
  private:

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "icgp/model/icosphere.h"
 
 namespace icgp {
 namespace {
@@ -71,14 +74,10 @@ ViewpointModel::ViewpointModel(Kind kind, ViewpointModelParams params, std::uint
     : kind_(kind), params_(params), key_(key) {
   std::shared_ptr<unsigned char[]> block(new unsigned char[payload_size(params_)]());
   storage_ = block;
-  owns_writable_block_ = true;
   point_into(block.get());
-}
-
-ViewpointModel::ViewpointModel(Kind kind, ViewpointModelParams params, std::uint64_t key,
-                               std::shared_ptr<const void> owner, const unsigned char* payload)
-    : kind_(kind), params_(params), key_(key), storage_(std::move(owner)) {
-  point_into(payload);
+  // Known before any view is rendered, so a model made in the background can pick views.
+  const std::vector<Eigen::Vector3f> directions = icosphere_directions(params_.n_divides);
+  for (int v = 0; v < n_views_; ++v) mutable_views()[v].direction = directions[v];
 }
 
 void ViewpointModel::point_into(const unsigned char* payload) {

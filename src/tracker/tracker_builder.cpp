@@ -20,6 +20,7 @@ std::vector<ViewpointModel> multi_region_models(const TrackerConfig& config, con
   std::vector<ViewpointModel> models;
   for (std::size_t i = 0; i < regions.size(); ++i) {
     ModelGenerationOptions options;
+    options.in_background = true;
     options.name = body_name + "-" + std::filesystem::path(config.regions[i]).stem().string();
     for (std::size_t j = 0; j < regions.size(); ++j)
       if (j != i) options.associated_bodies.push_back({regions[j], Pose(), AssociatedBody::Kind::kFixed});
@@ -62,7 +63,9 @@ void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const s
     if (std::none_of(requests.begin(), requests.end(), same_kind))
       requests.push_back({*cue->model, model_params(config, *cue->model)});
   }
+  // A tracker starts on the views it needs while the rest are made (and then cached).
   ModelGenerationOptions options;
+  options.in_background = true;
   options.name = body.name;
   std::vector<ViewpointModel> models = load_or_generate(body.mesh, requests, config.cache_dir, options);
   for (ViewpointModel& model : region_models) models.push_back(std::move(model));

@@ -14,7 +14,8 @@ namespace icgp {
 /// degrees apart; the optimiser's last steps move far less). Near the boundary between two
 /// views the last view is kept until another is closer by a margin: otherwise a camera
 /// resting there makes the estimate flip between two point sets from frame to frame, which
-/// a visual servo turns into a limit cycle.
+/// a visual servo turns into a limit cycle. The view returned can be read: a model still
+/// being generated makes it first (ViewpointModel::require_view).
 class ViewSelector {
  public:
   static constexpr float kHysteresisDegrees = 1.f;
@@ -25,6 +26,7 @@ class ViewSelector {
     direction_ = direction;
     const int closest = model.closest_view(direction);
     if (view_ < 0 || angle(model, view_, direction) > angle(model, closest, direction) + kHysteresis) view_ = closest;
+    model.require_view(view_);
     return view_;
   }
   void reset() { view_ = -1; }

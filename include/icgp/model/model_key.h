@@ -12,7 +12,7 @@ namespace icgp {
 
 /// Version of how viewpoint models are generated and stored. It is part of every key: bump it
 /// whenever generation or the cache file format changes, and old cache files are regenerated.
-constexpr std::uint32_t kViewpointModelVersion = 1;
+constexpr std::uint32_t kViewpointModelVersion = 2;
 
 /// Identity of a viewpoint model: 64-bit FNV-1a over the mesh geometry (every vertex and
 /// triangle of every part, in order; not its file name or materials), every field of

@@ -53,24 +53,40 @@ struct ModelView {
   float measure = 0;          ///< region: contour length (m); depth: visible surface area (m²)
 };
 
+/// Where the views of a model still being made come from (generate_viewpoint_models with
+/// ModelGenerationOptions::in_background): background threads, and on demand the view a
+/// tracker needs now.
+class ViewSupply {
+ public:
+  virtual ~ViewSupply() = default;
+  /// Returns once view v is in the model; rethrows the generation's error.
+  virtual void require(int v) = 0;
+  /// Returns once every view is in the model; rethrows the generation's error.
+  virtual void require_all() = 0;
+  virtual bool complete() const = 0;
+};
+
 /// A sparse viewpoint model: for each of n_views directions, n_points sampled points with
 /// their depth offsets (for occlusion tests). Made by generate_viewpoint_models
 /// (viewpoint_model_generator.h), usually through the disk cache (model_cache.h).
 ///
-/// All arrays live in one block laid out exactly as the payload of a cache file, so a cached
-/// model is the mapped file itself: loading copies nothing. Models are immutable once made;
-/// copies share the block.
+/// All arrays live in one block. A cache file keeps them in 45 bytes a point instead of 132
+/// (src/model/stored_model.h), and the generator rounds its values to what the file keeps,
+/// so a loaded model equals the generated one. Models are immutable once made; copies share
+/// the block.
+///
+/// A model generated in the background (ModelGenerationOptions::in_background) has every
+/// view's direction from the start, and a view's points, counts, measure and depth offsets
+/// once require_view() returned for it: select a view with closest_view(), require it, then
+/// read it. Complete models (loaded, or generated in the foreground) need no require.
 class ViewpointModel {
  public:
   enum class Kind : std::uint32_t { kRegion = 1, kDepth = 2 };
 
   ViewpointModel() = default;
-  /// A model of all views of `params` with every array zero, for the generator to fill.
+  /// A model of all views of `params`, for the generator to fill: the views' directions
+  /// (icosphere_directions), every other array zero.
   ViewpointModel(Kind kind, ViewpointModelParams params, std::uint64_t key);
-  /// A model over an existing payload (payload_size(params) bytes, 4-byte aligned) that
-  /// `owner` keeps alive; for the cache reader.
-  ViewpointModel(Kind kind, ViewpointModelParams params, std::uint64_t key, std::shared_ptr<const void> owner,
-                 const unsigned char* payload);
 
   Kind kind() const { return kind_; }
   const ViewpointModelParams& params() const { return params_; }
@@ -83,6 +99,17 @@ class ViewpointModel {
 
   /// Index of the view whose direction is closest to `direction` (body frame, unit).
   int closest_view(const Eigen::Vector3f& direction) const;
+  /// Returns once view v can be read (at once unless the model is being generated in the
+  /// background, which then makes v next). Throws what the generation threw.
+  void require_view(int v) const {
+    if (supply_) supply_->require(v);
+  }
+  /// Returns once every view can be read.
+  void require_all_views() const {
+    if (supply_) supply_->require_all();
+  }
+  /// Every view can be read.
+  bool complete() const { return !supply_ || supply_->complete(); }
   const ModelView& view(int v) const { return views_[v]; }
   /// The points of view v: n_points() slots of which the first view_point_count(v) are
   /// valid (the rest are zero). They are in random order, so any prefix of them is itself a
@@ -105,12 +132,15 @@ class ViewpointModel {
   int* mutable_counts() { return writable(counts_); }
   ModelPoint* mutable_points() { return writable(points_); }
   float* mutable_depth_offsets() { return writable(depth_offsets_); }
+  /// For the generator: the views of this model (and of its copies made from now on) come
+  /// from `supply` until it is complete.
+  void set_supply(std::shared_ptr<ViewSupply> supply) { supply_ = std::move(supply); }
 
  private:
   void point_into(const unsigned char* payload);
   template <typename T>
   T* writable(const T* p) {
-    return owns_writable_block_ ? const_cast<T*>(p) : nullptr;
+    return storage_ ? const_cast<T*>(p) : nullptr;
   }
 
   Kind kind_ = Kind::kRegion;
@@ -118,13 +148,13 @@ class ViewpointModel {
   std::uint64_t key_ = 0;
   int n_views_ = 0;
   int n_depth_offsets_ = 0;
-  std::shared_ptr<const void> storage_;  ///< keeps the payload alive: a heap block or a mapped file
-  bool owns_writable_block_ = false;
+  std::shared_ptr<const void> storage_;  ///< the block of all arrays (null: a default-constructed model)
   const unsigned char* payload_ = nullptr;
   const ModelView* views_ = nullptr;
   const int* counts_ = nullptr;         ///< valid points per view (<= n_points)
   const ModelPoint* points_ = nullptr;  ///< n_views * n_points, row per view
   const float* depth_offsets_ = nullptr;
+  std::shared_ptr<ViewSupply> supply_;  ///< null: every view is made
 };
 
 }  // namespace icgp

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,13 +45,24 @@ struct AssociatedBody {
 /// How a generation runs. None of it changes the models except associated_bodies, which
 /// changes region models and therefore enters their keys (viewpoint_model_key).
 struct ModelGenerationOptions {
-  int n_threads = 0;           ///< 0: std::thread::hardware_concurrency(); each thread renders with its own context
+  /// 0: std::thread::hardware_concurrency() (in_background: one less, at least one); each
+  /// thread renders with its own context.
+  int n_threads = 0;
   bool print_progress = true;  ///< a line on stderr every few seconds and at the end
   std::string name;            ///< names the mesh in progress lines; empty: its file stem
   /// Multi-region (ALGORITHMS.md §6): bodies rendered with the main body for region models
   /// (with distinct ids by kind), changing the contour-pixel rules and the distance walks.
   /// Empty: the single-body generation, unchanged.
   std::vector<AssociatedBody> associated_bodies;
+  /// Return at once, with models whose views are made by background threads and on demand
+  /// (ViewpointModel::require_view): a tracker starts on the few views it needs instead of
+  /// waiting for all of them. The complete models are byte-identical to a foreground
+  /// generation's. Destroying the last copy of a model finishes its generation first, on
+  /// every core (unless a stop was requested), so that on_complete runs.
+  bool in_background = false;
+  /// in_background: called with each request's index and model once the model is complete,
+  /// on a generation thread (e.g. to cache it).
+  std::function<void(std::size_t request, const ViewpointModel& model)> on_complete;
 };
 
 /// One model to generate.
@@ -97,7 +109,7 @@ struct ModelRequest {
 /// see InverseDepthPyramid for the approximation.
 ///
 /// Throws std::invalid_argument for invalid parameters or a mesh without extent, RenderError
-/// when no headless OpenGL context can be created.
+/// when no headless OpenGL context can be created (in_background: require_view throws it).
 std::vector<ViewpointModel> generate_viewpoint_models(const Mesh& mesh, const std::vector<ModelRequest>& requests,
                                                       const ModelGenerationOptions& options = {});
 
