@@ -140,8 +140,7 @@ void run_compare(const CompareOptions& o) {
   add_job({kCoreTracker, icgp_name + kColourSuffix},
           [&] { return evaluate_tracker(colour_frames, object.name, mesh, icgp_config, start).summary(); });
 
-  std::cerr << "vpMbIcgTracker generates its viewpoint models on first use (10-30 s on 2 cores); later runs read them "
-               "from the cache\n";
+  std::cerr << kModelsOnFirstUse;
   std::vector<std::string> failures;
   const SingleThreadScope single_thread;
   const std::vector<TimedRow> rows = run_rounds(jobs, o.rounds, n_frames, failures);

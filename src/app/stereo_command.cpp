@@ -229,8 +229,8 @@ void run_stereo(const StereoOptions& o) {
   const int n_frames = o.frames > 0 ? std::min(o.frames, sequence.size()) : sequence.size();
   const double baseline_mm = sequence.stereo_T_color().inverse().translation().norm() * 1000.0;
   std::cerr << "stereo: " << n_frames << " frames of " << dir << ", object '" << object.name << "', baseline "
-            << baseline_mm << " mm; vpMbIcgTracker generates its viewpoint models on first use (10-30 s on 2 "
-            << "cores), later runs read them from the cache\n";
+            << baseline_mm << " mm\n"
+            << kModelsOnFirstUse;
 
   char two_name[64];
   std::snprintf(two_name, sizeof two_name, "two cameras (stereo, %.0f mm)", baseline_mm);

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <visp3/mbt/vpMbGenericTracker.h>
 
+#include "commands.h"
 #include "text_table.h"
 #include "timing_rounds.h"
 #include "single_thread_scope.h"
@@ -176,8 +177,7 @@ void run_visp_types_bench(const VispTypesBenchOptions& o) {
     all_frames.push_back(std::move(frames));
   }
 
-  std::cerr << "vpMbIcgTracker generates its viewpoint models on first use (10-30 s each on 2 cores); later runs "
-               "read them from the cache\n";
+  std::cerr << kModelsOnFirstUse;
   std::vector<std::string> failures;
   const SingleThreadScope single_thread;
   const std::vector<TimedRow> timed = run_rounds(jobs, o.rounds, n_frames_total, failures);

@@ -225,16 +225,15 @@ std::optional<ViewpointModel> cached_model(const ModelRequest& request, std::uin
 /// before the lock is released, so none stays in the cache. A process that took the lock
 /// looks for the model file again before generating it, so a lock file removed under a waiter
 /// costs at most a second generation, and only when the first one was not saved.
-/// `wait` false: when another process holds the lock, go on without it (and generate too).
 class GenerationLock {
  public:
-  GenerationLock(const std::string& model_path, const std::string& what, bool wait) : path_(model_path + ".lock") {
+  GenerationLock(const std::string& model_path, const std::string& what) : path_(model_path + ".lock") {
     std::error_code ec;
     fs::create_directories(fs::path(path_).parent_path(), ec);
     fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
     if (fd_ < 0) return;
     if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
-    if (errno == EWOULDBLOCK && wait) {
+    if (errno == EWOULDBLOCK) {
       report(what + ": another process is generating it; waiting for it");
       int locked;
       while ((locked = ::flock(fd_, LOCK_EX)) != 0 && errno == EINTR) {
@@ -382,16 +381,16 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
     return models;
   }
 
-  // One process generates a model, the others wait for its file. Locks are taken in path
-  // order, so two processes that need the same models never wait for each other. A model
-  // made in the background is used at once: waiting for another process's would not be.
+  // One process generates a model, the others wait for its file (one making it in the
+  // background saves it when complete). Locks are taken in path order, so two processes
+  // that need the same models never wait for each other.
   std::vector<std::size_t> lock_order = missing_index;
   std::sort(lock_order.begin(), lock_order.end(),
             [&](std::size_t a, std::size_t b) { return outcome[a].path < outcome[b].path; });
   std::vector<std::unique_ptr<GenerationLock>> locks(requests.size());
   for (const std::size_t i : lock_order)
-    locks[i] = std::make_unique<GenerationLock>(
-        outcome[i].path, to_string(requests[i].kind) + " model cache " + outcome[i].path, !options.in_background);
+    locks[i] = std::make_unique<GenerationLock>(outcome[i].path,
+                                                to_string(requests[i].kind) + " model cache " + outcome[i].path);
   std::vector<ModelRequest> missing;
   std::vector<std::size_t> still_missing;
   for (const std::size_t i : missing_index) {

@@ -53,9 +53,9 @@ struct CachedModelInfo {
 /// need the same missing model at once do not all generate it: one does, holding a lock on
 /// <model file>.lock, and the others say on stderr that they wait, then load its file.
 /// options.in_background: missing models are returned at once, generated in the background
-/// (generate_viewpoint_models), and each is saved when complete; this process then holds
-/// the model's lock until it saves it, and does not wait for another's lock (it generates
-/// the model as well). options.on_complete is replaced by the saving.
+/// (generate_viewpoint_models), and each is saved when complete; this process holds the
+/// model's lock until then, so others wait for its file as for any generation.
+/// options.on_complete is replaced by the saving.
 /// `cache_dir` empty: default_model_cache_dir(). Files are named after options.name, else
 /// the mesh file's stem.
 std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector<ModelRequest>& requests,
