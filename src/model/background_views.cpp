@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <iostream>
 #include <optional>
+#include <system_error>
 
 namespace icgp {
 
@@ -16,14 +17,27 @@ BackgroundViews::BackgroundViews(std::unique_ptr<ViewJob> job, int n_threads,
       state_(job_->n_views(), State::kPending) {
   for (int v = 0; v < job_->n_views(); ++v) ready_[v].store(false, std::memory_order_relaxed);
   const int n = std::clamp(n_threads, 1, job_->n_views());
-  for (int t = 0; t < n; ++t) threads_.emplace_back([this] { work(); });
+  try {
+    for (int t = 0; t < n; ++t) threads_.emplace_back([this] { work(); });
+  } catch (...) {  // no thread to be had: stop those started, leave no joinable thread behind
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      error_ = std::current_exception();
+    }
+    for (std::thread& t : threads_) t.join();
+    throw;
+  }
 }
 
 BackgroundViews::~BackgroundViews() {
   // Nothing reads the models any more: finish them on every core, so they are cached.
   const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  if (!complete())
-    for (int t = static_cast<int>(threads_.size()); t < hardware; ++t) threads_.emplace_back([this] { work(); });
+  try {
+    if (!complete())
+      for (int t = static_cast<int>(threads_.size()); t < hardware; ++t) threads_.emplace_back([this] { work(); });
+  } catch (const std::system_error&) {
+    // No more threads: those running finish the views.
+  }
   {
     std::unique_lock<std::mutex> lock(mutex_);
     view_made_.wait(lock, [&] { return complete() || error_; });
