@@ -127,7 +127,7 @@ class ViewpointModel {
   std::size_t payload_size() const { return payload_size(params_); }
   static std::size_t payload_size(const ViewpointModelParams& params);
 
-  // For the generator, on models it made with the first constructor (null otherwise).
+  // For the generator and the cache reader, on models they made (null on a default-constructed one).
   ModelView* mutable_views() { return writable(views_); }
   int* mutable_counts() { return writable(counts_); }
   ModelPoint* mutable_points() { return writable(points_); }
