@@ -260,6 +260,17 @@ class GenerationLock {
   int fd_ = -1;
 };
 
+/// Saves a generated model to its cache file; an unwritable cache is a warning, not an error.
+bool save_to_cache(const ViewpointModel& model, const std::string& path) {
+  try {
+    save_viewpoint_model(model, path);
+    return true;
+  } catch (const ModelFileError& e) {
+    report("warning: " + std::string(e.what()) + "; continuing without the cache");
+    return false;
+  }
+}
+
 }  // namespace
 
 std::string default_model_cache_dir() {
@@ -404,10 +415,7 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
     missing.push_back(requests[i]);
     still_missing.push_back(i);
   }
-  if (missing.empty()) {
-    if (info) *info = std::move(outcome);
-    return models;
-  }
+  ModelGenerationOptions generation = options;
   if (options.in_background) {
     // Each model is saved, and its lock released, once its last view is made.
     struct PendingSave {
@@ -416,35 +424,18 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
     };
     auto pending = std::make_shared<std::vector<PendingSave>>();
     for (const std::size_t i : still_missing) pending->push_back({outcome[i].path, std::move(locks[i])});
-    ModelGenerationOptions background = options;
-    background.on_complete = [pending](std::size_t m, const ViewpointModel& model) {
+    generation.on_complete = [pending](std::size_t m, const ViewpointModel& model) {
       PendingSave& save = (*pending)[m];
-      try {
-        save_viewpoint_model(model, save.path);
-      } catch (const ModelFileError& e) {
-        report("warning: " + std::string(e.what()) + "; continuing without the cache");
-      }
+      save_to_cache(model, save.path);
       save.lock.reset();
     };
-    std::vector<ViewpointModel> generated = generate_viewpoint_models(mesh, missing, background);
-    for (std::size_t m = 0; m < missing.size(); ++m) {
-      models[still_missing[m]] = std::move(generated[m]);
-      outcome[still_missing[m]].generated = true;
-    }
-    if (info) *info = std::move(outcome);
-    return models;
   }
-  std::vector<ViewpointModel> generated = generate_viewpoint_models(mesh, missing, options);
+  std::vector<ViewpointModel> generated = generate_viewpoint_models(mesh, missing, generation);
   for (std::size_t m = 0; m < missing.size(); ++m) {
     const std::size_t i = still_missing[m];
     models[i] = std::move(generated[m]);
     outcome[i].generated = true;
-    try {
-      save_viewpoint_model(models[i], outcome[i].path);
-      outcome[i].saved = true;
-    } catch (const ModelFileError& e) {
-      report("warning: " + std::string(e.what()) + "; continuing without the cache");
-    }
+    if (!options.in_background) outcome[i].saved = save_to_cache(models[i], outcome[i].path);
   }
   if (info) *info = std::move(outcome);
   return models;
