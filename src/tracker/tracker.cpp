@@ -50,6 +50,18 @@ Tracker::BodyState& Tracker::add_state(Body body) {
 
 namespace {
 
+/// A body's quality from the scores of its cues that did not abstain: their median (the
+/// mean of the middle two for an even count), 0 without any. A majority of cues must agree
+/// that the pose is wrong: one cue that matches little by nature, as texture on an object
+/// with little of it, does not make a well-tracked body lost, and one fooled cue does not
+/// keep a lost one.
+double median_score(std::vector<double> scores) {
+  if (scores.empty()) return 0.0;
+  std::sort(scores.begin(), scores.end());
+  const std::size_t n = scores.size();
+  return n % 2 == 1 ? scores[n / 2] : 0.5 * (scores[n / 2 - 1] + scores[n / 2]);
+}
+
 /// Runs `work`, adding its milliseconds to `*ms`; a null `ms` reads no clock.
 template <typename Work>
 void add_time(double* ms, Work&& work) {
@@ -243,18 +255,16 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
     BodyResult r;
     r.body = s->body->name;
     r.joint_values = s->joint_values;
-    double score_sum = 0.0;
-    int n_scored = 0;
+    std::vector<double> scores;
     for (std::size_t i = 0; i < s->cues.size(); ++i) {
       Modality* m = s->cues[i];
       add_time(cue_ms(*s, i), [&] { m->finish(frame, renders_); });
       r.modalities.push_back(m->quality());
-      if (r.modalities.back().abstained) continue;
-      score_sum += r.modalities.back().score;
-      ++n_scored;
+      if (!r.modalities.back().abstained) scores.push_back(r.modalities.back().score);
     }
     r.reference_T_body = s->body->reference_T_body;
-    r.quality = n_scored > 0 ? score_sum / n_scored : 0.0;
+    r.quality = median_score(scores);
+    const int n_scored = static_cast<int>(scores.size());
     // Cues that only lifted their points at the given pose this frame (texture, flow) have
     // nothing to judge yet: that is no evidence against the pose the caller gave.
     const bool all_just_started = std::all_of(r.modalities.begin(), r.modalities.end(),

@@ -23,8 +23,8 @@ struct ModalityQuality {
   int n_valid = 0;
   /// The cue had nothing to measure, through no fault of the pose: no depth measurement
   /// anywhere it searched (all invalid, NaN or missing), or no keypoints on the object
-  /// (texture on a textureless object). A body's quality is then the mean of its other
-  /// cues' scores, so a cue without data can neither confirm nor condemn a pose.
+  /// (texture on a textureless object). A body's quality is then the median of its
+  /// other cues' scores, so a cue without data can neither confirm nor condemn a pose.
   bool abstained = false;
   /// The standard deviation the last iteration weighed the cue with, in the cue's units
   /// (pixels; depth: metres at 1 m): its noise estimate or its schedule (ResidualNoise).

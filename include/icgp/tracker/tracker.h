@@ -18,7 +18,7 @@ struct TrackerParams {
   int n_corr_iterations = 5;
   int n_update_iterations = 2;
   OptimizerParams regularisation;  ///< λ_r, λ_t
-  /// A body whose combined quality (the mean of the scores of its modalities that had
+  /// A body whose combined quality (the median of the scores of its modalities that had
   /// something to measure, ModalityQuality::abstained) is below this is reported lost. A
   /// body whose cues all just started (ModalityQuality::just_started) has quality 1.
   double quality_threshold = 0.5;
