@@ -64,7 +64,7 @@ std::string joined(const std::vector<std::string>& names) {
 
 void print_table(const std::vector<TimedRow>& rows, const std::vector<RowName>& names, int rounds) {
   const TimedRow* reference = find_row(rows, RowName{kVispTracker, kReferenceConfig}.name());
-  TextTable table(columns({{"tracker", 20, true}, {"configuration", 26, true}}, {accuracy_columns(), timing_columns()}));
+  TextTable table(columns({{"tracker", 20, true}, {"configuration", 38, true}}, {accuracy_columns(), timing_columns()}));
   for (const RowName& name : names)
     if (const TimedRow* row = find_row(rows, name.name()))
       timing_cells(table.text(name.tracker).text(name.config).accuracy(row->summary), *row, reference);
@@ -118,9 +118,13 @@ void run_compare(const CompareOptions& o) {
       return evaluate_sequence(colour_frames, object.name, mesh, program.as_run_tracker(), start).summary();
     });
   }
-  add_job({kIcgTracker, icgp_name}, [&] {
+  // Without a file or a cue list vpMbIcgTracker keeps the defaults a ViSP program gets:
+  // icgp's, with flow and edge standing in for depth (they sit out frames with depth).
+  const bool class_defaults = o.config.empty() && o.modalities.empty();
+  const std::string icg_config = class_defaults ? icgp_name + " (defaults)" : icgp_name;
+  add_job({kIcgTracker, icg_config}, [&] {
     vpMbIcgTracker tracker(kRgbdTrackerTypes);
-    tracker.setTrackerConfig(icgp_config);
+    if (!class_defaults) tracker.setTrackerConfig(icgp_config);
     VispProgram<vpMbIcgTracker> program(tracker, visp_files, kRgbdCameraTypes);
     const TrackingSummary summary =
         evaluate_sequence(colour_frames, object.name, mesh, program.as_run_tracker(), start).summary();
@@ -150,7 +154,7 @@ void run_compare(const CompareOptions& o) {
   // point cloud included) beyond icgp's Tracker::track on the same grey and depth images,
   // in the same round. Building the cloud is the caller's, the same for vpMbGenericTracker,
   // and not counted. NaN (null in the summary) when either run failed.
-  const TimedRow* icg = find_row(rows, RowName{kIcgTracker, icgp_name}.name());
+  const TimedRow* icg = find_row(rows, RowName{kIcgTracker, icg_config}.name());
   const TimedRow* core = find_row(rows, RowName{kCoreTracker, icgp_name + kGreySuffix}.name());
   const double overhead_percent =
       median_over_rounds(icg, core, [](double icg_ms, double core_ms) { return (icg_ms - core_ms) / icg_ms * 100.0; });

@@ -8,6 +8,7 @@
 #include "icgp/io/mesh_loader.h"
 #include "icgp/model/model_cache.h"
 #include "icgp/modality/cue_kind.h"
+#include "icgp/modality/depth_stand_in.h"
 
 namespace icgp {
 namespace {
@@ -43,6 +44,23 @@ std::vector<const CueEntry*> selected_cues(const TrackerConfig& config, const st
   return cues;
 }
 
+/// The cameras whose depth images the depth cue among `cues` reads, when `cues` hold all
+/// three of ICG+'s (region, depth, texture); none otherwise: the stand-ins then work in
+/// every frame, since what they make up for is a cue of the three missing as much as depth.
+std::vector<std::string> stand_in_depth_cameras(const std::vector<const CueEntry*>& cues,
+                                                const std::vector<CameraCues>& cameras) {
+  const auto selected = [&](const char* name) {
+    return std::any_of(cues.begin(), cues.end(), [&](const CueEntry* c) { return c->name == name; });
+  };
+  std::vector<std::string> names;
+  if (!selected(cue::kRegion) || !selected(cue::kTexture)) return names;
+  for (const CueEntry* cue : cues)
+    if (cue->name == cue::kDepth)
+      for (const CameraCues& camera : cameras)
+        if (camera.reads(*cue)) names.push_back(camera.camera);
+  return names;
+}
+
 /// The configuration's parameters of a viewpoint model kind.
 const ViewpointModelParams& model_params(const TrackerConfig& config, ViewpointModel::Kind kind) {
   return kind == ViewpointModel::Kind::kRegion ? config.region_model : config.depth_model;
@@ -72,18 +90,24 @@ void add_cues(Tracker& tracker, Body& body, const TrackerConfig& config, const s
   std::vector<std::shared_ptr<const ViewpointModel>> shared;
   for (ViewpointModel& model : models) shared.push_back(std::make_shared<const ViewpointModel>(std::move(model)));
 
+  const std::vector<std::string> depth_cameras = stand_in_depth_cameras(cues, cameras);
   for (const CueEntry* cue : cues) {
     CueContext context{body, config};
     context.only_cue = cues.size() == 1;
+    const bool stand_in = has_cue(config.depth_stand_ins, cue->name) && !depth_cameras.empty();
+    const auto add = [&] {
+      std::unique_ptr<Modality> made = cue->make(context);
+      tracker.add_modality(stand_in ? std::make_unique<DepthStandIn>(std::move(made), depth_cameras) : std::move(made));
+    };
     const auto add_per_camera = [&] {
       if (cue->visp_types == 0) {
-        tracker.add_modality(cue->make(context));
+        add();
         return;
       }
       for (const CameraCues& camera : cameras)
         if (camera.reads(*cue)) {
           context.camera = &camera;
-          tracker.add_modality(cue->make(context));
+          add();
         }
     };
     if (!cue->model) {

@@ -331,6 +331,14 @@ const Fields<EdgeParams> kEdgeFields = {
 /// The registered cues' names, at least one, none twice (the registry's list, read each time).
 Rule<std::vector<std::string>> cue_list_rule() { return {cue_list_expected(), valid_cue_list}; }
 
+/// Registered cues' names other than depth's, none twice; empty allowed.
+Rule<std::vector<std::string>> stand_in_list_rule() {
+  return {"a list of distinct cue names other than depth (a cue cannot stand in for itself)",
+          [](const std::vector<std::string>& names) {
+            return names.empty() || (valid_cue_list(names) && !has_cue(names, cue::kDepth));
+          }};
+}
+
 bool known_preset(const std::string& name) {
   const std::vector<std::string>& names = tracker_config_presets();
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -357,6 +365,7 @@ const Fields<TrackerConfig> kConfigFields = {
      [](const TrackerConfig& c, const yaml::Location& at) {
        check_value(c.modalities, cue_list_rule(), at.child("modalities"));
      }},
+    field("depth_stand_ins", &TrackerConfig::depth_stand_ins, stand_in_list_rule()),
     section("region_model", &TrackerConfig::region_model, kModelFields),
     section("depth_model", &TrackerConfig::depth_model, kModelFields),
     section("region", &TrackerConfig::region, kRegionFields),

@@ -53,6 +53,7 @@ tracker:
   tikhonov_translation: 10000.0
   quality_threshold: 0.25
 modalities: [depth, texture, region]
+depth_stand_ins: [edge, flow]
 region_model:
   n_divides: 3
   sphere_radius: 1.2
@@ -344,19 +345,22 @@ TEST_CASE("tracker config: a partial file overrides only its keys") {
   const std::string file = dir.write("partial.yaml",
                                      "tracker:\n  n_corr_iterations: 7\n"
                                      "region:\n  scales: [3, 1]\n  function_amplitude: 0.4\n"
-                                     "depth_model: {n_points: 50}\n");
+                                     "depth_model: {n_points: 50}\n"
+                                     "depth_stand_ins: [flow]\n");
   const TrackerConfig c = load_tracker_config(file);
   CHECK(c.tracker.n_corr_iterations == 7);
   CHECK(c.region.scales == std::vector<int>{3, 1});
   CHECK(c.region.function_amplitude == 0.4);
   CHECK(c.depth_model.n_points == 50);
   CHECK(c.region_model.n_points == 200);
+  CHECK(c.depth_stand_ins == std::vector<std::string>{"flow"});
 
   auto expected = flatten_yaml(to_yaml(TrackerConfig{}));
   expected["tracker.n_corr_iterations"] = "7";
   expected["region.scales"] = "[3, 1]";
   expected["region.function_amplitude"] = "0.4";
   expected["depth_model.n_points"] = "50";
+  expected["depth_stand_ins"] = "[flow]";
   CHECK(flatten_yaml(to_yaml(c)) == expected);
 }
 
@@ -431,7 +435,7 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
     const char* message;  ///< after "<file>: "
   };
   const Case cases[] = {
-      {"regoin: {}", "regoin: unknown key (valid keys: preset, tracker, modalities, region_model, depth_model, region, depth, "
+      {"regoin: {}", "regoin: unknown key (valid keys: preset, tracker, modalities, depth_stand_ins, region_model, depth_model, region, depth, "
                      "texture, flow, edge, regions, bodies, detection, cache_dir)"},
       {"region: {scale: [1]}", "region.scale: unknown key (valid keys of region: color_camera, depth_camera,"},
       {"tracker: {n_corr_iterations: 3, n_corr_iterations: 4}", "tracker.n_corr_iterations: duplicate key"},
@@ -470,6 +474,9 @@ TEST_CASE("tracker config: bad keys, types and values name the file and the full
       {"modalities: [region, regoin]", "modalities: expected a non-empty list of distinct names from region, depth"},
       {"modalities: [depth, depth]", "modalities: expected a non-empty list of distinct names"},
       {"modalities: []", "modalities: expected a non-empty list of distinct names"},
+      {"depth_stand_ins: [flow, depth]", "depth_stand_ins: expected a list of distinct cue names other than depth"},
+      {"depth_stand_ins: [edge, edge]", "depth_stand_ins: expected a list of distinct cue names other than depth"},
+      {"depth_stand_ins: [flw]", "depth_stand_ins: expected a list of distinct cue names other than depth"},
       {"cache_dir: [a]", "cache_dir: expected a string"},
   };
   TempDir dir("icgp-config");

@@ -25,6 +25,11 @@ struct TrackerConfig {
   /// three by default. Texture abstains on objects without texture (too few keyframe
   /// points, ModalityQuality::abstained) and depth where no depth is measured.
   std::vector<std::string> modalities = {cue::kRegion, cue::kDepth, cue::kTexture};
+  /// Cues of `modalities` that stand in for ICG+'s: with all three of region, depth and
+  /// texture selected, they work only in frames in which no camera delivers depth to the
+  /// depth cue (DepthStandIn); with one of the three missing, in every frame. None in icgp's
+  /// defaults; vpMbIcgTracker's are flow and edge.
+  std::vector<std::string> depth_stand_ins;
   ViewpointModelParams region_model;
   ViewpointModelParams depth_model;
   RegionParams region;
