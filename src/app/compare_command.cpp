@@ -149,6 +149,12 @@ void run_compare(const CompareOptions& o) {
   const SingleThreadScope single_thread;
   const std::vector<TimedRow> rows = run_rounds(jobs, o.rounds, n_frames, failures);
   print_table(rows, names, o.rounds);
+  if (class_defaults) {
+    const TrackerConfig defaults = vpMbIcgTracker(kRgbdTrackerTypes).getTrackerConfig();
+    std::printf("\n%s (defaults): the class's own configuration, as a ViSP program gets it:\n%s, with %s standing in\n"
+                "for depth (they work only in frames in which no camera delivers depth).\n",
+                kIcgTracker.c_str(), joined(defaults.modalities).c_str(), joined(defaults.depth_stand_ins).c_str());
+  }
 
   // The ViSP layer's cost: what vpMbIcgTracker::track() takes (reading ViSP's grey image and
   // point cloud included) beyond icgp's Tracker::track on the same grey and depth images,
