@@ -41,7 +41,6 @@ class DepthStandIn final : public Modality {
 
   /// Whether the cue works in the current frame.
   bool working() const { return working_; }
-  const Modality& cue() const { return *cue_; }
 
  private:
   /// True when none of the depth cameras delivers depth in `frame`.
