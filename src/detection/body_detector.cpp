@@ -52,6 +52,13 @@ constexpr double kSilhouetteOffsetPx = 5.0;
 /// further candidates (the turns compared by appearance find its symmetric twin); a plain
 /// shape refines them all, since a small part (a mug's handle) tells them apart.
 constexpr double kConfidentQuality = 0.85;
+/// Without depth the fit of the contour does not tell the body from clutter shaped like it:
+/// on the sweep's grey labelled can, patches of clutter taken for the can 0.5 m further
+/// away fitted at quality 0.82-0.87 and the can itself at 0.61, while their renders
+/// correlated with the image at 0.66-0.82 against the can's 0.985-0.988. There a pose is
+/// verified only when it looks this much like the image (the first such ends the search),
+/// and the verified poses are ranked by their look alone.
+constexpr double kMinAppearanceWithoutDepth = 0.9;
 /// Verified poses within this quality of the best and this rotation apart are equivalent.
 constexpr double kEquivalentQuality = 0.05;
 constexpr double kEquivalentRotation = 10.0 * kPi / 180.0;
@@ -481,6 +488,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     if (!h) return false;
     verified.push_back(*h);
     // Only a pose that also looks like the body: another object of its shape may fit as well.
+    if (!has_depth) return appearance_ && h->appearance >= kMinAppearanceWithoutDepth;
     return appearance_ && h->quality >= kConfidentQuality && h->appearance >= kMinAppearance;
   };
   // A textured body's keypoints place it wherever its texture shows, whatever its shape's
@@ -526,9 +534,14 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     // Without depth only the appearance tells a textured body from a picture of its shape
     // (a painted rectangle for a box), and with depth only the appearance tells it from
     // another object of its size.
+    const double min_appearance = has_depth ? kMinAppearance : kMinAppearanceWithoutDepth;
+    const std::size_t fitting = verified.size();
     verified.erase(std::remove_if(verified.begin(), verified.end(),
-                                  [](const Hypothesis& h) { return h.appearance < kMinAppearance; }),
+                                  [&](const Hypothesis& h) { return h.appearance < min_appearance; }),
                    verified.end());
+    if (verified.empty() && fitting > 0)
+      detection.why_not = "no pose that fits the image looks like the body there (its render correlates below " +
+                          std::to_string(min_appearance) + (has_depth ? "" : " without depth") + ")";
   } else if (!verified.empty()) {
     // Without appearance, a turn that is no symmetry of the shape shows in the fit of its
     // contour and depth (a mug's handle): every turn is refined and the best fit wins; the
@@ -552,8 +565,9 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   std::stable_sort(verified.begin(), verified.end(),
                    [](const Hypothesis& a, const Hypothesis& b) { return a.quality > b.quality; });
   if (appearance_) {
-    // Among the poses that fit nearly as well as the best, the one that looks like the image.
-    const double floor = verified.front().quality - kAppearanceQualityMargin;
+    // Among the poses that fit nearly as well as the best, the one that looks like the image;
+    // without depth, among all.
+    const double floor = has_depth ? verified.front().quality - kAppearanceQualityMargin : 0.0;
     std::stable_partition(verified.begin(), verified.end(), [&](const Hypothesis& h) { return h.quality >= floor; });
     const auto contenders = std::count_if(verified.begin(), verified.end(), [&](const Hypothesis& h) { return h.quality >= floor; });
     std::stable_sort(verified.begin(), verified.begin() + contenders,

@@ -144,6 +144,25 @@ TEST_CASE("detection: the textured box is found by its keypoints in a grey image
     for (ColorImage& c : frame.colors) cv::cvtColor(c.image, c.image, cv::COLOR_BGR2GRAY);
     check_found_within_5mm_5deg(detector.detect(frame), truth, "grey detection");
   }
+
+  // The scene's clutter of coloured squares without the box, grey and without depth: the
+  // contour of a square fits the box's, but no pose's render looks enough like the image.
+  MeshPart speck;
+  speck.vertices = {{0.f, 0.f, 0.f}, {0.001f, 0.f, 0.f}, {0.f, 0.001f, 0.f}};
+  speck.triangles = {{0, 1, 2}};
+  Mesh nothing;
+  nothing.source = "speck";
+  nothing.parts.push_back(speck);
+  test::SceneRenderer clutter(nothing, color_k, color_k, Pose());
+  for (const double z : {0.35, 0.45, 0.6}) {
+    Frame frame = clutter.render(Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.0, z)));
+    frame.depths.clear();
+    for (ColorImage& c : frame.colors) cv::cvtColor(c.image, c.image, cv::COLOR_BGR2GRAY);
+    const Detection none = detector.detect(frame);
+    INFO("clutter plane " << z + 0.3 << " m away; why not: " << none.why_not);
+    CHECK_FALSE(none.found);
+    CHECK_FALSE(none.why_not.empty());
+  }
 }
 
 TEST_CASE("detection: texture alignment pulls a pose a few millimetres off onto the textured box in a grey image") {
