@@ -22,6 +22,17 @@
 namespace icgp {
 namespace {
 
+/// A 1 mm speck: a scene of the clutter alone, where the object would be.
+Mesh speck() {
+  MeshPart part;
+  part.vertices = {{0.f, 0.f, 0.f}, {0.001f, 0.f, 0.f}, {0.f, 0.001f, 0.f}};
+  part.triangles = {{0, 1, 2}};
+  Mesh mesh;
+  mesh.source = "speck";
+  mesh.parts.push_back(part);
+  return mesh;
+}
+
 /// `found` is a detection within 5 mm and 5 degrees of `truth`; prints its errors after `label`.
 void check_found_within_5mm_5deg(const Detection& found, const Pose& truth, const char* label) {
   INFO("why not: " << found.why_not);
@@ -101,12 +112,7 @@ TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm an
 
   // The same clutter of coloured squares without the box (a 1 mm speck in its place): a
   // painted square is no box, since nothing stands out of the plane.
-  MeshPart speck;
-  speck.vertices = {{0.f, 0.f, 0.f}, {0.001f, 0.f, 0.f}, {0.f, 0.001f, 0.f}};
-  speck.triangles = {{0, 1, 2}};
-  Mesh nothing;
-  nothing.source = "speck";
-  nothing.parts.push_back(speck);
+  const Mesh nothing = speck();
   test::SceneRenderer clutter(nothing, RgbdDetection::intrinsics(), RgbdDetection::intrinsics(),
                               RgbdDetection::depth_T_color());
   for (const double z : {0.35, 0.45, 0.6}) {
@@ -147,12 +153,7 @@ TEST_CASE("detection: the textured box is found by its keypoints in a grey image
 
   // The scene's clutter of coloured squares without the box, grey and without depth: the
   // contour of a square fits the box's, but no pose's render looks enough like the image.
-  MeshPart speck;
-  speck.vertices = {{0.f, 0.f, 0.f}, {0.001f, 0.f, 0.f}, {0.f, 0.001f, 0.f}};
-  speck.triangles = {{0, 1, 2}};
-  Mesh nothing;
-  nothing.source = "speck";
-  nothing.parts.push_back(speck);
+  const Mesh nothing = speck();
   test::SceneRenderer clutter(nothing, color_k, color_k, Pose());
   for (const double z : {0.35, 0.45, 0.6}) {
     Frame frame = clutter.render(Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.0, z)));
