@@ -41,12 +41,12 @@ void register_config_command(CLI::App& app);
 void register_servo_command(CLI::App& app);
 void register_stereo_command(CLI::App& app);
 
-/// Help of the flag that applies SequenceOptions::blender_principal_point.
 /// Said before a benchmark's first vpMbIcgTracker run, whose times the generation shares.
 inline constexpr const char* kModelsOnFirstUse =
     "vpMbIcgTracker makes its viewpoint models on first use, while it tracks (the first round shares the cores "
     "with that); later runs read them from the cache\n";
 
+/// Help of the flag that applies SequenceOptions::blender_principal_point.
 inline constexpr const char* kBlenderPrincipalPointHelp =
     "visp-blender sequences: read the XML's principal point in Blender's pixel-edge convention (0.5 px "
     "less), for every tracker compared (default: exactly as the XML writes it)";

@@ -121,8 +121,8 @@ void run_compare(const CompareOptions& o) {
   // Without a file or a cue list vpMbIcgTracker keeps the defaults a ViSP program gets:
   // icgp's, with flow and edge standing in for depth (they sit out frames with depth).
   const bool class_defaults = o.config.empty() && o.modalities.empty();
-  const std::string icg_config = class_defaults ? icgp_name + " (defaults)" : icgp_name;
-  add_job({kIcgTracker, icg_config}, [&] {
+  const std::string icg_row_config = class_defaults ? icgp_name + " (defaults)" : icgp_name;
+  add_job({kIcgTracker, icg_row_config}, [&] {
     vpMbIcgTracker tracker(kRgbdTrackerTypes);
     if (!class_defaults) tracker.setTrackerConfig(icgp_config);
     VispProgram<vpMbIcgTracker> program(tracker, visp_files, kRgbdCameraTypes);
@@ -160,7 +160,7 @@ void run_compare(const CompareOptions& o) {
   // point cloud included) beyond icgp's Tracker::track on the same grey and depth images,
   // in the same round. Building the cloud is the caller's, the same for vpMbGenericTracker,
   // and not counted. NaN (null in the summary) when either run failed.
-  const TimedRow* icg = find_row(rows, RowName{kIcgTracker, icg_config}.name());
+  const TimedRow* icg = find_row(rows, RowName{kIcgTracker, icg_row_config}.name());
   const TimedRow* core = find_row(rows, RowName{kCoreTracker, icgp_name + kGreySuffix}.name());
   const double overhead_percent =
       median_over_rounds(icg, core, [](double icg_ms, double core_ms) { return (icg_ms - core_ms) / icg_ms * 100.0; });
