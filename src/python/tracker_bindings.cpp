@@ -376,7 +376,7 @@ void register_tracker(py::module_& m) {
       .def_property_readonly("pose", [](const TrackOutcome& t) { return matrix(t.main_body().result.reference_T_body); },
                              "4x4 pose of the main body in the colour camera's frame (cMo), metres.")
       .def_property_readonly("quality", [](const TrackOutcome& t) { return t.main_body().result.quality; },
-                             "The main body's quality: the mean score of its cues that measured something.")
+                             "The main body's quality: the median score of its cues that measured something.")
       .def_property_readonly("tracked", [](const TrackOutcome& t) { return t.main_body().result.tracked; },
                              "False when the main body's quality fell below the threshold (lost).")
       .def_property_readonly("cues", [](const TrackOutcome& t) { return t.main_body().cues(); },
