@@ -9,6 +9,7 @@
 #include <visp3/core/vpImageConvert.h>
 
 #include "icgp/base/pose.h"
+#include "icgp/render/egl_context.h"
 #include "icgp/render/renderer.h"
 #include "icgp/render/scene_props.h"
 #include "icgp/render/sensor_effects.h"
@@ -116,7 +117,10 @@ struct RgbdSimulator::Impl {
 
 RgbdSimulator::RgbdSimulator(const Scenario& scenario, const vpHomogeneousMatrix& world_T_camera,
                              const vpHomogeneousMatrix& world_T_object, std::uint64_t seed)
-    : impl_(std::make_unique<Impl>(scenario, world_T_camera, world_T_object, seed)) {
+    // Whole frames render faster on llvmpipe's raster threads; the choice must come before
+    // the process's first render (a tracker made earlier has chosen for the process).
+    : impl_((choose_software_raster_threads(SoftwareRasterThreads::kPerCore),
+             std::make_unique<Impl>(scenario, world_T_camera, world_T_object, seed))) {
   Impl& d = *impl_;
   Lighting lighting;
   lighting.direction_in_camera = scenario.lighting.direction_in_camera.normalized().cast<float>();

@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -192,9 +191,6 @@ double visp_load_seconds(const BenchMesh& bench) {
 void run_model_bench(const ModelBenchOptions& options) {
   const fs::path out(options.out);
   fs::create_directories(out);
-  // As `icgp model`: generation renders on one thread per core, and llvmpipe's own raster
-  // threads on top would oversubscribe them. Read when the first context is made.
-  ::setenv("LP_NUM_THREADS", "0", 0);
   const std::vector<BenchMesh> meshes = bench_meshes(out, options.meshes);
   TextTable table({{"mesh", 18, true}, {"triangles", 9}, {"region s", 9}, {"depth s", 8}, {"both s", 7},
                    {"cache MB", 8}, {"1st frame s", 11}, {"ViSP load s", 11}, {"peak MB", 8}});

@@ -3,7 +3,6 @@
 // so the first tracking run does not wait for them, and reports what they cost.
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -31,10 +30,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 void run_model(const ModelOptions& o) {
   install_stop_on_sigint();  // generation stops between views; nothing is left half written
-  // Generation renders on one thread per core already; llvmpipe's own raster threads on top
-  // would oversubscribe the cores (measured: 22 s instead of 17 s for the default models).
-  // Read when the first context is made, so set before that; a user's setting wins.
-  ::setenv("LP_NUM_THREADS", "0", 0);
   const Mesh mesh = load_any_mesh(o.mesh, o.scale);
   std::vector<ModelRequest> requests;
   if (o.kind != "depth") requests.push_back({ViewpointModel::Kind::kRegion, o.params});

@@ -6,6 +6,8 @@
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
 
+#include <atomic>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 #include <vector>
@@ -67,9 +69,17 @@ EGLDisplay open_headless_display() {
                     "); install Mesa's EGL driver (libegl-mesa0, libgl1-mesa-dri)");
 }
 
-// One display for the process; contexts are per thread. Initialised on first use.
+std::atomic<SoftwareRasterThreads> raster_threads{SoftwareRasterThreads::kCallingThread};
+std::atomic<bool> display_opened{false};
+
+// One display for the process; contexts are per thread. Initialised on first use, with the
+// raster threads chosen by then (Mesa reads LP_NUM_THREADS when the display opens).
 EGLDisplay shared_display() {
-  static const EGLDisplay display = open_headless_display();
+  static const EGLDisplay display = [] {
+    display_opened = true;
+    if (raster_threads == SoftwareRasterThreads::kCallingThread) ::setenv("LP_NUM_THREADS", "0", /*overwrite=*/0);
+    return open_headless_display();
+  }();
   return display;
 }
 
@@ -85,6 +95,12 @@ EGLConfig choose_config(EGLDisplay display) {
 }
 
 }  // namespace
+
+bool choose_software_raster_threads(SoftwareRasterThreads threads) {
+  if (display_opened) return false;
+  raster_threads = threads;
+  return true;
+}
 
 EglContext::EglContext() {
   EGLDisplay display = shared_display();
