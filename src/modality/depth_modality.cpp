@@ -8,6 +8,7 @@
 
 #include "icgp/geometry/rounding.h"
 #include "icgp/modality/iteration_value.h"
+#include "icgp/modality/normal_equations.h"
 
 namespace icgp {
 namespace {
@@ -264,19 +265,49 @@ double DepthModality::sigma(int corr_iter) const {
 
 CueTerms DepthModality::gradient_hessian(int corr_iter, int) {
   const Posef body_T_depth = depth_T_body().inverse();
+  const Eigen::Matrix3f& R = body_T_depth.rotation();
+  const Eigen::Vector3f& t = body_T_depth.translation();
   const float sigma = static_cast<float>(this->sigma(corr_iter));
-  Eigen::Matrix<float, 6, 1> g_sum = Eigen::Matrix<float, 6, 1>::Zero();
-  Eigen::Matrix<float, 6, 6> H_sum = Eigen::Matrix<float, 6, 6>::Zero();
-  for (const DepthCorrespondence& c : correspondences_) {
-    const Eigen::Vector3f P = body_T_depth * c.measured;  // measured point, body frame
-    const float residual = c.body_normal.dot(c.body_point - P);
-    const float w2 = noise_.weight(residual / c.measured.z(), sigma) / (sigma * sigma * c.measured.z() * c.measured.z());
-    Eigen::Matrix<float, 6, 1> J;
-    J << P.cross(c.body_normal), c.body_normal;
-    g_sum -= (w2 * residual) * J;
-    H_sum.noalias() -= w2 * J * J.transpose();
+  // A block of correspondences at a time, each step a loop over its lanes (NormalEquations):
+  // dense depth pairs thousands of pixels, and lane by lane every step is vectorised.
+  constexpr int kLanes = NormalEquations::kLanes;
+  NormalEquations sums;
+  const std::size_t n = correspondences_.size();
+  for (std::size_t first = 0; first < n; first += kLanes) {
+    const int count = static_cast<int>(std::min<std::size_t>(kLanes, n - first));
+    float measured[3][kLanes], point[3][kLanes], normal[3][kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      // A partial block repeats its last correspondence, with weight 0.
+      const DepthCorrespondence& c = correspondences_[first + std::min(l, count - 1)];
+      for (int i = 0; i < 3; ++i) {
+        measured[i][l] = c.measured[i];
+        point[i][l] = c.body_point[i];
+        normal[i][l] = c.body_normal[i];
+      }
+    }
+    float rows[6][kLanes], residuals[kLanes], normalised[kLanes], weights[kLanes], weighted_residuals[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      float P[3];  // the measured point in the body frame
+      for (int i = 0; i < 3; ++i)
+        P[i] = R(i, 0) * measured[0][l] + R(i, 1) * measured[1][l] + R(i, 2) * measured[2][l] + t[i];
+      residuals[l] = normal[0][l] * (point[0][l] - P[0]) + normal[1][l] * (point[1][l] - P[1]) +
+                     normal[2][l] * (point[2][l] - P[2]);
+      normalised[l] = residuals[l] / measured[2][l];
+      rows[0][l] = P[1] * normal[2][l] - P[2] * normal[1][l];  // P × n
+      rows[1][l] = P[2] * normal[0][l] - P[0] * normal[2][l];
+      rows[2][l] = P[0] * normal[1][l] - P[1] * normal[0][l];
+      for (int i = 0; i < 3; ++i) rows[3 + i][l] = normal[i][l];
+    }
+    noise_.weights(normalised, sigma, weights);
+    for (int l = 0; l < kLanes; ++l) {
+      const float z = measured[2][l];
+      weights[l] /= sigma * sigma * z * z;
+      weighted_residuals[l] = weights[l] * residuals[l];
+    }
+    for (int l = count; l < kLanes; ++l) weights[l] = weighted_residuals[l] = 0.f;
+    sums.add(rows, weights, weighted_residuals);
   }
-  return {g_sum.cast<double>(), H_sum.cast<double>(), static_cast<int>(correspondences_.size())};
+  return sums.terms(static_cast<int>(n));
 }
 
 double DepthModality::log_likelihood(int corr_iter) const {

@@ -63,9 +63,17 @@ class ResidualNoise {
   /// weights (the reference behaviour).
   float weight(float u, double scale) const {
     if (!params_.robust) return 1.f;
-    const float x = u / static_cast<float>(params_.tukey_constant * scale);
-    const float t = 1.f - x * x;
-    return t > 0.f ? t * t : 0.f;
+    return tukey(u / static_cast<float>(params_.tukey_constant * scale));
+  }
+  /// weight() of each of `u` in `out`, in a loop the compiler vectorises.
+  template <int N>
+  void weights(const float (&u)[N], double scale, float (&out)[N]) const {
+    if (!params_.robust) {
+      for (float& w : out) w = 1.f;
+      return;
+    }
+    const float cutoff = static_cast<float>(params_.tukey_constant * scale);
+    for (int i = 0; i < N; ++i) out[i] = tukey(u[i] / cutoff);
   }
   /// The loss whose derivative weight() gives, of a residual in units of the scale `x`:
   /// Tukey's ρ(x) = c²/6·(1 − (1 − (x/c)²)³), c²/6 beyond c; x²/2 without robust weights.
@@ -80,6 +88,11 @@ class ResidualNoise {
   const NoiseParams& params() const { return params_; }
 
  private:
+  /// Tukey's weight of x, a residual in units of the cut-off c·scale.
+  static float tukey(float x) {
+    const float t = 1.f - x * x;
+    return t > 0.f ? t * t : 0.f;
+  }
   void estimate_from_residuals();
 
   NoiseParams params_;
