@@ -54,8 +54,8 @@ namespace {
 /// mean of the middle two for an even count), 0 without any. A majority of cues must agree
 /// that the pose is wrong: one cue that matches little by nature, as texture on an object
 /// with little of it, does not make a well-tracked body lost, and one fooled cue does not
-/// keep a lost one.
-double median_score(std::vector<double> scores) {
+/// keep a lost one. Sorts `scores` in place.
+double median_score(std::vector<double>& scores) {
   if (scores.empty()) return 0.0;
   std::sort(scores.begin(), scores.end());
   const std::size_t n = scores.size();
@@ -264,12 +264,11 @@ std::vector<BodyResult> Tracker::track(const Frame& frame) {
     }
     r.reference_T_body = s->body->reference_T_body;
     r.quality = median_score(scores);
-    const int n_scored = static_cast<int>(scores.size());
     // Cues that only lifted their points at the given pose this frame (texture, flow) have
     // nothing to judge yet: that is no evidence against the pose the caller gave.
     const bool all_just_started = std::all_of(r.modalities.begin(), r.modalities.end(),
                                               [](const ModalityQuality& q) { return q.just_started; });
-    if (n_scored == 0 && all_just_started && !r.modalities.empty()) r.quality = 1.0;
+    if (scores.empty() && all_just_started && !r.modalities.empty()) r.quality = 1.0;
     r.tracked = r.quality >= params_.quality_threshold;
     results.push_back(std::move(r));
   }
