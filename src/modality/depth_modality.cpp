@@ -176,7 +176,7 @@ void DepthModality::correspondences(const Frame& frame, const Renders& renders, 
   last_corr_iter_ = corr_iter;
   if (!delivered) {  // no depth this frame: no data, and the cue abstains
     correspondences_.clear();
-    n_hidden_by_bodies_ = 0;
+    n_not_expected_ = 0;
     saw_depth_ = false;
     return;
   }
@@ -192,7 +192,7 @@ void DepthModality::dense_correspondences(const DepthImage& depth, const Renders
   const auto considered_distance = static_cast<float>(iteration_value(params_.considered_distances, corr_iter));
   const DenseDepthSampling::Counts counts = dense_->collect(renders, depth, considered_distance, correspondences_);
   n_considered_ = counts.n_on_body;
-  n_hidden_by_bodies_ = 0;  // pixels another body covers show that body in the render: not counted
+  n_not_expected_ = 0;  // pixels another body covers show that body in the render: not counted
   saw_depth_ = counts.saw_depth;
 }
 
@@ -232,16 +232,21 @@ void DepthModality::model_point_correspondences(const DepthImage& depth, const R
   auto collect = [&](bool with_occlusion_test) {
     correspondences_.clear();
     saw_depth_ = false;
-    n_hidden_by_bodies_ = 0;
+    n_not_expected_ = 0;
     for (int p = 0; p < n_considered_; ++p) {
       const Eigen::Vector3f X = depth_T_body_now * points[p].position;
       if (X.z() <= 0.f) continue;
       if (hidden_by_bodies_.occluded(p)) {
-        ++n_hidden_by_bodies_;
+        ++n_not_expected_;
         continue;
       }
       if (with_occlusion_test && occlusions_.occluded(p)) continue;
-      if (!depth.mask.all_pixels() && !depth.mask.usable(depth.intrinsics.project<float>(X))) continue;
+      // What the camera cannot see (outside the image or the mask) is not expected either.
+      int row = 0, col = 0;
+      if (!nearest_pixel(depth, depth.intrinsics.project<float>(X), row, col) || !depth.mask.usable(row, col)) {
+        ++n_not_expected_;
+        continue;
+      }
       Eigen::Vector3f measured;
       if (!find_closest_measurement(depth, X, search, measured, saw_depth_)) continue;
       correspondences_.push_back({points[p].position, points[p].normal, measured});
@@ -345,9 +350,9 @@ void DepthModality::update_quality() {
   int n_inliers = 0;
   for (const DepthCorrespondence& c : correspondences_)
     if (std::abs(c.body_normal.dot(c.body_point - body_T_depth * c.measured)) < inlier) ++n_inliers;
-  // Points another body hides are not expected to find data, unlike those an unknown
-  // occluder hides: they do not count against the score.
-  const int n_expected = n_considered_ - n_hidden_by_bodies_;
+  // Points another body hides or the camera cannot see are not expected to find data,
+  // unlike those an unknown occluder hides: they do not count against the score.
+  const int n_expected = n_considered_ - n_not_expected_;
   quality_.n_valid = static_cast<int>(correspondences_.size());
   quality_.valid_fraction = n_expected > 0 ? static_cast<double>(correspondences_.size()) / n_expected : 0.0;
   quality_.score = n_expected > 0 ? static_cast<double>(n_inliers) / n_expected : 0.0;

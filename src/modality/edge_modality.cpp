@@ -209,6 +209,7 @@ void EdgeModality::match(const PixelMask& mask, int range, double prior_sigma) {
   for (Sample& s : samples_) {
     s.polarity = 0.f;
     s.weight = 0.f;
+    s.seen = false;
     const Eigen::Vector3f X = T * s.body_point;
     const Eigen::Vector3f D = T.rotation() * s.body_direction;
     if (X.z() <= 0.f) continue;
@@ -228,6 +229,7 @@ void EdgeModality::match(const PixelMask& mask, int range, double prior_sigma) {
       along[static_cast<std::size_t>(k + range)] = across * across >= kMinAlignment2 * g->squaredNorm() ? across : 0.f;
     }
     if (!inside) continue;
+    s.seen = true;
     const float known = s.contrast != 0.f ? s.contrast : polarity_[static_cast<std::size_t>(s.edge)];
     int best = -1;
     float best_score = 0.f;
@@ -362,13 +364,14 @@ void EdgeModality::finish(const Frame&, const Renders&) {
   // on, for samples chosen later. A crease that found nothing forgets its sign (it was
   // hidden, or its faces' brightness changed).
   learn_contrasts();
-  int n_matched = 0, n_inliers = 0;
+  // Samples the camera could not see (outside the image or the mask) say nothing of the pose.
+  int n = 0, n_matched = 0, n_inliers = 0;
   for (const Sample& s : samples_) {
+    n += s.seen;
     if (s.polarity == 0.f) continue;
     ++n_matched;
     if (s.weight > 0.f) ++n_inliers;
   }
-  const int n = static_cast<int>(samples_.size());
   quality_.n_valid = n_inliers;
   quality_.valid_fraction = n > 0 ? static_cast<double>(n_matched) / n : 0.0;
   quality_.score = n > 0 ? static_cast<double>(n_inliers) / n : 0.0;

@@ -84,7 +84,10 @@ void FlowModality::track_points(const PixelMask& mask) {
     const cv::Point2f back = scratch_back_[i] - scratch_from_[i];
     if (!scratch_status_[i] || !scratch_back_status_[i] || !(std::hypot(back.x, back.y) <= max_return)) continue;
     const Eigen::Vector2f pixel(to.x, to.y);
-    if (!intrinsics_.contains(pixel.x(), pixel.y()) || !mask.usable(pixel)) continue;
+    if (!intrinsics_.contains(pixel.x(), pixel.y()) || !mask.usable(pixel)) {
+      ++n_out_of_view_;
+      continue;
+    }
     matches_[kept] = matches_[i];
     matches_[kept++].image_point = pixel;
   }
@@ -98,7 +101,9 @@ void FlowModality::drop_turned_away_points() {
     const Eigen::Vector3f X = T * m.body_point;
     return (T.rotation() * m.body_normal).dot(-X) <= kMinViewCosine * X.norm();
   };
-  matches_.erase(std::remove_if(matches_.begin(), matches_.end(), turned_away), matches_.end());
+  const auto first_turned_away = std::remove_if(matches_.begin(), matches_.end(), turned_away);
+  n_out_of_view_ += static_cast<int>(matches_.end() - first_turned_away);
+  matches_.erase(first_turned_away, matches_.end());
 }
 
 void FlowModality::start(const Frame& frame, const Renders& renders) {
@@ -205,6 +210,7 @@ cv::Mat FlowModality::body_mask(const FocusedRender& render, std::uint8_t body_i
 void FlowModality::renew_points(const Frame& frame, const Renders& renders) {
   matches_.clear();
   n_lifted_ = kNeverLifted;
+  n_out_of_view_ = 0;
   size_changed_ = false;
   const std::optional<RenderRequest> request = corner_render(frame);
   if (!request) return;
@@ -242,14 +248,15 @@ void FlowModality::finish(const Frame& frame, const Renders& renders) {
   int n_inliers = 0;
   for (const Match& m : matches_)
     if (m.weight > 0.f) ++n_inliers;
+  const int n_expected = n_lifted_ - n_out_of_view_;
   quality_.n_valid = n_inliers;
-  quality_.valid_fraction = n_lifted_ > 0 ? static_cast<double>(matches_.size()) / n_lifted_ : 0.0;
-  quality_.score = n_lifted_ > 0 ? static_cast<double>(n_inliers) / n_lifted_ : 0.0;
+  quality_.valid_fraction = n_expected > 0 ? static_cast<double>(matches_.size()) / n_expected : 0.0;
+  quality_.score = n_expected > 0 ? static_cast<double>(n_inliers) / n_expected : 0.0;
   // Like the texture cue's keyframes, corners lifted at the start pose would confirm it on
   // the first frame whatever it is: the flow vouches once the other cues had a frame to
   // confirm that pose. Too few corners are chance, not evidence.
   quality_.just_started = frames_since_start_ == 0;
-  quality_.abstained = n_lifted_ < params_.min_points || quality_.just_started;
+  quality_.abstained = n_expected < params_.min_points || quality_.just_started;
   ++frames_since_start_;
   quality_.sigma = sigma(last_corr_iter_);
   if (renewal_due()) renew_points(frame, renders);

@@ -283,14 +283,15 @@ void RegionModality::correspondences(const Frame& frame, const Renders& renders,
       // unknown occluder hides: it does not count against the cue's quality.
       if (ruled_out_.occluded(i) || !project(points[i], pose, intrinsics_, p)) continue;
       if (std::min(p.foreground_px, p.background_px) / scale < params_.min_continuous_distance) continue;
+      // Nor does what the camera cannot see: a line outside the image or the mask.
       if (!image.mask.usable(p.centre)) continue;
-      ++n_measurable_;
-      if (test_occlusions && occlusions_.occluded(i)) continue;
       Line line;
       line.body_point = points[i].position;
       line.centre = p.centre;
       line.normal = p.normal;
       if (!sample_segments(image.image, p, scale, line)) continue;
+      ++n_measurable_;
+      if (test_occlusions && occlusions_.occluded(i)) continue;
       // The global iterations read only the distribution's mean and variance.
       const std::size_t offset = lines_.size() * params_.distribution_length;
       compute_distribution(line, distributions_.data() + offset,
@@ -436,10 +437,11 @@ void RegionModality::finish(const Frame& frame, const Renders&) {
 
 void RegionModality::update_quality() {
   // A line agrees with the pose when its contour-location distribution holds its mass
-  // within ±1.5 segments of where the model's contour now projects. Lines the data could
-  // not give count as disagreeing, so leaving the image or being hidden lowers the score;
-  // lines the model's own geometry rules out at this pose (a region too thin to measure)
-  // do not count, and a region with none left has nothing to say: it abstains.
+  // within ±1.5 segments of where the model's contour now projects. Lines an unknown
+  // occluder hides count as disagreeing, since a wrong pose looks the same; lines the
+  // camera cannot see (outside the image or the mask) and lines the model's own geometry
+  // rules out at this pose (a region too thin to measure) do not count, and a region with
+  // none left has nothing to say: it abstains.
   const Posef pose = camera_T_reference_ * body().reference_T_body.cast<float>();
   const int n_dist = params_.distribution_length;
   const float centre = (n_dist - 1) / 2.f;

@@ -284,13 +284,13 @@ void TextureModality::append_image_features(std::vector<ImageFeature>& features)
 }
 
 void TextureModality::finish(const Frame& frame, const Renders& renders) {
-  update_quality();
+  update_quality(color_image(frame).mask);
   ++frames_since_start_;
   ++keyframe_.age;
   if (keyframe_due(camera_T_body(), keyframe_.age)) make_keyframe(frame, renders);
 }
 
-void TextureModality::update_quality() {
+void TextureModality::update_quality(const PixelMask& mask) {
   const Posef T = camera_T_body().cast<float>();
   const float inlier = 0.5f * static_cast<float>(params_.tukey_norm_constant);
   int n_inliers = 0;
@@ -301,12 +301,18 @@ void TextureModality::update_quality() {
   // Fewer inliers than a pose needs to be determined (4, as for PnP) confirm nothing:
   // that many agree by chance on a frame without the object.
   if (n_inliers < 4) n_inliers = 0;
-  // Keyframe points another body now hides cannot match: they are not expected to.
-  int n_hidden = 0;
-  if (!scene_.empty())
-    for (const Eigen::Vector3f& p : keyframe_.body_points)
-      if (scene_.hidden(T * p, 0.f, params_.occlusion.modeled_radius, params_.occlusion.modeled_threshold)) ++n_hidden;
-  const int n_points = static_cast<int>(keyframe_.body_points.size()) - n_hidden;
+  // Keyframe points the camera cannot see now (outside the image or the mask) or another
+  // body hides cannot match: they are not expected to.
+  int n_unseen = 0;
+  for (const Eigen::Vector3f& p : keyframe_.body_points) {
+    const Eigen::Vector3f X = T * p;
+    const Eigen::Vector2f pixel = intrinsics_.project<float>(X);
+    const bool seen = X.z() > 0.f && intrinsics_.contains(pixel.x(), pixel.y()) && mask.usable(pixel) &&
+                      (scene_.empty() || !scene_.hidden(X, 0.f, params_.occlusion.modeled_radius,
+                                                        params_.occlusion.modeled_threshold));
+    n_unseen += !seen;
+  }
+  const int n_points = static_cast<int>(keyframe_.body_points.size()) - n_unseen;
   quality_.n_valid = static_cast<int>(matches_.size());
   quality_.valid_fraction = n_points > 0 ? std::min(1.0, static_cast<double>(matches_.size()) / n_points) : 0.0;
   quality_.score = n_points > 0 ? std::min(1.0, static_cast<double>(n_inliers) / n_points) : 0.0;

@@ -94,7 +94,9 @@ class DepthModality : public Modality {
   ViewOcclusions occlusions_;  ///< measured
   ViewOcclusions hidden_by_bodies_;  ///< modeled, in scene_
   int n_considered_ = 0;
-  int n_hidden_by_bodies_ = 0;  ///< of those, hidden by other bodies: not expected to find data
+  /// Of those, hidden by other bodies or outside the depth image or its mask: not expected
+  /// to find data, so not counted against the score.
+  int n_not_expected_ = 0;
   int last_corr_iter_ = 0;
   bool saw_depth_ = false;  ///< any valid depth where the last correspondences searched
   std::vector<cv::Point> projected_pixels_;  ///< kept for its capacity

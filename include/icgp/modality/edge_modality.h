@@ -51,6 +51,9 @@ class EdgeModality : public Modality {
     /// the next frame looks for a step of that sign and about that size.
     float contrast = 0.f;
     float weight = 0.f;              ///< robust weight; 0 when unmatched
+    /// Its last search ran inside the image and the mask: the camera could see it, so the
+    /// quality counts it.
+    bool seen = false;
   };
 
   /// `color_camera` is the camera the creases are looked for in.

@@ -96,6 +96,9 @@ class FlowModality : public Modality {
   /// Points at the last renewal; kNeverLifted while the body was never in front of the camera.
   static constexpr int kNeverLifted = -1;
   int n_lifted_ = kNeverLifted;
+  /// Of those, points followed out of the image or the mask, or turned away from the
+  /// camera, since: no longer expected to match, so not counted against the score.
+  int n_out_of_view_ = 0;
   Eigen::Matrix3d camera_R_body_at_renewal_ = Eigen::Matrix3d::Identity();
   bool size_changed_ = false;
   ResidualNoise noise_;

@@ -144,8 +144,8 @@ class RegionModality : public Modality {
   std::vector<float> segment_f_;          ///< scratch: segment foreground posteriors
   int n_considered_ = 0;
   /// Of those, the lines the model's geometry allows at the current pose (projected in
-  /// front of the camera, foreground and background runs long enough): what the data may
-  /// confirm or contradict.
+  /// front of the camera, foreground and background runs long enough) and the camera sees
+  /// (inside the image and its mask): what the data may confirm or contradict.
   int n_measurable_ = 0;
   int last_corr_iter_ = 0;
   int frames_since_start_ = 0;

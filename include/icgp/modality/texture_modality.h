@@ -120,7 +120,8 @@ class TextureModality : public Modality {
   void make_keyframe(const Frame& frame, const Renders& renders);
   void match();
   void update_weights();
-  void update_quality();
+  /// `mask`: the colour camera's, whose excluded pixels no keyframe point is expected to match in.
+  void update_quality(const PixelMask& mask);
   /// σ_t, pixels, for correspondence iteration `corr_iter`.
   double sigma(int corr_iter) const;
   void estimate_noise();
