@@ -48,6 +48,9 @@ constexpr int kNearHypotheses = 2;
 constexpr double kMinSilhouetteSupport = 0.4;
 /// Pixels outside the projected contour where that step is looked for.
 constexpr double kSilhouetteOffsetPx = 5.0;
+/// A pose found far from where the body was trusted is confirmed only with nearly all of its
+/// contour in view: a part of a silhouette matches far more wrong poses than the whole.
+constexpr double kMinShareInView = 0.9;
 /// For a body with appearance, a refined hypothesis of this quality ends the refinement of
 /// further candidates (the turns compared by appearance find its symmetric twin); a plain
 /// shape refines them all, since a small part (a mug's handle) tells them apart.
@@ -182,10 +185,13 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
   turns_ = symmetric_turns(templates_->sphere().centre);
   // A round shape (a labelled can) fits its contour and depth at any turn about its axis;
   // with appearance, those turns are compared too (without, they are its symmetries).
+  const std::vector<BodyAxis> round_axes_of_shape = round_axes(mesh);
   if (appearance_) {
-    const std::vector<Pose> round_turns = round_axis_turns(mesh, kRoundTurnStep);
+    const std::vector<Pose> round_turns = turns_about(round_axes_of_shape, kRoundTurnStep);
     round_ = !round_turns.empty();
     turns_.insert(turns_.end(), round_turns.begin(), round_turns.end());
+  } else {
+    free_turn_axes_ = round_axes_of_shape;
   }
   if (has_texture(mesh)) {
     auto keypoints =
@@ -449,12 +455,65 @@ std::vector<PoseCandidate> BodyDetector::template_candidates(const Frame& frame,
   return candidates;
 }
 
-Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, int hypotheses,
-                               const OtherPoses& others) {
+void BodyDetector::place_others(const OtherPoses& others) {
   for (Body* occluder : refiner_->occluders()) {
     const auto it = others.find(occluder->name);
     if (it != others.end()) occluder->reference_T_body = it->second;
   }
+}
+
+double BodyDetector::share_in_view(const ColorImage& color, const Pose& reference_T_body) const {
+  const Pose camera_T_body = color.camera_T_reference * reference_T_body;
+  const ShapeTemplates::View& view = templates_->closest_view(camera_T_body);
+  int seen = 0, all = 0;
+  for (const ShapeTemplates::ViewContourPoint& p : view.contour) {
+    const Eigen::Vector3d X = camera_T_body * p.position.cast<double>();
+    ++all;
+    if (X.z() <= 0.0) continue;
+    const Eigen::Vector2d uv = color.intrinsics.project(X);
+    seen += color.intrinsics.contains(uv.x(), uv.y()) && color.mask.usable(uv.cast<float>());
+  }
+  return all > 0 ? static_cast<double>(seen) / all : 0.0;
+}
+
+double BodyDetector::windows_apart(const Pose& a, const Pose& b) const {
+  const Sphere& sphere = templates_->sphere();
+  const double moved = (a * sphere.centre - b * sphere.centre).norm() / (kNearRadiusSpheres * sphere.radius);
+  const double turned = rotation_angle_between(a.rotation(), b.rotation()) / kNearRotation;
+  return std::max(moved, turned);
+}
+
+bool BodyDetector::confirms(const Frame& frame, const Pose& reference_T_body, const OtherPoses& others,
+                            std::string& why_not) {
+  const ColorImage* color = frame.find_color(color_camera_);
+  if (!color) {
+    why_not = "the frame has no image from camera '" + color_camera_ + "'";
+    return false;
+  }
+  if (share_in_view(*color, reference_T_body) < kMinShareInView) {
+    why_not = "part of its silhouette is out of view";
+    return false;
+  }
+  const double silhouette = silhouette_support(frame, reference_T_body);
+  if (silhouette >= 0.0 && silhouette < kMinSilhouetteSupport) {
+    why_not = "the measured depth does not step back beyond its contour";
+    return false;
+  }
+  if (appearance_) {
+    place_others(others);
+    const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
+    const double min_appearance = depth && depth->delivered() ? kMinAppearance : kMinAppearanceWithoutDepth;
+    if (appearance_agreement(*color, reference_T_body) < min_appearance) {
+      why_not = "its render does not look like the image";
+      return false;
+    }
+  }
+  return true;
+}
+
+Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, int hypotheses,
+                               const OtherPoses& others) {
+  place_others(others);
   Detection detection;
   // Near a pose the body was just trusted at, its colours are learnt where they are: one
   // stage is enough for a shape, and the cost per frame stays bounded. A body with
@@ -576,6 +635,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   detection.found = true;
   detection.quality = verified.front().quality;
   detection.reference_T_body = verified.front().reference_T_body;
+  detection.free_turn_axes = free_turn_axes_;
   const auto add_equivalent = [&](const Pose& pose) {
     const bool new_one = std::none_of(detection.equivalents.begin(), detection.equivalents.end(), [&](const Pose& e) {
       return rotation_angle_between(pose.rotation(), e.rotation()) <= kEquivalentRotation;

@@ -200,27 +200,40 @@ std::vector<Pose> mesh_symmetries(const Mesh& mesh, Keeping keeping) {
   return symmetries;
 }
 
-std::vector<Pose> round_axis_turns(const Mesh& mesh, double step) {
-  if (mesh.empty() || !(step > 0.0)) return {};
+std::vector<BodyAxis> round_axes(const Mesh& mesh) {
+  if (mesh.empty()) return {};
   const SampledSurface surface(mesh, Keeping::kShape);
   if (!surface.measurable()) return {};
-  const int steps = static_cast<int>(std::ceil(2.0 * kPi / step));
-  std::vector<Eigen::Vector3d> round;
-  std::vector<Pose> turns;
-  const Eigen::Vector3d& c = surface.centroid();
+  std::vector<BodyAxis> round;
   for (const Eigen::Vector3d& axis : surface.candidate_axes()) {
-    const auto same_axis = [&](const Eigen::Vector3d& a) { return std::abs(a.dot(axis)) > std::cos(kSameRotation); };
+    const auto same_axis = [&](const BodyAxis& a) { return std::abs(a.direction.dot(axis)) > std::cos(kSameRotation); };
     if (std::any_of(round.begin(), round.end(), same_axis)) continue;
-    const bool is_round = surface.maps_onto_itself(Eigen::AngleAxisd(kPi / 2.0, axis).toRotationMatrix()) &&
-                          surface.maps_onto_itself(Eigen::AngleAxisd(kPi / 3.0, axis).toRotationMatrix());
-    if (!is_round) continue;
-    round.push_back(axis);
-    for (int k = 1; k < steps; ++k) {
-      const Eigen::Matrix3d turn = Eigen::AngleAxisd(2.0 * kPi * k / steps, axis).toRotationMatrix();
-      turns.emplace_back(turn, c - turn * c);
-    }
+    if (surface.maps_onto_itself(Eigen::AngleAxisd(kPi / 2.0, axis).toRotationMatrix()) &&
+        surface.maps_onto_itself(Eigen::AngleAxisd(kPi / 3.0, axis).toRotationMatrix()))
+      round.push_back({surface.centroid(), axis.normalized()});
   }
+  return round;
+}
+
+std::vector<Pose> turns_about(const std::vector<BodyAxis>& axes, double step) {
+  if (!(step > 0.0)) return {};
+  const int steps = static_cast<int>(std::ceil(2.0 * kPi / step));
+  std::vector<Pose> turns;
+  for (const BodyAxis& axis : axes)
+    for (int k = 1; k < steps; ++k) {
+      const Eigen::Matrix3d turn = Eigen::AngleAxisd(2.0 * kPi * k / steps, axis.direction).toRotationMatrix();
+      turns.emplace_back(turn, axis.point - turn * axis.point);
+    }
   return turns;
+}
+
+Pose turned_towards(const Pose& reference_T_body, const BodyAxis& axis, const Pose& nearest) {
+  // The turn Q = Rᵀ·R_nearest split into a twist about the axis and a swing about an axis
+  // perpendicular to it: the twist is the turn about the axis nearest to Q.
+  const Eigen::Quaterniond q(Eigen::Matrix3d(reference_T_body.rotation().transpose() * nearest.rotation()));
+  const double angle = 2.0 * std::atan2(q.vec().dot(axis.direction), q.w());
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(angle, axis.direction).toRotationMatrix();
+  return reference_T_body * Pose(turn, axis.point - turn * axis.point);
 }
 
 }  // namespace icgp

@@ -284,7 +284,8 @@ void vpMbIcgTracker::testTracking() {
   const double threshold = tracker->params().quality_threshold;
   if (impl_->recovery->lost(Impl::kBody))
     throw vpTrackingException(vpTrackingException::fatalError,
-                              "vpMbIcgTracker: tracking lost, and the object not found again since (quality " +
+                              "vpMbIcgTracker: tracking lost, and the object not trusted again since: " +
+                                  impl_->recovery->why_lost(Impl::kBody) + " (quality " +
                                   std::to_string(impl_->quality) + ")");
   if (impl_->quality < threshold)
     throw vpTrackingException(vpTrackingException::fatalError,

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // mesh_symmetries against the known rotation groups of boxes, a cube and the two-colour box;
-// round_axis_turns against a labelled can (round) and shapes that are not round.
+// round_axes and their turns against a labelled can (round) and shapes that are not round.
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
@@ -84,7 +84,7 @@ TEST_CASE("round axis turns: the labelled can's shape is round about its axis, w
   // Its label breaks every symmetry of its look, not of its shape.
   CHECK(mesh_symmetries(can).empty());
   CHECK_FALSE(mesh_symmetries(can, Keeping::kShape).empty());
-  const std::vector<Pose> turns = round_axis_turns(can, deg_to_rad(15.0));
+  const std::vector<Pose> turns = turns_about(round_axes(can), deg_to_rad(15.0));
   REQUIRE(turns.size() == 23);
   for (std::size_t k = 0; k < turns.size(); ++k) {
     const Eigen::AngleAxisd turn(turns[k].rotation());
@@ -98,7 +98,32 @@ TEST_CASE("round axis turns: the labelled can's shape is round about its axis, w
 
 TEST_CASE("round axis turns: a box, a cube and a mug with its handle have no round axis") {
   const Eigen::Vector3f grey(0.5f, 0.5f, 0.5f);
-  CHECK(round_axis_turns(box_mesh(Eigen::Vector3d(0.1, 0.08, 0.06), grey), deg_to_rad(15.0)).empty());
-  CHECK(round_axis_turns(box_mesh(Eigen::Vector3d(0.05, 0.05, 0.05), grey), deg_to_rad(15.0)).empty());
-  CHECK(round_axis_turns(load_mesh(ICGP_MODELS_DIR "/textureless_mug/textureless_mug.obj"), deg_to_rad(15.0)).empty());
+  CHECK(round_axes(box_mesh(Eigen::Vector3d(0.1, 0.08, 0.06), grey)).empty());
+  CHECK(round_axes(box_mesh(Eigen::Vector3d(0.05, 0.05, 0.05), grey)).empty());
+  CHECK(round_axes(load_mesh(ICGP_MODELS_DIR "/textureless_mug/textureless_mug.obj")).empty());
+}
+
+TEST_CASE("round axis turns: turned_towards takes the turn about the axis that is nearest to another pose") {
+  const BodyAxis axis{Eigen::Vector3d(0.01, 0.02, -0.03), Eigen::Vector3d(0.0, 1.0, 0.0)};
+  const Pose pose = Pose::from_rotation_vector(Eigen::Vector3d(0.4, -0.2, 0.9), Eigen::Vector3d(0.1, -0.05, 0.6));
+  const auto turned_by = [&](double degrees) {
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(deg_to_rad(degrees), axis.direction).toRotationMatrix();
+    return pose * Pose(turn, axis.point - turn * axis.point);
+  };
+  for (const double degrees : {37.0, -120.0, 179.0}) {
+    INFO(degrees << " degrees about the axis");
+    // Exactly a turn about the axis: found exactly, the axis's points staying where they were.
+    const Pose target = turned_by(degrees);
+    const Pose found = turned_towards(pose, axis, target);
+    CHECK(rotation_angle_between(found.rotation(), target.rotation()) < 1e-9);
+    CHECK((found.translation() - target.translation()).norm() < 1e-9);
+    CHECK((found * axis.point - pose * axis.point).norm() < 1e-12);
+    // With a swing of 5 degrees about another axis on top: the turn still found, and only
+    // the swing left between them.
+    const Pose swung = target * Pose(Eigen::AngleAxisd(deg_to_rad(5.0), Eigen::Vector3d::UnitX()).toRotationMatrix(),
+                                     Eigen::Vector3d::Zero());
+    const Pose nearest = turned_towards(pose, axis, swung);
+    CHECK(rotation_angle_between(nearest.rotation(), swung.rotation()) * 180.0 / kPi == Approx(5.0).margin(1e-6));
+    CHECK(rotation_angle_between(nearest.rotation(), target.rotation()) < 1e-9);
+  }
 }

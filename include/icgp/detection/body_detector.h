@@ -9,6 +9,7 @@
 
 #include "icgp/base/frame.h"
 #include "icgp/detection/keypoint_model.h"
+#include "icgp/detection/mesh_symmetries.h"
 #include "icgp/detection/shape_templates.h"
 #include "icgp/detection/template_matcher.h"
 #include "icgp/detection/texture_alignment.h"
@@ -27,6 +28,10 @@ struct Detection {
   /// turned by each symmetry of the mesh (mesh_symmetries), and other verified poses of
   /// the same quality and appearance. The equivalent views of a symmetric object, not a failure.
   std::vector<Pose> equivalents;
+  /// Axes of the body frame about which the found pose may turn freely: a shape round about
+  /// them (round_axes) with no texture or colours to fix the turn. No image tells those
+  /// turns apart either; whoever has a reason to prefer one turns it (turned_towards).
+  std::vector<BodyAxis> free_turn_axes;
   int candidates = 0;  ///< keypoint poses, and template matches above the score threshold after suppression
   int refined = 0;     ///< of those, hypotheses refined by the tracker's cues
   std::string why_not;  ///< when not found: why, in a sentence
@@ -61,6 +66,17 @@ class BodyDetector {
   /// bounded window in the image, distance and rotation, and fewer hypotheses.
   Detection search_near(const Frame& frame, const Pose& reference_T_body, const OtherPoses& others = {});
 
+  /// Whether the tracker's pose `reference_T_body` of a body found by a search shows what a
+  /// wrong pose cannot: its whole silhouette in view (nearly all its contour inside the
+  /// image and its mask), the measured depth stepping back beyond that contour (with depth),
+  /// and for a body with appearance its render agreeing with the image. `why_not` says
+  /// what failed.
+  bool confirms(const Frame& frame, const Pose& reference_T_body, const OtherPoses& others, std::string& why_not);
+
+  /// How far apart two poses of the body are in local search windows (search_near's image
+  /// radius in sphere radii, and its rotation): at most 1 within one window.
+  double windows_apart(const Pose& a, const Pose& b) const;
+
   const ShapeTemplates& templates() const { return *templates_; }
 
  private:
@@ -94,6 +110,11 @@ class BodyDetector {
   /// The share of the body's contour points at `reference_T_body` beyond which the
   /// measured depth steps back or vanishes; -1 without depth there.
   double silhouette_support(const Frame& frame, const Pose& reference_T_body) const;
+  /// The share of the body's contour points at `reference_T_body` that `color` sees
+  /// (inside its image and its mask).
+  double share_in_view(const ColorImage& color, const Pose& reference_T_body) const;
+  /// Puts the refiner's occluders where `others` says they are.
+  void place_others(const OtherPoses& others);
 
   DetectionParams params_;
   std::string body_name_;
@@ -108,9 +129,11 @@ class BodyDetector {
   std::vector<Pose> symmetries_;  ///< mesh_symmetries of the body: S with T·S equivalent to T
   /// Turns S of a verified pose T whose T·S the shape may fit as well (docs/detection.md, step 6).
   std::vector<Pose> turns_;
-  /// With appearance: the shape is round about an axis (round_axis_turns), so only its
-  /// texture or colours fix the turn about it.
+  /// With appearance: the shape is round about an axis (round_axes), so only its texture
+  /// or colours fix the turn about it.
   bool round_ = false;
+  /// Without appearance: the axes the shape is round about, which nothing fixes the turn about.
+  std::vector<BodyAxis> free_turn_axes_;
   /// A textured mesh's keypoints and texture alignment, null for a mesh without texture.
   std::unique_ptr<KeypointModel> keypoints_;
   std::unique_ptr<TextureAlignment> alignment_;

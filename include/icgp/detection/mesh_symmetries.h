@@ -25,11 +25,25 @@ enum class Keeping { kAppearance, kShape };
 /// its turns of 60 degrees. With Keeping::kShape, textures and colours are ignored.
 std::vector<Pose> mesh_symmetries(const Mesh& mesh, Keeping keeping = Keeping::kAppearance);
 
-/// Turns in steps of about `step` radians about every axis the shape of `mesh` is round
-/// about (its turns of a quarter and of a sixth both map it onto itself: a cylinder, a
-/// cone), through its centroid; textures and colours ignored. Contour and depth cannot
-/// tell these turns of a labelled can apart: a detector compares them by appearance.
-/// Empty when the shape has no such axis.
-std::vector<Pose> round_axis_turns(const Mesh& mesh, double step);
+/// An axis of the body frame: through `point`, along the unit `direction`.
+struct BodyAxis {
+  Eigen::Vector3d point;
+  Eigen::Vector3d direction;
+};
+
+/// Every axis the shape of `mesh` is round about (its turns of a quarter and of a sixth
+/// both map it onto itself: a cylinder, a cone), through its centroid; textures and colours
+/// ignored. Empty when the shape has none.
+std::vector<BodyAxis> round_axes(const Mesh& mesh);
+
+/// Turns in steps of about `step` radians about each of `axes` (round_axes: contour and
+/// depth cannot tell these turns of a labelled can apart, a detector compares them by
+/// appearance).
+std::vector<Pose> turns_about(const std::vector<BodyAxis>& axes, double step);
+
+/// `reference_T_body` turned about `axis` (of the body frame) to the turn nearest in
+/// rotation to `nearest`: of the poses a shape round about the axis fits equally, the one
+/// that continues `nearest`.
+Pose turned_towards(const Pose& reference_T_body, const BodyAxis& axis, const Pose& nearest);
 
 }  // namespace icgp
