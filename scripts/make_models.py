@@ -628,9 +628,107 @@ def gripper(folder):
     return mesh
 
 
+# ---------------------------------------------------------------------------------------
+# A plain yellow figurine, the kind of textureless, non-convex object a robot meets on a
+# table: a torso with a head, two arms, two feet, two ears and a tail, 5120 triangles. Each
+# part is an ellipsoid that contains the torso's centre, so their union is star-shaped
+# about it and its surface is an icosphere's directions pushed out to the farthest part
+# along each: closed and without self-intersections, with creases where the parts meet.
+
+FIGURINE_COLOUR = (0.92, 0.74, 0.12)
+FIGURINE_SUBDIVISIONS = 4
+# (name, centre, long axis direction, semi-axes (along it, across it)), metres; the torso's
+# and the head's axes are vertical. A limb reaches from the torso's centre along its axis.
+FIGURINE_PARTS = [
+    ("torso", (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.042, 0.030)),
+    ("head", (0.0, 0.05, 0.003), (0.0, 1.0, 0.0), (0.052, 0.021)),
+    ("left arm", None, (-0.8, -0.3, 0.3), (0.060, 0.010)),
+    ("right arm", None, (0.85, 0.1, 0.25), (0.058, 0.010)),
+    ("left foot", None, (-0.35, -1.0, 0.15), (0.066, 0.013)),
+    ("right foot", None, (0.35, -1.0, 0.15), (0.066, 0.013)),
+    ("left ear", None, (-0.35, 1.0, -0.1), (0.100, 0.008)),
+    ("right ear", None, (0.35, 1.0, -0.1), (0.100, 0.008)),
+    ("tail", None, (0.0, 0.1, -1.0), (0.045, 0.015)),
+]
+
+
+def normalised(v):
+    n = math.sqrt(sum(c * c for c in v))
+    return tuple(c / n for c in v)
+
+
+def icosphere(subdivisions):
+    """Unit directions and counter-clockwise (seen from outside) triangles."""
+    t = (1.0 + math.sqrt(5.0)) / 2.0
+    vertices = [normalised(v) for v in [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+                                        (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+             (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
+             (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    for _ in range(subdivisions):
+        midpoints, refined = {}, []
+
+        def midpoint(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in midpoints:
+                midpoints[key] = len(vertices)
+                vertices.append(normalised(tuple((p + q) / 2 for p, q in zip(vertices[a], vertices[b]))))
+            return midpoints[key]
+
+        for a, b, c in faces:
+            ab, bc, ca = midpoint(a, b), midpoint(b, c), midpoint(c, a)
+            refined += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = refined
+    return vertices, faces
+
+
+def ellipsoid_exit(direction, centre, axis_dir, semi):
+    """Distance from the origin (inside the ellipsoid) to where the ray along `direction`
+    leaves it: the positive root of |A (t u - c)| = 1, A scaling along and across the axis."""
+    along, across = semi
+
+    def scaled(v):
+        a = sum(p * q for p, q in zip(v, axis_dir))
+        perpendicular = tuple(p - a * q for p, q in zip(v, axis_dir))
+        return tuple(x / across for x in perpendicular) + (a / along,)
+
+    au, ac = scaled(direction), scaled(centre)
+    qa = sum(x * x for x in au)
+    qb = -2.0 * sum(x * y for x, y in zip(au, ac))
+    qc = sum(x * x for x in ac) - 1.0
+    return (-qb + math.sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa)
+
+
+def figurine(folder):
+    parts = []
+    for name, centre, direction, (along, across) in FIGURINE_PARTS:
+        axis_dir = normalised(direction)
+        if centre is None:  # a limb: from the torso's centre out along its axis
+            centre = tuple(0.5 * along * c for c in axis_dir)
+            along = 0.5 * along + 0.004
+        parts.append((centre, axis_dir, (along, across)))
+    directions, faces = icosphere(FIGURINE_SUBDIVISIONS)
+    points = [tuple(max(ellipsoid_exit(u, *part) for part in parts) * c for c in u) for u in directions]
+    lower = [min(p[k] for p in points) for k in range(3)]
+    upper = [max(p[k] for p in points) for k in range(3)]
+    centre = [(lo + hi) / 2 for lo, hi in zip(lower, upper)]
+    mesh = ObjMesh()
+    triangles = mesh.group("plastic")
+    corners = [mesh.corner(tuple(p[k] - centre[k] for k in range(3))) for p in points]
+    for a, b, c in faces:
+        triangles.append((corners[a], corners[b], corners[c]))
+    size = " x ".join(fmt(hi - lo) for lo, hi in zip(lower, upper))
+    write_mtl(os.path.join(folder, "figurine.mtl"), [("plastic", FIGURINE_COLOUR, None)])
+    write_obj(os.path.join(folder, "figurine.obj"), mesh, "figurine.mtl",
+              "plain yellow figurine " + size + " m (x, y, z): torso, head, arms, feet, ears and a tail, "
+              "non-convex, without texture")
+    return mesh
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "models")
-    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can, hinged_box, gripper):
+    for make in (textured_box, textureless_mug, two_region, labelled_cylinder, labelled_can, hinged_box, gripper,
+                 figurine):
         folder = os.path.join(root, make.__name__)
         os.makedirs(folder, exist_ok=True)
         mesh = make(folder)

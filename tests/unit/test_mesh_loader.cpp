@@ -472,6 +472,26 @@ TEST_CASE("models/gripper: mount, palm and two fingers 0.10 m apart, origin on t
   check_untextured(mesh);
 }
 
+TEST_CASE("models/figurine: a closed, non-convex, plain yellow figurine of 5120 triangles, centred") {
+  const Mesh mesh = load_mesh(model("figurine/figurine.obj"));
+  CHECK(mesh.triangle_count() == 5120);  // an icosphere of four subdivisions
+  check_bounds(mesh, Eigen::Vector3f(-0.05745f, -0.083528f, -0.039388f), Eigen::Vector3f(0.05745f, 0.083528f, 0.039388f),
+               1e-5f);
+  CHECK(closed_and_consistently_oriented(mesh));
+  CHECK(mesh_signed_volume(mesh) > 0.0);
+  check_untextured(mesh);
+  // Not convex: some vertex lies more than 5 mm in front of some face's plane (a convex
+  // surface has every vertex behind every face).
+  const icgp::MeshPart& part = mesh.parts.front();
+  float most_in_front = 0.f;
+  for (const Eigen::Vector3i& t : part.triangles) {
+    const Eigen::Vector3f a = part.vertices[t[0]];
+    const Eigen::Vector3f n = (part.vertices[t[1]] - a).cross(part.vertices[t[2]] - a).normalized();
+    for (const Eigen::Vector3f& v : part.vertices) most_in_front = std::max(most_in_front, n.dot(v - a));
+  }
+  CHECK(most_in_front > 0.005f);
+}
+
 TEST_CASE("models/hinged_box: a closed base and a closed lid whose origin is on its hinge edge") {
   const Mesh base = load_mesh(model("hinged_box/base.obj"));
   const Mesh lid = load_mesh(model("hinged_box/lid.obj"));
