@@ -66,6 +66,10 @@ constexpr double kMinAppearanceWithoutDepth = 0.9;
 constexpr double kEquivalentQuality = 0.05;
 constexpr double kEquivalentRotation = 10.0 * kPi / 180.0;
 
+/// The other bodies are rendered this many times smaller than the image to leave their
+/// silhouettes out of template matching.
+constexpr int kOthersRenderScale = 4;
+
 /// Side of the focused render the appearance of a hypothesis is compared in.
 constexpr int kAppearanceRenderSize = 128;
 /// Verified poses this far below the best quality still compete on appearance: a pose of
@@ -142,7 +146,7 @@ ColorImage window_crop(const ColorImage& color, const SearchWindow& window, cons
   crop.intrinsics.pv -= y0;
   crop.intrinsics.width = x1 - x0;
   crop.intrinsics.height = y1 - y0;
-  crop.mask = {};
+  if (!color.mask.all_pixels()) crop.mask.mask = color.mask.mask(cv::Rect(x0, y0, x1 - x0, y1 - y0));
   return crop;
 }
 
@@ -455,6 +459,34 @@ std::vector<PoseCandidate> BodyDetector::template_candidates(const Frame& frame,
   return candidates;
 }
 
+cv::Mat BodyDetector::usable_for_templates(const ColorImage& color) {
+  const std::vector<Body*> others = refiner_->occluders();
+  if (others.empty()) return color.mask.mask;
+  // The other bodies rendered over the whole image at a quarter of its resolution, their
+  // silhouettes grown by what a quarter pixel spans and by the orientations' spread.
+  const Intrinsics& K = color.intrinsics;
+  RenderRequest request;
+  request.camera = color.camera;
+  request.intrinsics = K;
+  request.camera_T_reference = color.camera_T_reference;
+  request.square = {-0.5, -0.5, static_cast<double>(std::max(K.width, K.height))};
+  request.size = (std::max(K.width, K.height) + kOthersRenderScale - 1) / kOthersRenderScale;
+  request.targets = kRenderIds;
+  std::vector<const Body*> shown(others.begin(), others.end());
+  Renders renders;
+  refiner_->renderer().render(shown, {request}, renders);
+  const cv::Mat& ids = renders.at(request).ids;
+  cv::Mat covered;
+  cv::resize(ids != 0, covered, cv::Size(request.size * kOthersRenderScale, request.size * kOthersRenderScale), 0, 0,
+             cv::INTER_NEAREST);
+  covered = covered(cv::Rect(0, 0, K.width, K.height));
+  const int grow = kOthersRenderScale + OrientationResponses::kSpreadRadius + 1;
+  cv::dilate(covered, covered, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * grow + 1, 2 * grow + 1)));
+  cv::Mat usable = covered == 0;
+  if (!color.mask.all_pixels()) usable &= color.mask.mask != 0;
+  return usable;
+}
+
 void BodyDetector::place_others(const OtherPoses& others) {
   for (Body* occluder : refiner_->occluders()) {
     const auto it = others.find(occluder->name);
@@ -521,11 +553,16 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   // which one stage left short of the check on the textured box (11 of 12 local searches
   // found, 12 with two) and on the labelled can turned 15 degrees.
   const int stages = window.near && !appearance_ ? 1 : kRefinementStages;
-  const ColorImage* color = frame.find_color(color_camera_);
-  if (!color) {
+  const ColorImage* found_color = frame.find_color(color_camera_);
+  if (!found_color) {
     detection.why_not = "the frame has no image from camera '" + color_camera_ + "' to search";
     return detection;
   }
+  // The image as the templates see it: what the tracker's other bodies cover (a gripper
+  // over the object) shows their edges, not this body's.
+  ColorImage masked = *found_color;
+  masked.mask.mask = usable_for_templates(masked);
+  const ColorImage* color = &masked;
   const Pose reference_T_camera = color->camera_T_reference.inverse();
   const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
   const bool has_depth = depth && depth->delivered();

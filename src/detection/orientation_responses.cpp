@@ -122,11 +122,12 @@ int OrientationResponses::bin_of(float dx, float dy) {
   return bin >= kBins ? 0 : bin;  // angle == pi is orientation 0
 }
 
-void OrientationResponses::compute(const cv::Mat& image) {
+void OrientationResponses::compute(const cv::Mat& image, const cv::Mat& usable) {
   static const auto table = response_table();
   width_ = image.cols;
   height_ = image.rows;
   spread_ = spread_orientations(quantised_orientations(image));
+  if (!usable.empty()) spread_.setTo(0, usable == 0);
   const int cols = grid_cols(), rows = grid_rows(), size = grid_size();
   for (int bin = 0; bin < kBins; ++bin) {
     std::vector<std::uint8_t>& linear = linear_[bin];

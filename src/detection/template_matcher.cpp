@@ -120,7 +120,13 @@ const OrientationPyramid::Level& OrientationPyramid::level(int L) {
   const cv::Mat& level_image = image(L);
   Level& level = levels_[L].emplace();
   level.intrinsics = color_.intrinsics.scaled(level_image.cols, level_image.rows);
-  level.responses.compute(level_image);
+  cv::Mat usable;
+  if (!color_.mask.all_pixels()) {
+    // A pixel of a level is usable when all the image's pixels it averages are.
+    cv::resize(color_.mask.mask, usable, level_image.size(), 0, 0, cv::INTER_AREA);
+    usable = usable == 255;
+  }
+  level.responses.compute(level_image, usable);
   return level;
 }
 

@@ -18,7 +18,9 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 
@@ -260,6 +262,52 @@ class GenerationLock {
   int fd_ = -1;
 };
 
+/// The models this process is making in the background, by cache file, until they are
+/// saved: another tracker or detector of the same object in this process shares the views
+/// made so far, and has any view it needs made next, instead of waiting for the file behind
+/// the lock this process holds (flock locks belong to an open file, so a process would wait
+/// for itself until the whole model is made).
+class ModelsInProgress {
+ public:
+  static ModelsInProgress& instance() {
+    static ModelsInProgress models;
+    return models;
+  }
+  /// The model being made for `path`, while someone still reads it.
+  std::optional<ViewpointModel> find(const std::string& path) {
+    const std::lock_guard<std::mutex> hold(mutex_);
+    const auto it = models_.find(path);
+    if (it == models_.end()) return std::nullopt;
+    std::shared_ptr<ViewSupply> supply = it->second.supply.lock();
+    if (!supply) return std::nullopt;  // its last reader is finishing it: wait for the file
+    ViewpointModel model = it->second.views;
+    model.set_supply(std::move(supply));
+    return model;
+  }
+  void add(const std::string& path, const ViewpointModel& model) {
+    if (model.complete()) return;
+    Entry entry{model, model.supply()};
+    entry.views.set_supply(nullptr);
+    const std::lock_guard<std::mutex> hold(mutex_);
+    models_.insert_or_assign(path, std::move(entry));
+  }
+  void remove(const std::string& path) {
+    const std::lock_guard<std::mutex> hold(mutex_);
+    models_.erase(path);
+  }
+
+ private:
+  /// The supply is not owned here: the last reader's copy finishes the model when it goes
+  /// (ViewSupply's destructor waits for the views), never a generation thread dropping this
+  /// entry from its own completion callback.
+  struct Entry {
+    ViewpointModel views;  ///< the model's arrays, without its supply
+    std::weak_ptr<ViewSupply> supply;
+  };
+  std::mutex mutex_;
+  std::map<std::string, Entry> models_;
+};
+
 /// Saves a generated model to its cache file; an unwritable cache is a warning, not an error.
 bool save_to_cache(const ViewpointModel& model, const std::string& path) {
   try {
@@ -381,6 +429,12 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
     r.params.validate();
     keys[i] = viewpoint_model_key(r.kind, mesh, r.params, options.associated_bodies);
     outcome[i].path = model_cache_path(dir, name, r.kind, keys[i]);
+    if (std::optional<ViewpointModel> in_progress = ModelsInProgress::instance().find(outcome[i].path)) {
+      if (!options.in_background) in_progress->require_all_views();
+      models[i] = std::move(*in_progress);
+      outcome[i].generated = true;
+      continue;
+    }
     if (std::optional<ViewpointModel> cached = cached_model(r, keys[i], outcome[i].path)) {
       models[i] = std::move(*cached);
       continue;
@@ -427,6 +481,7 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
     generation.on_complete = [pending](std::size_t m, const ViewpointModel& model) {
       PendingSave& save = (*pending)[m];
       save_to_cache(model, save.path);
+      ModelsInProgress::instance().remove(save.path);
       save.lock.reset();
     };
   }
@@ -435,7 +490,10 @@ std::vector<ViewpointModel> load_or_generate(const Mesh& mesh, const std::vector
     const std::size_t i = still_missing[m];
     models[i] = std::move(generated[m]);
     outcome[i].generated = true;
-    if (!options.in_background) outcome[i].saved = save_to_cache(models[i], outcome[i].path);
+    if (options.in_background)
+      ModelsInProgress::instance().add(outcome[i].path, models[i]);
+    else
+      outcome[i].saved = save_to_cache(models[i], outcome[i].path);
   }
   if (info) *info = std::move(outcome);
   return models;

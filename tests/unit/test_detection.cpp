@@ -68,6 +68,16 @@ TEST_CASE("orientation responses: a vertical step edge answers orientation 0 nea
   const int k = 7 * responses.grid_cols() + 8;
   CHECK(responses.linear(0, 0, 2)[k] == OrientationResponses::kMaxResponse);
   CHECK(responses.linear(4, 0, 2)[k] == 0);
+
+  // Where the mask excludes pixels (a known other body over the object, ViSP's mask), the
+  // same edge answers nothing; elsewhere it answers as before.
+  cv::Mat usable(64, 64, CV_8UC1, cv::Scalar(255));
+  usable.rowRange(0, 32).setTo(0);
+  responses.compute(image, usable);
+  CHECK(responses.spread().at<std::uint8_t>(30, 31) == 0);
+  CHECK(responses.spread().at<std::uint8_t>(40, 31) == 1);
+  CHECK(responses.linear(0, 0, 2)[k] == 0);
+  CHECK(responses.linear(0, 0, 0)[10 * responses.grid_cols() + 8] == OrientationResponses::kMaxResponse);
 }
 
 /// An RGB-D rig as the tests render it (colour Camera1 and depth Camera2 of 640x480, 2.5 cm

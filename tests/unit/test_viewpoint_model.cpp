@@ -515,6 +515,31 @@ TEST_CASE("model cache: models made in the background are used at once, and cach
   CHECK(again[0].complete());
 }
 
+TEST_CASE("model cache: a model still being made in this process is shared, not waited for") {
+  icgp::test::TempDir folder("shared-cache");
+  const ViewpointModelParams p = coarse_params();
+  ModelGenerationOptions options = quiet(1);
+  options.in_background = true;
+  const std::vector<ViewpointModel> first =
+      load_or_generate(box(), {{ViewpointModel::Kind::kRegion, p}}, folder.path().string(), options);
+  // A second tracker (or a detector) of the same object: the same model, whose views are
+  // made as either needs them; the file lock this process holds is not waited on.
+  std::vector<CachedModelInfo> info;
+  const std::vector<ViewpointModel> second =
+      load_or_generate(box(), {{ViewpointModel::Kind::kRegion, p}}, folder.path().string(), options, &info);
+  CHECK(info[0].generated);
+  CHECK(second[0].points(0) == first[0].points(0));  // one block of views
+  const int v = second[0].closest_view(Eigen::Vector3f::UnitY());
+  second[0].require_view(v);
+  CHECK(first[0].view_point_count(v) == box_models().region.view_point_count(v));
+  // Asked for in the foreground, the same model once it is complete.
+  options.in_background = false;
+  const std::vector<ViewpointModel> third =
+      load_or_generate(box(), {{ViewpointModel::Kind::kRegion, p}}, folder.path().string(), options);
+  CHECK(third[0].complete());
+  CHECK(same_payload(third[0], box_models().region));
+}
+
 TEST_CASE("viewpoint models made in the background: a generation error reaches the reader") {
   const ViewpointModelParams p = coarse_params();
   ModelGenerationOptions options = quiet(1);

@@ -113,6 +113,9 @@ class BodyDetector {
   /// The share of the body's contour points at `reference_T_body` that `color` sees
   /// (inside its image and its mask).
   double share_in_view(const ColorImage& color, const Pose& reference_T_body) const;
+  /// The pixels of `color` templates are matched in (CV_8UC1, 0: not; empty: all): those
+  /// of its mask that the other bodies do not cover, at their current poses.
+  cv::Mat usable_for_templates(const ColorImage& color);
   /// Puts the refiner's occluders where `others` says they are.
   void place_others(const OtherPoses& others);
 

@@ -27,8 +27,9 @@ class OrientationResponses {
 
   /// From a CV_8UC3 (BGR) or CV_8UC1 image. A pixel's orientation is that of the colour
   /// channel with the strongest gradient, kept only where its 3x3 neighbourhood agrees, so
-  /// that noise and isolated texture specks answer nothing.
-  void compute(const cv::Mat& image);
+  /// that noise and isolated texture specks answer nothing. `usable` (CV_8UC1 of the
+  /// image's size, or empty: every pixel): pixels where it is 0 answer nothing.
+  void compute(const cv::Mat& image, const cv::Mat& usable = {});
 
   int width() const { return width_; }
   int height() const { return height_; }

@@ -45,7 +45,8 @@ struct SearchWindow {
 
 /// One image's orientation responses at pyramid levels 0..kLevels-1 (2^L times smaller),
 /// each computed the first time a search asks for it, so that several searches of one
-/// frame (coarse views, then fine ones near their matches) share them.
+/// frame (coarse views, then fine ones near their matches) share them. Pixels the image's
+/// mask excludes answer nothing.
 class OrientationPyramid {
  public:
   static constexpr int kLevels = 4;

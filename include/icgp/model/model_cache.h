@@ -54,7 +54,10 @@ struct CachedModelInfo {
 /// <model file>.lock, and the others say on stderr that they wait, then load its file.
 /// options.in_background: missing models are returned at once, generated in the background
 /// (generate_viewpoint_models), and each is saved when complete; this process holds the
-/// model's lock until then, so others wait for its file as for any generation.
+/// model's lock until then, so others wait for its file as for any generation. Within this
+/// process a model still being made is shared: a later call gets the same model, at once
+/// with options.in_background (its views are made as they are required), else once it is
+/// complete.
 /// options.on_complete is replaced by the saving.
 /// `cache_dir` empty: default_model_cache_dir(). Files are named after options.name, else
 /// the mesh file's stem.

@@ -135,6 +135,8 @@ class ViewpointModel {
   /// For the generator: the views of this model (and of its copies made from now on) come
   /// from `supply` until it is complete.
   void set_supply(std::shared_ptr<ViewSupply> supply) { supply_ = std::move(supply); }
+  /// Where the views come from until the model is complete (null: every view is made).
+  const std::shared_ptr<ViewSupply>& supply() const { return supply_; }
 
  private:
   void point_into(const unsigned char* payload);
