@@ -195,9 +195,10 @@ void register_bench_command(CLI::App& app) {
   sweep->excludes("--ablation");
   CLI::Option* detect =
       cmd->add_flag("--detect", o->detect,
-                    "Instead: detection alone (no pose given) on rendered frames of 4 models at 0.3-1.0 m, with exact, "
-                    "RealSense- and Kinect-class depth and grey without depth, beside distractors, partly occluded and "
-                    "without the object, against vpKeyPoint (docs/detection.md)");
+                    "Instead: detection alone (no pose given) on rendered frames of 5 models at 0.3-1.0 m, with exact, "
+                    "RealSense- and Kinect-class depth and grey without depth, beside distractors, partly occluded, "
+                    "without the object and on a white table under a hunting auto-exposure, against vpKeyPoint "
+                    "(docs/detection.md)");
   detect->excludes("--ablation")->excludes(sweep);
   rounds->excludes(sweep)->excludes("--ablation");
   cmd->add_option("--out", o->out,
@@ -209,8 +210,8 @@ void register_bench_command(CLI::App& app) {
                   "--sweep: PNG of the mean error against depth noise (default " + SweepOptions().plot +
                       "); --detect: PNG of success against occlusion (default " + DetectBenchOptions().plot + ")");
   cmd->add_option("--object", o->objects,
-                  "--detect: only this one of the sweep's objects (textured_box, two_region, labelled_can, "
-                  "textureless_mug); --model: only this mesh (a folder of models/, or torus_10k); repeatable");
+                  "--detect: only this one of its objects (textured_box, two_region, labelled_can, "
+                  "textureless_mug, figurine); --model: only this mesh (a folder of models/, or torus_10k); repeatable");
   CLI::Option* visp_types = cmd->add_flag(
       "--visp-types", o->visp_types,
       "Instead: every ViSP tracker type alone and combined (EDGE, KLT, EDGE+KLT, DEPTH_DENSE, DEPTH_NORMAL, each "

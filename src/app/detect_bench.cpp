@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -25,6 +26,7 @@
 #include "icgp/tracker/tracker_builder.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/keypoint_baseline.h"
+#include "commands.h"
 #include "sweep.h"
 #include "text_table.h"
 
@@ -36,6 +38,10 @@ namespace fs = std::filesystem;
 /// A detection within this of the truth is right; a pose whose ADD-S is within it, an
 /// equivalent one of a symmetric model.
 constexpr double kRightMm = 5.0, kRightDeg = 5.0;
+
+/// A detected pose this far from the truth (and not equivalent), or any pose in a frame
+/// without the object, would send a robot somewhere else: the bench counts them apart.
+constexpr double kFarMm = 50.0, kFarDeg = 15.0;
 
 /// Camera distances to the object (the orbit's mean, ±0.1 m), covering 0.3-1.0 m.
 const std::vector<double> kDistances = {0.4, 0.65, 0.9};
@@ -57,6 +63,7 @@ enum class Scene {
   kDistractors,  ///< the sweep's other objects beside it, painted in its mean colour
   kOccluded,     ///< a bar between camera and object, covering a changing part of it
   kEmpty,        ///< the other objects, and the object itself out of view
+  kTable,        ///< the object lying on a plain white table, as a camera with auto-exposure sees it
 };
 
 std::string scene_name(Scene scene) {
@@ -65,6 +72,7 @@ std::string scene_name(Scene scene) {
     case Scene::kDistractors: return "distractors";
     case Scene::kOccluded: return "occluded";
     case Scene::kEmpty: return "no object";
+    case Scene::kTable: return "on a table";
   }
   return "";
 }
@@ -79,9 +87,17 @@ struct Row {
 std::vector<Row> rows() {
   std::vector<Row> r;
   for (const Sensor& s : {kExact, kRealSense, kKinect, kGrey}) r.push_back({Scene::kPlain, s});
-  for (const Scene scene : {Scene::kDistractors, Scene::kOccluded, Scene::kEmpty})
+  for (const Scene scene : {Scene::kDistractors, Scene::kOccluded, Scene::kEmpty, Scene::kTable})
     for (const Sensor& s : {kRealSense, kGrey}) r.push_back({scene, s});
   return r;
+}
+
+/// The sweep's objects and a textureless figurine that no other benchmark tracks: a shape
+/// with nothing but its silhouette and relief to go by.
+std::vector<SweepModel> detect_models() {
+  std::vector<SweepModel> objects = sweep_models();
+  objects.push_back({"figurine", models_dir() + "/figurine/figurine.obj", {}});
+  return objects;
 }
 
 enum class Outcome { kRight, kEquivalent, kWrong, kNotFound };
@@ -89,7 +105,7 @@ enum class Outcome { kRight, kEquivalent, kWrong, kNotFound };
 /// One frame's results: icgp's detector and, for a textured object, vpKeyPoint's.
 struct FrameResult {
   Outcome icgp = Outcome::kNotFound;
-  double t_mm = 0.0, r_deg = 0.0, ms = 0.0;
+  double t_mm = 0.0, r_deg = 0.0, ms = 0.0;  ///< t_mm, r_deg: of a found pose (infinite with no object)
   std::optional<Outcome> baseline;
   double baseline_t_mm = 0.0, baseline_r_deg = 0.0, baseline_ms = 0.0;
   double occlusion = 0.0;  ///< share of the object's pixels hidden by the bar
@@ -124,8 +140,29 @@ Mesh occluding_bar(const Mesh& object) {
   return box_mesh(Eigen::Vector3d(0.6 * radius, 1.0, 0.6 * radius), Eigen::Vector3f(0.5f, 0.5f, 0.5f));
 }
 
+/// The table scene's camera: RealSense-class noise, a hand-held exposure of 1/60 s (the
+/// bench's frames are half a second apart) and an auto-exposure that hunts by ±30 %.
+void table_camera(SequenceWriterOptions& o) {
+  o.noise = SensorNoise::realsense_class();
+  o.motion_blur = MotionBlur{4, o.frame_rate / 60.0};
+  o.gain_variation = 0.3;
+}
+
+/// A plain white table top under the object, touching its lowest point (it lies on its -Z
+/// side, so the camera's orbit sees it from above and the sides).
+BackgroundPlane table_under(const Mesh& mesh) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const MeshPart& part : mesh.parts)
+    for (const Eigen::Vector3f& v : part.vertices) lowest = std::min(lowest, static_cast<double>(v.z()));
+  BackgroundPlane table;
+  table.distance = -lowest;
+  table.texture_bgr = cv::Mat(8, 8, CV_8UC3, cv::Scalar(215, 220, 222));
+  return table;
+}
+
 /// The cell's sequence: fast, wide orbits (so that the frames show the object from many
 /// sides) in front of the clutter plane, with the scene's props, rendered once under `root`.
+/// The table scene's sequence serves both of its rows (the grey one reads its colour only).
 std::string sequence_folder(const fs::path& root, const SweepModel& object, const std::vector<SweepModel>& all,
                             Scene scene, const Sensor& sensor, double distance, int frames) {
   char name[160];
@@ -133,8 +170,9 @@ std::string sequence_folder(const fs::path& root, const SweepModel& object, cons
                 scene == Scene::kPlain         ? ""
                 : scene == Scene::kDistractors ? "-distractors"
                 : scene == Scene::kOccluded    ? "-occluded"
+                : scene == Scene::kTable       ? "-table"
                                                : "-empty",
-                sensor.grey ? "exact" : sensor.name.c_str(), distance, frames);
+                scene == Scene::kTable ? "realsense" : sensor.grey ? "exact" : sensor.name.c_str(), distance, frames);
   const fs::path dir = root / name;
   if (fs::is_regular_file(dir / "sequence.yaml")) return dir.string();
   SequenceWriterOptions o;
@@ -148,11 +186,15 @@ std::string sequence_folder(const fs::path& root, const SweepModel& object, cons
   o.noise = sensor.grey ? SensorNoise{} : sensor.noise;
   o.antialias_samples = 4;
   o.progress = false;
+  const Mesh mesh = load_any_mesh(object.mesh_path);
+  if (scene == Scene::kTable) {
+    table_camera(o);
+    o.background = table_under(mesh);
+  }
   const fs::path partial = dir.string() + ".partial";
   fs::remove_all(partial);
   std::cerr << "bench --detect: rendering " << dir.filename().string() << "\n";
   SequenceWriter writer(o);
-  const Mesh mesh = load_any_mesh(object.mesh_path);
   const double radius = bounding_sphere(mesh).radius;
   // The object itself; out of view, behind the clutter plane, in the scene without it.
   const Pose hidden(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.0, -3.0));
@@ -236,6 +278,7 @@ std::vector<FrameResult> detect_cell(const std::string& folder, const SweepModel
     auto begin = std::chrono::steady_clock::now();
     const Detection d = detector.detect(frame);
     r.ms = elapsed_ms(begin);
+    if (d.found && absent) r.t_mm = r.r_deg = std::numeric_limits<double>::infinity();
     if (d.found) r.icgp = absent ? Outcome::kWrong : judge(d.reference_T_body, truth, surface, r.t_mm, r.r_deg);
     if (baseline) {
       cv::Mat grey = frame.colors.front().image;
@@ -243,6 +286,7 @@ std::vector<FrameResult> detect_cell(const std::string& folder, const SweepModel
       begin = std::chrono::steady_clock::now();
       const std::optional<Pose> pose = baseline->locate(grey, frame.colors.front().intrinsics);
       r.baseline_ms = elapsed_ms(begin);
+      if (pose && absent) r.baseline_t_mm = r.baseline_r_deg = std::numeric_limits<double>::infinity();
       r.baseline = !pose ? Outcome::kNotFound
                    : absent ? Outcome::kWrong
                             : judge(*pose, truth, surface, r.baseline_t_mm, r.baseline_r_deg);
@@ -256,10 +300,20 @@ std::vector<FrameResult> detect_cell(const std::string& folder, const SweepModel
 /// Counts of one tracker's outcomes over a row.
 struct Tally {
   int frames = 0, right = 0, equivalent = 0, wrong = 0, not_found = 0;
+  int far_wrong = 0;                    ///< wrong by more than kFarMm or kFarDeg
   std::vector<double> ms, t_mm, r_deg;  ///< t_mm, r_deg: of the right ones
+  /// The frame (1, 2, ...) on which the object is first found right or equivalent, worst
+  /// over the row's sequences; 0 when one of them never finds it.
+  int first_found = 1;
+  int frames_in_sequence = 0, found_on = 0;  ///< of the sequence being added
+  void start_sequence() { frames_in_sequence = found_on = 0; }
+  void end_sequence() { first_found = found_on == 0 || first_found == 0 ? 0 : std::max(first_found, found_on); }
   void add(Outcome o, double time, double t, double r) {
     ++frames;
+    ++frames_in_sequence;
     ms.push_back(time);
+    if (found_on == 0 && (o == Outcome::kRight || o == Outcome::kEquivalent)) found_on = frames_in_sequence;
+    if (o == Outcome::kWrong && (t > kFarMm || r > kFarDeg)) ++far_wrong;
     switch (o) {
       case Outcome::kRight:
         ++right;
@@ -279,10 +333,37 @@ struct Tally {
         .add("equivalent", equivalent)
         .add("wrong", wrong)
         .add("not_found", not_found)
+        .add("far_wrong", far_wrong)
+        .add("first_found", first_found)
         .add("median_t_mm", t_mm.empty() ? -1.0 : median(t_mm))
         .add("median_r_deg", r_deg.empty() ? -1.0 : median(r_deg))
         .add("median_ms", median(ms))
         .add("p90_ms", percentile(ms, 0.9));
+  }
+};
+
+/// Poses sent far away over the whole bench: found, not equivalent, and more than kFarMm or
+/// kFarDeg off the truth, or found in a frame without the object.
+struct FarWrongCount {
+  int icgp = 0, icgp_frames = 0, baseline = 0, baseline_frames = 0;
+  void add(const Tally& icgp_row, const std::optional<Tally>& baseline_row) {
+    icgp += icgp_row.far_wrong;
+    icgp_frames += icgp_row.frames;
+    if (!baseline_row) return;
+    baseline += baseline_row->far_wrong;
+    baseline_frames += baseline_row->frames;
+  }
+  void print() const {
+    std::printf("poses found more than %.0f mm or %.0f deg off (not equivalent), or with no object in view: icgp %d of %d "
+                "frames, vpKeyPoint %d of %d frames\n",
+                kFarMm, kFarDeg, icgp, icgp_frames, baseline, baseline_frames);
+  }
+  JsonObject json() const {
+    return JsonObject()
+        .add("icgp", icgp)
+        .add("icgp_frames", icgp_frames)
+        .add("vpKeyPoint", baseline)
+        .add("vpKeyPoint_frames", baseline_frames);
   }
 };
 
@@ -327,8 +408,8 @@ void plot_occlusion(const std::vector<OcclusionLine>& lines, const fs::path& scr
 TextTable outcome_table() {
   const std::vector<TableColumn> shares = {{"right", 7}, {"equiv", 7}, {"wrong", 7}, {"miss", 7}};
   return TextTable(columns({{"object", 16, true}, {"scene", 11, true}, {"sensor", 15, true}, {"frames", 6}},
-                           {shares, {{"t mm", 5}, {"r deg", 5}, {"ms", 6}, {"p90", 6}, {"|", 1}}, shares, {{"ms", 6}}}),
-                   {{"", 4}, {"icgp", 8}, {"|", 1}, {"vpKeyPoint", 5}});
+                           {shares, {{"t mm", 5}, {"r deg", 5}, {"ms", 6}, {"p90", 6}, {"1st", 4}, {"|", 1}}, shares, {{"ms", 6}}}),
+                   {{"", 4}, {"icgp", 9}, {"|", 1}, {"vpKeyPoint", 5}});
 }
 
 void print_row(TextTable& table, const std::string& object, const Row& row, const Tally& icgp,
@@ -340,6 +421,7 @@ void print_row(TextTable& table, const std::string& object, const Row& row, cons
   shares(icgp);
   table.number(icgp.t_mm.empty() ? -1.0 : median(icgp.t_mm), 2).number(icgp.r_deg.empty() ? -1.0 : median(icgp.r_deg), 2);
   table.number(median(icgp.ms), 0).number(percentile(icgp.ms, 0.9), 0);
+  table.text(row.scene == Scene::kEmpty ? "" : icgp.first_found == 0 ? "none" : std::to_string(icgp.first_found));
   if (baseline) {
     table.text("|");
     shares(*baseline);
@@ -357,7 +439,7 @@ void print_row(TextTable& table, const std::string& object, const Row& row, cons
 void run_detect_bench(const DetectBenchOptions& options) {
   const fs::path root(options.out);
   fs::create_directories(root);
-  const std::vector<SweepModel> all_objects = sweep_models();
+  const std::vector<SweepModel> all_objects = detect_models();
   std::vector<SweepModel> objects;
   for (const SweepModel& m : all_objects)
     if (options.objects.empty() ||
@@ -366,13 +448,14 @@ void run_detect_bench(const DetectBenchOptions& options) {
   for (const std::string& name : options.objects)
     if (std::none_of(all_objects.begin(), all_objects.end(), [&](const SweepModel& m) { return m.name == name; }))
       throw std::invalid_argument("bench --detect --object: '" + name +
-                                  "' is none of the sweep's objects (textured_box, two_region, labelled_can, "
-                                  "textureless_mug)");
+                                  "' is none of the bench's objects (textured_box, two_region, labelled_can, "
+                                  "textureless_mug, figurine)");
   const std::vector<Row> row_list = rows();
   TextTable table = outcome_table();
   table.print_header();
   std::vector<JsonObject> json_rows;
-  OcclusionLine icgp_rgbd{"icgp, RealSense-class RGB-D (4 objects)"}, icgp_grey{"icgp, grey (textured objects)"},
+  FarWrongCount far_wrong;
+  OcclusionLine icgp_rgbd{"icgp, RealSense-class RGB-D (" + std::to_string(objects.size()) + " objects)"}, icgp_grey{"icgp, grey (textured objects)"},
       vp_grey{"vpKeyPoint, grey (textured objects)"};
   const auto start = std::chrono::steady_clock::now();
   int rows_done = 0;
@@ -398,6 +481,8 @@ void run_detect_bench(const DetectBenchOptions& options) {
       for (const double distance : kDistances) {
         const std::string folder =
             sequence_folder(root, object, all_objects, row.scene, row.sensor, distance, options.frames);
+        icgp.start_sequence();
+        if (vp) vp->start_sequence();
         for (const FrameResult& f : detect_cell(folder, object, row, detector, baseline.get(), surface,
                                                 row.scene == Scene::kOccluded ? &occlusion : nullptr)) {
           icgp.add(f.icgp, f.ms, f.t_mm, f.r_deg);
@@ -409,7 +494,10 @@ void run_detect_bench(const DetectBenchOptions& options) {
             vp_grey.add(f.occlusion, *f.baseline);
           }
         }
+        icgp.end_sequence();
+        if (vp) vp->end_sequence();
       }
+      far_wrong.add(icgp, vp);
       print_row(table, object.name, row, icgp, vp);
       JsonObject json = JsonObject()
                             .add("object", object.name)
@@ -426,10 +514,12 @@ void run_detect_bench(const DetectBenchOptions& options) {
   }
   std::printf(
       "right: within %.0f mm and %.0f deg of the truth (t mm, r deg: their medians); equiv: ADD-S within %.0f mm (a "
-      "pose the model's symmetry cannot tell apart); miss: not found. On frames without the object every pose is "
+      "pose the model's symmetry cannot tell apart); miss: not found; 1st: the frame on which the object is first "
+      "found right or equivalent, the latest of the row's %zu sequences. On frames without the object every pose is "
       "wrong and 'miss' is the right answer. Frames at %.2f/%.2f/%.2f m, icgp's defaults, one thread; vpKeyPoint as "
       "ViSP's tutorial sets it, trained on the same renders (grey image only)\n",
-      kRightMm, kRightDeg, kRightMm, kDistances[0], kDistances[1], kDistances[2]);
+      kRightMm, kRightDeg, kRightMm, kDistances.size(), kDistances[0], kDistances[1], kDistances[2]);
+  far_wrong.print();
   std::vector<JsonObject> json_occlusion;
   for (const OcclusionLine& line : {icgp_rgbd, icgp_grey, vp_grey}) {
     std::printf("occlusion, %-38s", line.title.c_str());
@@ -443,7 +533,11 @@ void run_detect_bench(const DetectBenchOptions& options) {
     json_occlusion.push_back(JsonObject().add("line", line.title).add("bins", bins));
   }
   if (!options.summary.empty()) {
-    JsonObject().add("rows", json_rows).add("occlusion", json_occlusion).write(options.summary);
+    JsonObject()
+        .add("rows", json_rows)
+        .add("occlusion", json_occlusion)
+        .add("far_wrong", far_wrong.json())
+        .write(options.summary);
     std::cout << "wrote " << options.summary << "\n";
   }
   plot_occlusion({icgp_rgbd, icgp_grey, vp_grey}, root / "occlusion.gp", fs::absolute(options.plot).string());

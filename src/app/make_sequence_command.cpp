@@ -96,6 +96,10 @@ void register_make_sequence_command(CLI::App& app) {
   cmd->add_option("--exposure", o->writer.motion_blur.exposure, "Exposure as a fraction of the frame interval (motion blur)")
       ->check(number_in(range::kExposure))
       ->capture_default_str();
+  cmd->add_option("--gain-variation", o->writer.gain_variation,
+                  "Auto-exposure hunting: colour scaled by 1 + this * sin(2 pi 0.4 Hz t + phase) (0: steady)")
+      ->check(number_in(range::kGainVariation))
+      ->capture_default_str();
   cmd->callback([o] { run_make_sequence(*o); });
 }
 

@@ -29,7 +29,11 @@ namespace {
 
 /// The writer's generator streams (seeded_stream purposes), one per frame for noise;
 /// purpose 2 is the background clutter's (procedural_clutter_texture).
-enum Stream : std::uint64_t { kTrajectoryStream = 1, kNoiseStream = 3, kStereoNoiseStream = 4 };
+enum Stream : std::uint64_t { kTrajectoryStream = 1, kNoiseStream = 3, kStereoNoiseStream = 4, kGainStream = 5 };
+
+/// How fast a hunting auto-exposure swings (SequenceWriterOptions::gain_variation): a few
+/// seconds per cycle, as a camera readjusting to a changing view.
+constexpr double kGainCyclesPerSecond = 0.4;
 
 /// Shortest decimal form of `value` that parses back to the same double.
 std::string exact(double value) {
@@ -221,6 +225,7 @@ SequenceWriter::SequenceWriter(SequenceWriterOptions options)
   require(o.antialias_samples >= 0, "antialias_samples must not be negative (0 = off)");
   require(o.motion_blur.samples >= 1, "motion_blur.samples must be at least 1 (1 = sharp)");
   require(o.motion_blur.exposure > 0.0 && o.motion_blur.exposure <= 1.0, "motion_blur.exposure must be in (0, 1]");
+  require(o.gain_variation >= 0.0 && o.gain_variation < 1.0, "gain_variation must be in [0, 1)");
   require(!o.background.enabled || (o.background.distance > 0.0 && o.background.tile_size > 0.0),
           "background distance and tile_size must be positive");
   require(o.background.texture_bgr.empty() || o.background.texture_bgr.type() == CV_8UC3,
@@ -373,6 +378,7 @@ void SequenceWriter::write(const std::string& dir_name) const {
     const std::vector<Pose> poses = world_T_objects_at(seconds);
     for (std::size_t k = 0; k < objects_.size(); ++k) renderer.set_body_pose(bodies[k], poses[k]);
   };
+  const double gain_phase = 2.0 * M_PI * seeded_stream(o.seed, kGainStream).uniform();
   char name[32];
   for (int i = 0; i < o.frame_count; ++i) {
     const double seconds = i / o.frame_rate;
@@ -393,6 +399,11 @@ void SequenceWriter::write(const std::string& dir_name) const {
     place_objects(seconds);
     const std::vector<Pose> world_T_objects = world_T_objects_at(seconds);
     cv::Mat depth = render_sensor_depth(renderer, o.depth_intrinsics, o.depth_T_color * camera_T_world, o.noise);
+    if (o.gain_variation > 0.0) {
+      const double gain = 1.0 + o.gain_variation * std::sin(2.0 * M_PI * kGainCyclesPerSecond * seconds + gain_phase);
+      color.convertTo(color, -1, gain);
+      if (o.stereo) stereo_color.convertTo(stereo_color, -1, gain);
+    }
     SensorNoiseDraws noise(seeded_stream(o.seed, kNoiseStream, std::uint64_t(i)).next());
     noise.add_color_noise(color, o.noise.color_sigma);
     noise.add_depth_noise(depth, o.noise);

@@ -388,7 +388,7 @@ Pose depth_T_color() {
 }
 
 /// 5 frames of a red box; the depth camera has other intrinsics and sits 2 cm aside.
-SequenceWriter box_sequence_writer(std::uint64_t seed, const SensorNoise& noise = {}) {
+SequenceWriter box_sequence_writer(std::uint64_t seed, const SensorNoise& noise = {}, double gain_variation = 0.0) {
   SequenceWriterOptions options;
   options.frame_count = 5;
   options.seed = seed;
@@ -398,6 +398,7 @@ SequenceWriter box_sequence_writer(std::uint64_t seed, const SensorNoise& noise 
   options.motion.look_at_wander = 0.01;
   options.motion.speed = 3.0;
   options.noise = noise;
+  options.gain_variation = gain_variation;
   options.progress = false;
   SequenceWriter writer(options);
   Mesh box = test::make_box(kBoxSide, kBoxSide, kBoxSide);
@@ -489,6 +490,35 @@ TEST_CASE("sequence writer: the same seed gives identical files, noise keeps the
   CHECK(read_bytes(a.path() / "poses/box.txt") == read_bytes(clean.path() / "poses/box.txt"));
   CHECK(read_bytes(a.path() / "depth/000000.png") != read_bytes(clean.path() / "depth/000000.png"));
   CHECK(box_sequence_writer(8).color_T_world(0).translation() != box_sequence_writer(7).color_T_world(0).translation());
+}
+
+TEST_CASE("sequence writer: a hunting auto-exposure scales the colour and nothing else") {
+  TempDir steady("icgp_test_sequence_gain_steady"), hunting("icgp_test_sequence_gain_hunting");
+  box_sequence_writer(7).write(steady.path().string());
+  box_sequence_writer(7, {}, 0.3).write(hunting.path().string());
+
+  CHECK(read_bytes(steady.path() / "poses/box.txt") == read_bytes(hunting.path() / "poses/box.txt"));
+  const Sequence a = Sequence::open(steady.path().string()), b = Sequence::open(hunting.path().string());
+  std::vector<double> gains;
+  for (int i = 0; i < a.size(); ++i) {
+    INFO("frame " << i);
+    const Frame fa = a.load(i), fb = b.load(i);
+    CHECK(cv::norm(fa.depths[0].depth, fb.depths[0].depth, cv::NORM_INF) == 0.0);
+    // Unsaturated pixels scale by the frame's gain, one gain for the whole image.
+    cv::Mat steady_f, hunting_f;
+    fa.colors[0].image.convertTo(steady_f, CV_64F);
+    fb.colors[0].image.convertTo(hunting_f, CV_64F);
+    cv::Mat usable;
+    cv::Mat(fa.colors[0].image > 40 & fb.colors[0].image < 250).convertTo(usable, CV_64F, 1.0 / 255);
+    const double gain = cv::sum(hunting_f.mul(usable)).dot(cv::Scalar::all(1)) / cv::sum(steady_f.mul(usable)).dot(cv::Scalar::all(1));
+    CHECK(gain >= 0.7 - 0.01);
+    CHECK(gain <= 1.3 + 0.01);
+    gains.push_back(gain);
+  }
+  // Five frames at 30 Hz cover a sixth of a 0.4 Hz cycle: the gain changes, but smoothly.
+  const auto [lowest, highest] = std::minmax_element(gains.begin(), gains.end());
+  CHECK(*highest - *lowest > 0.005);
+  for (std::size_t i = 1; i < gains.size(); ++i) CHECK(std::abs(gains[i] - gains[i - 1]) < 0.05);
 }
 
 TEST_CASE("sequence writer: refuses a non-empty folder that is not a sequence") {

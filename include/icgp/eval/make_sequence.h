@@ -44,6 +44,7 @@ inline constexpr yaml::Interval kDepthNoise{0.0, 1.0};
 inline constexpr yaml::Interval kDepthDropout{0.0, 1.0};
 inline constexpr yaml::Interval kGrazingAngle{0.0, 90.0, true};
 inline constexpr yaml::Interval kExposure{0.0, 1.0};
+inline constexpr yaml::Interval kGainVariation{0.0, 1.0, false, true};
 /// Each frame is colour and depth images, about 0.6 MB at 640x480: 100 000 frames ~60 GB.
 inline constexpr long long kMaxFrames = 100000;
 inline constexpr long long kMaxDepthEdgeHoles = 100;

@@ -110,6 +110,10 @@ struct SequenceWriterOptions {
   /// edges blend into the background over a pixel as on a real camera.
   int antialias_samples = 0;
   MotionBlur motion_blur;
+  /// A camera's auto-exposure hunting: every colour image (and the stereo camera's, the
+  /// same) is scaled by 1 + gain_variation · sin(2π · 0.4 Hz · t + φ), φ drawn from the
+  /// seed, before the sensor noise. In [0, 1); 0 leaves the images untouched.
+  double gain_variation = 0.0;
   bool progress = true;  ///< report progress on stderr
 };
 
