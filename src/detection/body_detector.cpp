@@ -129,13 +129,16 @@ constexpr double kWindowMarginPx = 32.0;
 
 /// The part of `color` a search near a pose reads: the window's centre, its radius, the
 /// largest template's radius at the window's nearest distance, and a margin for the
-/// template's probes and the gradients' spread; the intrinsics moved to the part.
-ColorImage window_crop(const ColorImage& color, const SearchWindow& window, const Sphere& sphere) {
+/// template's probes and the gradients' spread; the intrinsics moved to the part. None when
+/// that part lies wholly outside the image (a body last trusted out of view).
+std::optional<ColorImage> window_crop(const ColorImage& color, const SearchWindow& window, const Sphere& sphere) {
   const Intrinsics& K = color.intrinsics;
   const Eigen::Vector3d centre = *window.near * sphere.centre;
   if (centre.z() <= 0.0) return color;
   const Eigen::Vector2d px = K.project(centre);
   const double half = window.radius_px + K.fu * sphere.radius / window.min_distance + kWindowMarginPx;
+  if (px.x() + half <= 0.0 || px.y() + half <= 0.0 || px.x() - half >= K.width || px.y() - half >= K.height)
+    return std::nullopt;
   const int x0 = std::clamp(static_cast<int>(std::floor(px.x() - half)), 0, K.width - 1);
   const int y0 = std::clamp(static_cast<int>(std::floor(px.y() - half)), 0, K.height - 1);
   const int x1 = std::clamp(static_cast<int>(std::ceil(px.x() + half)), x0 + 1, K.width);
@@ -420,7 +423,12 @@ std::vector<PoseCandidate> BodyDetector::template_candidates(const Frame& frame,
   };
   // Near a pose, only the part of the image its window's templates can reach is searched:
   // the same camera with its principal point moved, so the poses found are unchanged.
-  const ColorImage searched = window.near ? window_crop(color, window, templates_->sphere()) : color;
+  const std::optional<ColorImage> cropped = window.near ? window_crop(color, window, templates_->sphere()) : color;
+  if (!cropped) {
+    detection.why_not = "the search window around its last trusted pose is out of view";
+    return {};
+  }
+  const ColorImage& searched = *cropped;
   std::optional<RayDepth> ray_depth;
   SearchWindow gated = window;
   if (has_depth)

@@ -83,7 +83,27 @@ Detection Recovery::initialise(const Frame& frame, const std::string& body) {
   return detection;
 }
 
-void Recovery::reset() { states_.clear(); }
+void Recovery::reset() {
+  states_.clear();
+  for (Body* body : tracker_.bodies())
+    if (tracker_.joint_values(body->name).empty()) states_[body->name].trusted = body->reference_T_body;
+}
+
+std::string Recovery::occupied_by(const std::string& body, const Pose& reference_T_body) {
+  const auto sphere_of = [this](const Body& b) -> const Sphere& {
+    auto it = spheres_.find(b.name);
+    if (it == spheres_.end()) it = spheres_.emplace(b.name, bounding_sphere(b.mesh)).first;
+    return it->second;
+  };
+  const Sphere& mine = sphere_of(tracker_.body(body));
+  const Eigen::Vector3d centre = reference_T_body * mine.centre;
+  for (const auto& [name, state] : states_) {
+    if (name == body || state.lost || !state.trusted) continue;
+    const Sphere& theirs = sphere_of(tracker_.body(name));
+    if ((*state.trusted * theirs.centre - centre).norm() < 0.5 * std::min(mine.radius, theirs.radius)) return name;
+  }
+  return "";
+}
 
 bool Recovery::lost(const std::string& body) const {
   const auto it = states_.find(body);
@@ -103,6 +123,11 @@ bool Recovery::confirms(const Frame& frame, const BodyState& s, const BodyResult
   if (!result.tracked || result.quality < config_.detection.accept_quality) {
     why_not = "its cues' quality is " + std::to_string(result.quality) + ", below " +
               std::to_string(config_.detection.accept_quality);
+    return false;
+  }
+  const std::string occupant = occupied_by(result.body, result.reference_T_body);
+  if (!occupant.empty()) {
+    why_not = "it would be where '" + occupant + "' is";
     return false;
   }
   std::vector<std::string> cue_names;
@@ -160,6 +185,11 @@ std::vector<std::string> Recovery::after_track(const Frame& frame, std::vector<B
       detection = d.detect(frame, others);
     if (!detection.found) {
       if (!s.candidate && !detection.why_not.empty()) s.why_lost = "not found: " + detection.why_not;
+      continue;
+    }
+    const std::string occupant = occupied_by(r.body, detection.reference_T_body);
+    if (!occupant.empty()) {
+      s.why_lost = "found only where '" + occupant + "' is";
       continue;
     }
     // The pose that continues the one it was tracked at, so that its frame does not flip or

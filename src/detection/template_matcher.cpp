@@ -122,8 +122,9 @@ const OrientationPyramid::Level& OrientationPyramid::level(int L) {
   level.intrinsics = color_.intrinsics.scaled(level_image.cols, level_image.rows);
   cv::Mat usable;
   if (!color_.mask.all_pixels()) {
-    // A pixel of a level is usable when all the image's pixels it averages are.
-    cv::resize(color_.mask.mask, usable, level_image.size(), 0, 0, cv::INTER_AREA);
+    // A pixel of a level is usable when all the image's pixels it averages are (a mask
+    // marks them with any non-zero value: ViSP's are 1).
+    cv::resize(color_.mask.mask != 0, usable, level_image.size(), 0, 0, cv::INTER_AREA);
     usable = usable == 255;
   }
   level.responses.compute(level_image, usable);

@@ -158,13 +158,11 @@ void RegionModality::start(const Frame& frame, const Renders&) {
   scene_ = {};
   histograms_.emplace(params_.n_histogram_bins, color_image(frame).image.channels());
   count_line_pixels(frame);
+  // A colour region or a whole body out of view (behind the others, past the image border:
+  // a second body not yet in view) has no pixels to learn from: the cue abstains, the
+  // body is reported lost rather than its start refused, and its colours are learnt in
+  // finish() once they are in view.
   histograms_learnt_ = histograms_->set_from_counts();
-  // One colour region of a body may be out of view (behind the others, past the image
-  // border) where the body is not: it abstains until finish() sees its pixels. A whole
-  // body without pixels is a start pose that cannot be right.
-  if (!histograms_learnt_ && extent_ == Extent::kWholeBody)
-    throw std::runtime_error("region modality of '" + body().name +
-                             "': no foreground or background pixels at the start pose (is the object in view?)");
 }
 
 bool RegionModality::sample_segments(const cv::Mat& image, const ProjectedPoint& p, int scale, Line& line) {

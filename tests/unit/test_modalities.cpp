@@ -174,13 +174,19 @@ TEST_CASE("tracker: bad depth and images give a lost quality or a clear error") 
   }
 }
 
-TEST_CASE("region modality: starting with the object out of view is a clear error") {
+TEST_CASE("region modality: started with the object out of view it abstains, and the object is lost") {
   Fixture& f = Fixture::instance();
   test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
   const Frame frame = scene.render(f.truth);
-  Body body{"box", f.mesh, Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5))};
-  RegionModality region(body, f.region_model, {});
-  CHECK_THROWS_WITH(region.start(frame, {}), Catch::Contains("in view"));
+  const Pose behind(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5));
+  Tracker tracker;
+  Body& body = tracker.add_body({"box", f.mesh, behind});
+  tracker.add_modality(std::make_unique<RegionModality>(body, f.region_model, RegionParams{}));
+  REQUIRE_NOTHROW(tracker.start(frame));
+  const std::vector<BodyResult> results = tracker.track(frame);
+  CHECK(results[0].modalities[0].abstained);
+  CHECK_FALSE(results[0].tracked);
+  CHECK((body.reference_T_body.translation() - behind.translation()).norm() < 1e-9);
 }
 
 TEST_CASE("tracker: region + depth converge on a grey image too") {

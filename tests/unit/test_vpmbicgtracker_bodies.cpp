@@ -26,11 +26,11 @@ Pose pose(double rx, double ry, double rz, double tx, double ty, double tz) {
 struct TwoBoxScene {
   Intrinsics k = Intrinsics::centred(320, 240, 300.0);
   Pose object_truth = pose(0.4, 0.5, 0.1, -0.07, 0.0, 0.45);
-  Pose second_truth = pose(-0.3, 0.6, 0.2, 0.08, 0.02, 0.5);
+  Pose second_truth;
   vpImage<vpRGBa> color;
   vpImage<uint16_t> depth;  ///< 0.1 mm units
 
-  TwoBoxScene() {
+  explicit TwoBoxScene(const Pose& second = pose(-0.3, 0.6, 0.2, 0.08, 0.02, 0.5)) : second_truth(second) {
     Renderer renderer;
     const Mesh box = load_mesh(kBoxFile);
     renderer.set_body_pose(renderer.add_body(box, 1), object_truth);
@@ -82,6 +82,32 @@ TEST_CASE("vpMbIcgTracker: a second body is tracked beside the object, each from
   CHECK(tracker.isBodyTracked("second"));
   CHECK(tracker.getBodyTrackingQuality("second") > 0.5);
   CHECK(tracker.getJointValues("second").empty());
+}
+
+TEST_CASE("vpMbIcgTracker: a second body out of view is reported lost where it is, never put on the object") {
+  // The second box 80 cm to the side, where the image spans ±0.27 m: nothing of it in view,
+  // and the object in view is the same box.
+  const Pose out_of_view = pose(-0.3, 0.6, 0.2, 0.8, 0.02, 0.5);
+  const TwoBoxScene scene(out_of_view);
+  vpMbIcgTracker tracker(kRgbdTrackerTypes);
+  set_up(tracker, scene);
+  tracker.addBody("second", kBoxFile);
+  tracker.setBodyPose("second", to_homogeneous_matrix(out_of_view));
+  vpImage<unsigned char> grey;
+  vpImageConvert::convert(scene.color, grey);
+  const Eigen::Vector3d offset(0.004, -0.003, 0.004);
+  tracker.initFromPose(grey, to_homogeneous_matrix(Pose(scene.object_truth.rotation(),
+                                                        scene.object_truth.translation() + offset)));
+  // Over more frames than the whole-image search's interval: the lost body is searched for.
+  for (int frame = 0; frame < 12; ++frame) {
+    INFO("frame " << frame);
+    REQUIRE_NOTHROW(tracker.track(scene.color, scene.depth, 1e-4));
+    CHECK(!tracker.isBodyTracked("second"));
+    // Held where it was set, not put on the box in view.
+    CHECK(distance_mm(tracker.getBodyPose("second"), out_of_view) < 1.0);
+  }
+  CHECK(distance_mm(tracker.getPose(), scene.object_truth) < 0.1);
+  CHECK_NOTHROW(tracker.testTracking());
 }
 
 TEST_CASE("vpMbIcgTracker: the extension's bad calls throw vpException naming the body and the field") {

@@ -80,6 +80,37 @@ TEST_CASE("vpMbIcgTracker: tracking before initFromPose is a vpTrackingException
   CHECK_THAT(e.getStringMessage(), Contains("initFromPose"));
 }
 
+TEST_CASE("vpMbIcgTracker: a mask that hides the whole object is a loss with its reason; the pose is held, not moved") {
+  test::RgbdTeabox f(1);
+  f.init_at_truth();
+  const std::vector<Frame> frames = test::teabox_frames(10);
+  vpImage<bool> nowhere(f.input.grey.getHeight(), f.input.grey.getWidth(), false),
+      everywhere(f.input.grey.getHeight(), f.input.grey.getWidth(), true);
+  vpHomogeneousMatrix before_mask;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const bool masked = i >= 2 && i < 6;
+    INFO("frame " << i << (masked ? ", all masked" : ""));
+    f.tracker.setMask(masked ? nowhere : everywhere);
+    f.input.convert(frames[i]);
+    REQUIRE_NOTHROW(f.track());
+    if (i == 1) before_mask = f.tracker.getPose();
+    if (masked) {
+      const vpTrackingException e = vp_exception_of<vpTrackingException>([&] { f.tracker.testTracking(); });
+      CHECK(e.getCode() == vpTrackingException::fatalError);
+      CHECK_THAT(e.getStringMessage(), Contains("lost"));
+      INFO(e.getStringMessage());
+      // The box moved about 2 mm a frame meanwhile; the reported pose is the last one seen.
+      CHECK((to_pose(f.tracker.getPose()).translation() - to_pose(before_mask).translation()).norm() < 1e-4);
+    } else if (i >= 8) {
+      // Found again near where it was lost once the mask lifts: back on the truth, which a
+      // pose held from frame 1 misses by about 14 mm by now.
+      CHECK_NOTHROW(f.tracker.testTracking());
+      CHECK(translation_error_mm(f.pose(), *frames[i].truth()) < 1.0);
+    }
+  }
+  CHECK(translation_error_mm(to_pose(before_mask), *frames.back().truth()) > 5.0);
+}
+
 TEST_CASE("vpMbIcgTracker: RGB-D maps with an unknown camera or a cloud of the wrong size are refused") {
   test::RgbdTeabox f(1);
   f.init_at_truth();

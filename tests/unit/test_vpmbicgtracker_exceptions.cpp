@@ -228,19 +228,23 @@ TEST_CASE("vpMbIcgTracker exceptions: a cloud without one valid measurement is n
   }
 }
 
-TEST_CASE("vpMbIcgTracker exceptions: a modality's failure inside the core is a vpTrackingException") {
-  // The object 20 m to the side: where the cues start, the region cue finds no foreground
-  // pixel and its std::runtime_error reaches the ViSP boundary.
+TEST_CASE("vpMbIcgTracker exceptions: an object started out of view is lost, and testTracking says why") {
+  // The object 20 m to the side: no cue has anything to measure. The frame is tracked, the
+  // pose held where it was given, and testTracking's vpTrackingException gives the reason.
   test::RgbdTeabox t(3);
   t.init_at_truth(Eigen::Vector3d(20.0, 0.0, 0.0));
   const Pose truth = *t.frame.truth();
-  const vpTrackingException e = test::vp_exception_of<vpTrackingException>([&] { t.track(); });
+  const vpHomogeneousMatrix given = t.tracker.getPose();
+  REQUIRE_NOTHROW(t.track());
+  const vpTrackingException e = test::vp_exception_of<vpTrackingException>([&] { t.tracker.testTracking(); });
   CHECK(e.getCode() == vpTrackingException::fatalError);
-  CHECK_THAT(e.getStringMessage(), Contains("vpMbIcgTracker::track: region modality") &&
-                                       Contains("no foreground or background pixels"));
+  INFO(e.getStringMessage());
+  CHECK_THAT(e.getStringMessage(), Contains("lost"));
+  CHECK(translation_error_mm(t.pose(), to_pose(given)) < 1e-6);
   // The program may go on: a pose in view, and the frame tracks.
   t.tracker.initFromPose(t.input.grey, to_homogeneous_matrix(truth));
   REQUIRE_NOTHROW(t.track());
+  CHECK_NOTHROW(t.tracker.testTracking());
   CHECK(translation_error_mm(t.pose(), truth) < 0.5);
 }
 

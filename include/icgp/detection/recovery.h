@@ -25,7 +25,9 @@ namespace icgp {
 /// (UsualScores), the whole silhouette and the depth beyond it, and the body's look
 /// (BodyDetector::confirms). A turn that no image supports is not taken: a symmetric body
 /// found again keeps the equivalent pose nearest its last trusted one, a round body without
-/// texture keeps its last trusted turn about its axis.
+/// texture keeps its last trusted turn about its axis. Two bodies are never in one place: a
+/// pose that puts a body where another trusted body is (their bounding spheres' centres
+/// closer than half the smaller radius) is refused.
 class Recovery {
  public:
   /// `tracker`'s bodies as `config` configures them with `cameras`; `main_body` is the one
@@ -38,7 +40,9 @@ class Recovery {
   Detection detect(const Frame& frame, const std::string& body = "");
   /// Detects `body` and, when found, puts it there and starts the tracker on `frame`.
   Detection initialise(const Frame& frame, const std::string& body = "");
-  /// The tracker was (re)started from poses given by the caller: every body is trusted.
+  /// The tracker was (re)started from poses given by the caller: every body is trusted
+  /// there, so that a pose found far from it is confirmed as one found far from where a
+  /// body was last tracked.
   void reset();
 
   /// After Tracker::track gave `results` for `frame`: remembers the poses of tracked
@@ -84,6 +88,9 @@ class Recovery {
   /// continues `reference`.
   static Pose continuation(const Detection& detection, const Pose& reference);
   BodyDetector& detector(const std::string& body);
+  /// The trusted body other than `body` whose place `reference_T_body` would take; empty
+  /// when none.
+  std::string occupied_by(const std::string& body, const Pose& reference_T_body);
   /// Whether a camera has the image detection matches its templates in (the region cue's).
   bool can_detect() const;
   /// Where the tracker's other bodies and occluders are now.
@@ -96,6 +103,7 @@ class Recovery {
   std::shared_ptr<SceneRenderer> renderer_;
   std::map<std::string, std::unique_ptr<BodyDetector>> detectors_;
   std::map<std::string, BodyState> states_;
+  std::map<std::string, Sphere> spheres_;  ///< each body's bounding sphere, in its own frame
 };
 
 }  // namespace icgp
