@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "icgp/base/stop_request.h"
 #include "icgp/detection/body_detector.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/eval/sequence.h"
@@ -36,6 +37,7 @@ struct DetectOptions {
 };
 
 void run_detect(const DetectOptions& o) {
+  install_stop_on_sigint();  // as in `icgp track`: stops between frames and between views
   const Sequence sequence = Sequence::open(o.sequence, o.sequence_options);
   const std::string model = sequence_model_path(o.model, sequence, o.sequence);
   const std::string body = sequence_body_name(sequence, model);
@@ -58,6 +60,7 @@ void run_detect(const DetectOptions& o) {
   std::vector<double> ms, near_ms;
   int near_right = 0;
   for (int i = 0; i < n; ++i) {
+    if (stop_requested()) throw StopRequested("stopped on request before frame " + std::to_string(i));
     const Frame frame = sequence.load(i);
     const auto begin = std::chrono::steady_clock::now();
     const Detection d = detector.detect(frame);

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "icgp/base/stop_request.h"
 #include "icgp/tracker/cue_registry.h"
 #include "icgp/detection/body_detector.h"
 #include "icgp/eval/joint_evaluation.h"
@@ -408,6 +409,9 @@ void run_multi_body_track(const TrackOptions& o, const Sequence& sequence) {
 }
 
 void run_track(const TrackOptions& o) {
+  // Ctrl-C stops between frames, and a model being generated between views: no cache file
+  // is left half written.
+  install_stop_on_sigint();
   const Sequence sequence = Sequence::open(o.sequence, o.sequence_options);
   if (sequence.size() == 0) throw std::runtime_error("the sequence in " + o.sequence + " has no frames");
   if (o.model.empty() && sequence.objects().size() > 1) {

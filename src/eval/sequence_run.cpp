@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "icgp/base/stop_request.h"
 #include "icgp/eval/sequence.h"
 
 namespace icgp {
@@ -29,6 +30,7 @@ FrameSource FrameSource::of(const std::vector<Frame>& frames) {
 void run_sequence(const FrameSource& frames, const RunTracker& tracker, const std::optional<Pose>& start_pose,
                   const std::function<void(const Frame&, const TrackedFrame&)>& on_frame) {
   for (int i = 0; i < frames.count; ++i) {
+    if (stop_requested()) throw StopRequested("stopped on request before frame " + std::to_string(i));
     const Frame& frame = frames.load(i);
     if (i == 0 && start_pose) tracker.start(frame, *start_pose);
     const TrackedFrame outcome = tracker.track(frame);

@@ -61,7 +61,8 @@ struct FrameSource {
 /// Loads each frame, starts the tracker on the first at `start_pose` (none: the tracker finds
 /// the body itself, e.g. by detection, and `tracker.start` is not called), tracks every frame
 /// with the first included, as ViSP's programs do after initFromPose, and hands each frame
-/// and its outcome to `on_frame`.
+/// and its outcome to `on_frame`. A stop request (SIGINT under install_stop_on_sigint) ends
+/// it before the next frame with StopRequested.
 void run_sequence(const FrameSource& frames, const RunTracker& tracker, const std::optional<Pose>& start_pose,
                   const std::function<void(const Frame&, const TrackedFrame&)>& on_frame);
 
