@@ -52,7 +52,7 @@ void run_detect(const DetectOptions& o) {
   std::cout << "sequence   " << o.sequence << " (" << sequence.layout() << ", " << n << " frames)\n"
             << "model      " << model << " as body '" << body << "'\n"
             << "detector   " << detector.templates().templates().size() << " templates over "
-            << detector.templates().n_views() << " views\n";
+            << detector.templates().n_views() << " views (made as the searches reach them)\n";
   if (!o.quiet) std::printf("\nframe  found     t mm    r deg  ADD-S mm  quality  candidates       ms\n");
 
   const SingleThreadScope single_thread;

@@ -180,8 +180,11 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
     if (const auto* region = dynamic_cast<const RegionModality*>(m)) region_models.push_back(&region->model());
     if (const auto* depth = dynamic_cast<const DepthModality*>(m)) depth_model = &depth->model();
   }
+  // The fine templates are searched near the coarse ones' matches and near a lost pose
+  // only: their views are made as those searches reach them.
   templates_ = std::make_unique<ShapeTemplates>(mesh, region_models, depth_model, params_.view_divides,
-                                                params_.roll_step_deg, params_.template_points);
+                                                params_.roll_step_deg, params_.template_points,
+                                                ShapeTemplates::Filling::kOnDemand);
   matcher_ = std::make_unique<TemplateMatcher>(*templates_);
   coarse_templates_ = std::make_unique<ShapeTemplates>(
       mesh, region_models, depth_model, std::min(params_.view_divides, kCoarseViewDivides),

@@ -53,49 +53,87 @@ std::vector<BodyContourPoint> spread_contour(const std::vector<const ViewpointMo
 
 }  // namespace
 
-ShapeTemplates::ShapeTemplates(const Mesh& mesh, const std::vector<const ViewpointModel*>& region_models,
-                               const ViewpointModel* depth_model, int view_divides, double roll_step_deg, int points)
-    : sphere_(bounding_sphere(mesh)), roll_step_(roll_step_deg * kPi / 180.0) {
-  if (region_models.empty()) throw std::invalid_argument("detection needs the body's region model");
-  const int n_rolls = std::max(1, static_cast<int>(std::lround(360.0 / roll_step_deg)));
-  roll_step_ = 2.0 * kPi / n_rolls;
-  const Eigen::Vector3f centre = sphere_.centre.cast<float>();
+ShapeTemplates::ShapeTemplates(const Mesh& mesh, std::vector<const ViewpointModel*> region_models,
+                               const ViewpointModel* depth_model, int view_divides, double roll_step_deg, int points,
+                               Filling filling)
+    : sphere_(bounding_sphere(mesh)),
+      points_(points),
+      region_models_(std::move(region_models)),
+      depth_model_(depth_model) {
+  if (region_models_.empty()) throw std::invalid_argument("detection needs the body's region model");
+  n_rolls_ = std::max(1, static_cast<int>(std::lround(360.0 / roll_step_deg)));
+  roll_step_ = 2.0 * kPi / n_rolls_;
   for (const Eigen::Vector3f& direction : icosphere_directions(view_divides)) {
     View view;
     view.direction = direction;
-    if (depth_model) {
-      const int v = depth_model->closest_view(direction);
-      depth_model->require_view(v);
-      const ModelPoint* surface = depth_model->points(v);
-      for (int p = 0; p < std::min(kSurfacePoints, depth_model->view_point_count(v)); ++p)
-        view.surface.push_back(surface[p].position);
-    }
-    const std::vector<BodyContourPoint> contour = spread_contour(region_models, direction, points);
-    if (static_cast<int>(contour.size()) < kMinContourPoints) continue;
-    view.contour = contour;
     views_.push_back(std::move(view));
     const Eigen::Matrix3d R_view = view_rotation(direction.cast<double>());
-    for (int k = 0; k < n_rolls; ++k) {
-      Template t;
-      t.camera_R_body = Eigen::AngleAxisd(k * roll_step_, Eigen::Vector3d::UnitZ()).toRotationMatrix() * R_view;
-      const Eigen::Matrix3f R = t.camera_R_body.cast<float>();
-      for (const BodyContourPoint& p : contour) {
-        const Eigen::Vector3f n = R * p.normal;
-        if (n.head<2>().norm() < 0.3f) continue;  // a normal along the ray has no image orientation
-        t.contour.push_back({R * (p.position - centre), n.head<2>().normalized(), OrientationResponses::bin_of(n.x(), n.y())});
-      }
-      if (static_cast<int>(t.contour.size()) >= kMinContourPoints) templates_.push_back(std::move(t));
-    }
+    for (int k = 0; k < n_rolls_; ++k)
+      templates_.push_back({Eigen::AngleAxisd(k * roll_step_, Eigen::Vector3d::UnitZ()).toRotationMatrix() * R_view, {}});
   }
-  if (templates_.empty()) throw std::invalid_argument("detection: the region model has no usable contour in any view");
+  if (filling == Filling::kOnDemand) return;
+  fill_all();
+  if (std::none_of(views_.begin(), views_.end(), [](const View& v) { return v.usable; }))
+    throw std::invalid_argument("detection: the region model has no usable contour in any view");
+}
+
+void ShapeTemplates::fill(std::size_t index) const {
+  View& view = views_[index];
+  if (view.filled) return;
+  view.filled = true;
+  if (depth_model_) {
+    const int v = depth_model_->closest_view(view.direction);
+    depth_model_->require_view(v);
+    const ModelPoint* surface = depth_model_->points(v);
+    for (int p = 0; p < std::min(kSurfacePoints, depth_model_->view_point_count(v)); ++p)
+      view.surface.push_back(surface[p].position);
+  }
+  std::vector<BodyContourPoint> contour = spread_contour(region_models_, view.direction, points_);
+  if (static_cast<int>(contour.size()) < kMinContourPoints) return;
+  view.contour = std::move(contour);
+  view.usable = true;
+  const Eigen::Vector3f centre = sphere_.centre.cast<float>();
+  for (int k = 0; k < n_rolls_; ++k) {
+    Template& t = templates_[index * n_rolls_ + k];
+    const Eigen::Matrix3f R = t.camera_R_body.cast<float>();
+    std::vector<ContourPoint> points;
+    for (const BodyContourPoint& p : view.contour) {
+      const Eigen::Vector3f n = R * p.normal;
+      if (n.head<2>().norm() < 0.3f) continue;  // a normal along the ray has no image orientation
+      points.push_back({R * (p.position - centre), n.head<2>().normalized(), OrientationResponses::bin_of(n.x(), n.y())});
+    }
+    if (static_cast<int>(points.size()) >= kMinContourPoints) t.contour = std::move(points);
+  }
+}
+
+void ShapeTemplates::fill_all() const {
+  for (std::size_t v = 0; v < views_.size(); ++v) fill(v);
+}
+
+void ShapeTemplates::fill_near(const Eigen::Matrix3d& near_R, double max_rotation) const {
+  // A template's rotation differs from near_R by at least the angle between their optical
+  // axes, which is the angle between the directions they see the body from.
+  const Eigen::Vector3f seen_from = (-near_R.transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
+  const float min_cos = static_cast<float>(std::cos(std::min(max_rotation, kPi)));
+  for (std::size_t v = 0; v < views_.size(); ++v)
+    if (views_[v].direction.dot(seen_from) >= min_cos - 1e-5f) fill(v);
 }
 
 const ShapeTemplates::View& ShapeTemplates::closest_view(const Pose& camera_T_body) const {
   // The camera's position seen from the sphere centre, in the body frame.
   const Eigen::Vector3d towards_camera = -(camera_T_body.rotation().transpose() * camera_T_body.translation()) - sphere_.centre;
   const Eigen::Vector3f d = towards_camera.normalized().cast<float>();
-  return *std::max_element(views_.begin(), views_.end(),
-                           [&](const View& a, const View& b) { return a.direction.dot(d) < b.direction.dot(d); });
+  // The closest view, filled; past the ones that turn out unusable (too little contour).
+  std::vector<bool> passed(views_.size(), false);
+  for (std::size_t tried = 0; tried < views_.size(); ++tried) {
+    std::size_t best = views_.size();
+    for (std::size_t v = 0; v < views_.size(); ++v)
+      if (!passed[v] && (best == views_.size() || views_[v].direction.dot(d) > views_[best].direction.dot(d))) best = v;
+    fill(best);
+    if (views_[best].usable) return views_[best];
+    passed[best] = true;
+  }
+  throw std::invalid_argument("detection: the region model has no usable contour in any view");
 }
 
 Pose ShapeTemplates::pose(const Template& t, const Eigen::Vector3d& ray, double distance) const {

@@ -145,6 +145,9 @@ std::vector<PoseCandidate> TemplateMatcher::match(OrientationPyramid& pyramid, c
     const Eigen::Vector3d centre = *window.near * templates_.sphere().centre;
     near_R = centred_rotation(*window.near, templates_.sphere().centre);
     near_px = K.project(centre);
+    templates_.fill_near(*near_R, window.max_rotation);
+  } else {
+    templates_.fill_all();
   }
 
   std::priority_queue<RawMatch, std::vector<RawMatch>, std::greater<RawMatch>> best;
@@ -179,6 +182,7 @@ std::vector<PoseCandidate> TemplateMatcher::match(OrientationPyramid& pyramid, c
     scores_.resize(size);
     for (std::size_t index = 0; index < all.size(); ++index) {
       const ShapeTemplates::Template& t = all[index];
+      if (t.contour.empty()) continue;  // a view not filled (out of the window's turn) or showing too little
       if (near_R && rotation_angle_between(*near_R, t.camera_R_body) > window.max_rotation) continue;
       placed.place(t, lv.intrinsics, distance, kProbeOffsetPx / (1 << L));
       // Positions where the whole template lies in the image.

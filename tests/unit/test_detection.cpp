@@ -12,6 +12,10 @@
 
 #include "icgp/detection/body_detector.h"
 #include "icgp/detection/orientation_responses.h"
+#include "icgp/detection/shape_templates.h"
+#include "icgp/detection/template_matcher.h"
+#include "icgp/modality/depth_modality.h"
+#include "icgp/modality/region_modality.h"
 #include "icgp/detection/texture_alignment.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/io/mesh_loader.h"
@@ -137,6 +141,52 @@ TEST_CASE("detection: the textured box is found in an RGB-D frame within 5 mm an
   const Detection none = detector.detect(blank);
   CHECK_FALSE(none.found);
   CHECK_FALSE(none.why_not.empty());
+}
+
+TEST_CASE("detection: templates made as the searches reach them match as those made at once") {
+  RgbdDetection rig(ICGP_MODELS_DIR "/textured_box/textured_box.obj", "icgp-detection-lazy-cache");
+  const std::unique_ptr<Tracker> tracker = build_tracker(rig.tracker_config, rig.mesh, "object");
+  std::vector<const ViewpointModel*> regions;
+  const ViewpointModel* depth = nullptr;
+  for (const Modality* m : tracker->modalities("object")) {
+    if (const auto* region = dynamic_cast<const RegionModality*>(m)) regions.push_back(&region->model());
+    if (const auto* d = dynamic_cast<const DepthModality*>(m)) depth = &d->model();
+  }
+  const ShapeTemplates at_once(rig.mesh, regions, depth, 2, 15.0, 64);
+  const ShapeTemplates on_demand(rig.mesh, regions, depth, 2, 15.0, 64, ShapeTemplates::Filling::kOnDemand);
+  const auto made = [](const ShapeTemplates& t) {
+    return std::count_if(t.templates().begin(), t.templates().end(), [](const auto& x) { return !x.contour.empty(); });
+  };
+  REQUIRE(on_demand.templates().size() == at_once.templates().size());
+  CHECK(made(on_demand) == 0);
+
+  // A search near the box as a camera sees it: the views it may reach are filled, few of all.
+  const Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.5, -0.6, 0.3), Eigen::Vector3d(0.03, -0.02, 0.45));
+  const Frame frame = rig.scene.render(truth);
+  OrientationPyramid pyramid_a(frame.colors.front()), pyramid_b(frame.colors.front());
+  SearchWindow window;
+  window.near = truth;
+  window.radius_px = 40.0;
+  window.min_distance = 0.35;
+  window.max_distance = 0.55;
+  window.max_rotation = 30.0 * kPi / 180.0;
+  const std::vector<PoseCandidate> a = TemplateMatcher(at_once).match(pyramid_a, window, 0.5, 20);
+  const std::vector<PoseCandidate> b = TemplateMatcher(on_demand).match(pyramid_b, window, 0.5, 20);
+  INFO(made(on_demand) << " of " << made(at_once) << " templates made");
+  CHECK(made(on_demand) > 0);
+  CHECK(made(on_demand) < made(at_once) / 4);
+  REQUIRE(!a.empty());
+  REQUIRE(a.size() == b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    CHECK(a[i].template_index == b[i].template_index);
+    CHECK(a[i].score == b[i].score);
+    CHECK((a[i].camera_T_body.matrix() - b[i].camera_T_body.matrix()).norm() == 0.0);
+  }
+  // Every template made on demand is the one made at once; the closest view is the same.
+  for (std::size_t i = 0; i < at_once.templates().size(); ++i)
+    if (!on_demand.templates()[i].contour.empty())
+      CHECK(on_demand.templates()[i].contour.size() == at_once.templates()[i].contour.size());
+  CHECK(on_demand.closest_view(truth).direction == at_once.closest_view(truth).direction);
 }
 
 TEST_CASE("detection: the textured box is found by its keypoints in a grey image without depth") {
