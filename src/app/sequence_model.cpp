@@ -15,6 +15,11 @@ std::string sequence_model_path(const std::string& model, const Sequence& sequen
 
 std::string sequence_body_name(const Sequence& sequence, const std::string& model) {
   if (sequence.objects().size() == 1) return sequence.objects().front().name;
+  // Of several objects, the one whose mesh is the model's file.
+  for (const SequenceObject& object : sequence.objects()) {
+    std::error_code ec;
+    if (!object.mesh_path.empty() && std::filesystem::equivalent(object.mesh_path, model, ec) && !ec) return object.name;
+  }
   return std::filesystem::path(model).stem().string();
 }
 

@@ -12,7 +12,8 @@ namespace icgp::app {
 /// only object. Throws std::runtime_error asking for --model otherwise.
 std::string sequence_model_path(const std::string& model, const Sequence& sequence, const std::string& directory);
 /// The body takes the name the sequence stores its ground truth under, so frames' truths
-/// are found; a sequence without objects falls back to the model's file name.
+/// are found: its only object's, or of several the one whose mesh is `model`'s file; else
+/// the model's file name.
 std::string sequence_body_name(const Sequence& sequence, const std::string& model);
 
 }  // namespace icgp::app
