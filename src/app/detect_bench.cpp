@@ -151,11 +151,10 @@ void table_camera(SequenceWriterOptions& o) {
 /// A plain white table top under the object, touching its lowest point (it lies on its -Z
 /// side, so the camera's orbit sees it from above and the sides).
 BackgroundPlane table_under(const Mesh& mesh) {
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const MeshPart& part : mesh.parts)
-    for (const Eigen::Vector3f& v : part.vertices) lowest = std::min(lowest, static_cast<double>(v.z()));
+  Eigen::Vector3f lowest, highest;
+  mesh.bounds(lowest, highest);
   BackgroundPlane table;
-  table.distance = -lowest;
+  table.distance = -lowest.z();
   table.texture_bgr = cv::Mat(8, 8, CV_8UC3, cv::Scalar(215, 220, 222));
   return table;
 }
@@ -259,6 +258,15 @@ Outcome judge(const Pose& estimate, const Pose& truth, const ModelPointErrors& s
   return 1e3 * surface.adds(estimate, truth) <= kRightMm ? Outcome::kEquivalent : Outcome::kWrong;
 }
 
+/// A pose found in a frame: judged against the truth, or with the object absent wrong and
+/// infinitely far off.
+Outcome judge_found(const Pose& estimate, bool absent, const Pose& truth, const ModelPointErrors& surface,
+                    double& t_mm, double& r_deg) {
+  if (!absent) return judge(estimate, truth, surface, t_mm, r_deg);
+  t_mm = r_deg = std::numeric_limits<double>::infinity();
+  return Outcome::kWrong;
+}
+
 double elapsed_ms(std::chrono::steady_clock::time_point begin) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
 }
@@ -278,18 +286,15 @@ std::vector<FrameResult> detect_cell(const std::string& folder, const SweepModel
     auto begin = std::chrono::steady_clock::now();
     const Detection d = detector.detect(frame);
     r.ms = elapsed_ms(begin);
-    if (d.found && absent) r.t_mm = r.r_deg = std::numeric_limits<double>::infinity();
-    if (d.found) r.icgp = absent ? Outcome::kWrong : judge(d.reference_T_body, truth, surface, r.t_mm, r.r_deg);
+    if (d.found) r.icgp = judge_found(d.reference_T_body, absent, truth, surface, r.t_mm, r.r_deg);
     if (baseline) {
       cv::Mat grey = frame.colors.front().image;
       if (grey.channels() == 3) cv::cvtColor(grey, grey, cv::COLOR_BGR2GRAY);
       begin = std::chrono::steady_clock::now();
       const std::optional<Pose> pose = baseline->locate(grey, frame.colors.front().intrinsics);
       r.baseline_ms = elapsed_ms(begin);
-      if (pose && absent) r.baseline_t_mm = r.baseline_r_deg = std::numeric_limits<double>::infinity();
-      r.baseline = !pose ? Outcome::kNotFound
-                   : absent ? Outcome::kWrong
-                            : judge(*pose, truth, surface, r.baseline_t_mm, r.baseline_r_deg);
+      r.baseline = pose ? judge_found(*pose, absent, truth, surface, r.baseline_t_mm, r.baseline_r_deg)
+                        : Outcome::kNotFound;
     }
     if (occlusion) r.occlusion = occlusion->occlusion(frame, object.name);
     results.push_back(r);

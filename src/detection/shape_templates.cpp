@@ -123,17 +123,15 @@ const ShapeTemplates::View& ShapeTemplates::closest_view(const Pose& camera_T_bo
   // The camera's position seen from the sphere centre, in the body frame.
   const Eigen::Vector3d towards_camera = -(camera_T_body.rotation().transpose() * camera_T_body.translation()) - sphere_.centre;
   const Eigen::Vector3f d = towards_camera.normalized().cast<float>();
-  // The closest view, filled; past the ones that turn out unusable (too little contour).
-  std::vector<bool> passed(views_.size(), false);
-  for (std::size_t tried = 0; tried < views_.size(); ++tried) {
-    std::size_t best = views_.size();
-    for (std::size_t v = 0; v < views_.size(); ++v)
-      if (!passed[v] && (best == views_.size() || views_[v].direction.dot(d) > views_[best].direction.dot(d))) best = v;
-    fill(best);
-    if (views_[best].usable) return views_[best];
-    passed[best] = true;
+  // The closest view not known to be unusable, filled; again while it turns out unusable.
+  for (;;) {
+    const View* best = nullptr;
+    for (const View& view : views_)
+      if ((!view.filled || view.usable) && (!best || view.direction.dot(d) > best->direction.dot(d))) best = &view;
+    if (!best) throw std::invalid_argument("detection: the region model has no usable contour in any view");
+    fill(static_cast<std::size_t>(best - views_.data()));
+    if (best->usable) return *best;
   }
-  throw std::invalid_argument("detection: the region model has no usable contour in any view");
 }
 
 Pose ShapeTemplates::pose(const Template& t, const Eigen::Vector3d& ray, double distance) const {

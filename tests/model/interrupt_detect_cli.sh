@@ -10,12 +10,8 @@ icgp=$1 sequence=$2 out=$3
 rm -rf "$out" && mkdir -p "$out/cache"
 printf 'cache_dir: %s\n' "$out/cache" >"$out/config.yaml"
 "$icgp" track --sequence "$sequence" --init detect --config "$out/config.yaml" >"$out/stdout.txt" 2>"$out/stderr.txt" &
-fail() { echo "FAIL: $1"; cat "$out/stdout.txt" "$out/stderr.txt"; exit 1; }
-. "$(dirname "$0")/../cli/interrupt_on_line.sh"
-interrupt_on_line $! "$out/stderr.txt" 'views, .* s left' || fail "no progress line with the time left within 120 s"
-status=$interrupted_status
-cat "$out/stderr.txt"
-[ "$status" -eq 130 ] || fail "exit status $status, expected 130"
+. "$(dirname "$0")/stop_during_generation.sh"
+stop_at_first_progress $!
 grep -q '^icgp: stopped on request' "$out/stderr.txt" || fail "no 'stopped on request' line"
 partial=$(find "$out/cache" -type f -name '*.tmp.*' | wc -l)
 [ "$partial" -eq 0 ] || fail "$partial half-written files left in the cache folder: $(ls "$out/cache")"

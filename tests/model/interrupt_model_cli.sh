@@ -8,12 +8,8 @@ set -u
 icgp=$1 mesh=$2 out=$3
 rm -rf "$out" && mkdir -p "$out/cache"
 "$icgp" model "$mesh" --cache-dir "$out/cache" >"$out/stdout.txt" 2>"$out/stderr.txt" &
-fail() { echo "FAIL: $1"; cat "$out/stdout.txt" "$out/stderr.txt"; exit 1; }
-. "$(dirname "$0")/../cli/interrupt_on_line.sh"
-interrupt_on_line $! "$out/stderr.txt" 'views, .* s left' || fail "no progress line with the time left within 120 s"
-status=$interrupted_status
-cat "$out/stderr.txt"
-[ "$status" -eq 130 ] || fail "exit status $status, expected 130"
+. "$(dirname "$0")/stop_during_generation.sh"
+stop_at_first_progress $!
 grep -q '^icgp: stopped on request while generating the region+depth model' "$out/stderr.txt" || fail "no 'stopped' line"
 left=$(find "$out/cache" -type f | wc -l)
 [ "$left" -eq 0 ] || fail "$left files left in the cache folder: $(ls "$out/cache")"
