@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 
@@ -65,6 +66,13 @@ constexpr double kMinAppearanceWithoutDepth = 0.9;
 /// Verified poses within this quality of the best and this rotation apart are equivalent.
 constexpr double kEquivalentQuality = 0.05;
 constexpr double kEquivalentRotation = 10.0 * kPi / 180.0;
+/// A verified pose elsewhere within this quality (and, with appearance, this agreement) of
+/// the best makes the image ambiguous: a look-alike of the body is in view, and which one
+/// is the body is a guess. A mug among
+/// cans of its colour fitted its own place and a can's 0.00-0.05 apart (`icgp bench
+/// --detect`, 21 of its far-off poses); refinements of one pose from different starts
+/// spread by up to 0.03.
+constexpr double kRivalQuality = 0.1;
 
 /// The other bodies are rendered this many times smaller than the image to leave their
 /// silhouettes out of template matching.
@@ -519,6 +527,12 @@ double BodyDetector::share_in_view(const ColorImage& color, const Pose& referenc
   return all > 0 ? static_cast<double>(seen) / all : 0.0;
 }
 
+bool BodyDetector::is_symmetry(const Pose& turn) const {
+  return std::any_of(symmetries_.begin(), symmetries_.end(), [&](const Pose& symmetry) {
+    return rotation_angle_between(symmetry.rotation(), turn.rotation()) <= kEquivalentRotation;
+  }) || Eigen::AngleAxisd(turn.rotation()).angle() <= kEquivalentRotation;
+}
+
 double BodyDetector::windows_apart(const Pose& a, const Pose& b) const {
   const Sphere& sphere = templates_->sphere();
   const double moved = (a * sphere.centre - b * sphere.centre).norm() / (kNearRadiusSpheres * sphere.radius);
@@ -638,6 +652,15 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
       if (const std::optional<Hypothesis> h =
               refine_and_verify(frame, *color, grey, *look_alike, false, stages, detection))
         verified.push_back(*h);
+    if (!alignment_)
+      // Flat colours may not tell a turn that is no symmetry either (a box of two colours
+      // partly hidden fits a quarter turn): each is refined, to be compared below.
+      for (const Pose& turn : turns) {
+        if (is_symmetry(turn)) continue;
+        if (const std::optional<Hypothesis> h =
+                refine_and_verify(frame, *color, grey, best.reference_T_body * turn, false, stages, detection))
+          verified.push_back(*h);
+      }
     // Without depth only the appearance tells a textured body from a picture of its shape
     // (a painted rectangle for a box), and with depth only the appearance tells it from
     // another object of its size.
@@ -680,6 +703,42 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     std::stable_sort(verified.begin(), verified.begin() + contenders,
                      [](const Hypothesis& a, const Hypothesis& b) { return a.appearance > b.appearance; });
   }
+  const Eigen::Vector3d found_centre = verified.front().reference_T_body * templates_->sphere().centre;
+  const auto elsewhere = [&](const Hypothesis& h) {
+    return (h.reference_T_body * templates_->sphere().centre - found_centre).norm() >= 0.5 * templates_->sphere().radius;
+  };
+  const auto rival = std::find_if(verified.begin() + 1, verified.end(), [&](const Hypothesis& h) {
+    return elsewhere(h) && h.quality >= verified.front().quality - kRivalQuality &&
+           (!appearance_ || h.appearance >= verified.front().appearance - kRivalQuality);
+  });
+  if (rival == verified.end() && appearance_ && !alignment_) {
+    const auto other_turn = std::find_if(verified.begin() + 1, verified.end(), [&](const Hypothesis& h) {
+      return !elsewhere(h) && h.quality >= verified.front().quality - kRivalQuality &&
+             h.appearance >= verified.front().appearance - kRivalQuality &&
+             !is_symmetry(verified.front().reference_T_body.inverse() * h.reference_T_body);
+    });
+    if (other_turn != verified.end()) {
+      char why[200];
+      std::snprintf(why, sizeof why,
+                    "it fits two orientations alike (quality %.2f, and %.2f turned %.0f deg): its shape and colours "
+                    "do not tell which",
+                    verified.front().quality, other_turn->quality,
+                    rotation_angle_between(other_turn->reference_T_body.rotation(),
+                                           verified.front().reference_T_body.rotation()) * 180.0 / kPi);
+      detection.why_not = why;
+      return detection;
+    }
+  }
+  if (rival != verified.end()) {
+    char why[200];
+    std::snprintf(why, sizeof why,
+                  "it fits two places alike (quality %.2f, and %.2f %.0f mm away): a look-alike is in view, and "
+                  "either would be a guess",
+                  verified.front().quality, rival->quality,
+                  1e3 * (rival->reference_T_body * templates_->sphere().centre - found_centre).norm());
+    detection.why_not = why;
+    return detection;
+  }
   detection.found = true;
   detection.quality = verified.front().quality;
   detection.reference_T_body = verified.front().reference_T_body;
@@ -698,10 +757,8 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     // With appearance, only a pose that looks as alike is equivalent.
     if (appearance_ && h.appearance < verified.front().appearance - kEquivalentQuality) continue;
     const Pose& pose = h.reference_T_body;
-    const bool same_place = (pose * templates_->sphere().centre - detection.reference_T_body * templates_->sphere().centre)
-                                .norm() < 0.5 * templates_->sphere().radius;
     const bool turned = rotation_angle_between(pose.rotation(), detection.reference_T_body.rotation()) > kEquivalentRotation;
-    if (same_place && turned) add_equivalent(pose);
+    if (!elsewhere(h) && turned) add_equivalent(pose);
   }
   return detection;
 }

@@ -109,6 +109,8 @@ class BodyDetector {
   double place_in_depth(const Frame& frame, PoseCandidate& candidate) const;
   /// The share of the body's contour points at `reference_T_body` beyond which the
   /// measured depth steps back or vanishes; -1 without depth there.
+  /// Whether `turn` (body <- turned body) is one of the body's symmetries, or no turn.
+  bool is_symmetry(const Pose& turn) const;
   double silhouette_support(const Frame& frame, const Pose& reference_T_body) const;
   /// The share of the body's contour points at `reference_T_body` that `color` sees
   /// (inside its image and its mask).
