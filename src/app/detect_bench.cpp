@@ -16,6 +16,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "icgp/detection/body_detector.h"
+#include "icgp/detection/mesh_symmetries.h"
 #include "icgp/eval/gnuplot.h"
 #include "icgp/eval/json_object.h"
 #include "icgp/eval/metrics.h"
@@ -39,8 +40,9 @@ namespace fs = std::filesystem;
 /// equivalent one of a symmetric model.
 constexpr double kRightMm = 5.0, kRightDeg = 5.0;
 
-/// A detected pose this far from the truth (and not equivalent), or any pose in a frame
-/// without the object, would send a robot somewhere else: the bench counts them apart.
+/// A detected pose this far from the truth and from each pose the model's symmetries make
+/// equivalent to it, or any pose in a frame without the object, would send a robot
+/// somewhere else: the bench counts them apart.
 constexpr double kFarMm = 50.0, kFarDeg = 15.0;
 
 /// Camera distances to the object (the orbit's mean, ±0.1 m), covering 0.3-1.0 m.
@@ -102,12 +104,19 @@ std::vector<SweepModel> detect_models() {
 
 enum class Outcome { kRight, kEquivalent, kWrong, kNotFound };
 
+/// A pose against the truth.
+struct Judged {
+  Outcome outcome = Outcome::kNotFound;
+  double t_mm = 0.0, r_deg = 0.0;  ///< of a found pose from the truth (infinite with no object)
+  bool far = false;                ///< found, and sent somewhere else (kFarMm, kFarDeg)
+};
+
 /// One frame's results: icgp's detector and, for a textured object, vpKeyPoint's.
 struct FrameResult {
-  Outcome icgp = Outcome::kNotFound;
-  double t_mm = 0.0, r_deg = 0.0, ms = 0.0;  ///< t_mm, r_deg: of a found pose (infinite with no object)
-  std::optional<Outcome> baseline;
-  double baseline_t_mm = 0.0, baseline_r_deg = 0.0, baseline_ms = 0.0;
+  Judged icgp;
+  double ms = 0.0;
+  std::optional<Judged> baseline;
+  double baseline_ms = 0.0;
   double occlusion = 0.0;  ///< share of the object's pixels hidden by the bar
 };
 
@@ -250,22 +259,45 @@ class OcclusionMeter {
   Renderer::BodyHandle object_, occluder_;
 };
 
-Outcome judge(const Pose& estimate, const Pose& truth, const ModelPointErrors& surface, double& t_mm,
-              double& r_deg) {
-  t_mm = translation_error_mm(estimate, truth);
-  r_deg = rotation_error_deg(estimate, truth);
-  if (t_mm <= kRightMm && r_deg <= kRightDeg) return Outcome::kRight;
-  return 1e3 * surface.adds(estimate, truth) <= kRightMm ? Outcome::kEquivalent : Outcome::kWrong;
-}
+/// Judges found poses of one object: right within kRightMm and kRightDeg, equivalent when
+/// its ADD-S is within kRightMm, and far off when it is beyond kFarMm or kFarDeg of the truth
+/// and of each pose the model's symmetries (as its detector finds them) make equivalent to
+/// it: a symmetric twin whose sampled ADD-S comes out a little over kRightMm is not far off.
+class PoseJudge {
+ public:
+  explicit PoseJudge(const Mesh& mesh) : surface_(mesh), symmetries_(mesh_symmetries(mesh)) {}
 
-/// A pose found in a frame: judged against the truth, or with the object absent wrong and
-/// infinitely far off.
-Outcome judge_found(const Pose& estimate, bool absent, const Pose& truth, const ModelPointErrors& surface,
-                    double& t_mm, double& r_deg) {
-  if (!absent) return judge(estimate, truth, surface, t_mm, r_deg);
-  t_mm = r_deg = std::numeric_limits<double>::infinity();
-  return Outcome::kWrong;
-}
+  /// `truth` null: a frame without the object, where any pose is wrong and far off.
+  Judged judge(const Pose& estimate, const Pose* truth) const {
+    Judged j;
+    if (!truth) {
+      j.outcome = Outcome::kWrong;
+      j.t_mm = j.r_deg = std::numeric_limits<double>::infinity();
+      j.far = true;
+      return j;
+    }
+    j.t_mm = translation_error_mm(estimate, *truth);
+    j.r_deg = rotation_error_deg(estimate, *truth);
+    if (j.t_mm <= kRightMm && j.r_deg <= kRightDeg) {
+      j.outcome = Outcome::kRight;
+    } else if (1e3 * surface_.adds(estimate, *truth) <= kRightMm) {
+      j.outcome = Outcome::kEquivalent;
+    } else {
+      j.outcome = Outcome::kWrong;
+      j.far = !near(estimate, *truth);
+      for (const Pose& symmetry : symmetries_) j.far = j.far && !near(estimate, *truth * symmetry);
+    }
+    return j;
+  }
+
+ private:
+  static bool near(const Pose& estimate, const Pose& truth) {
+    return translation_error_mm(estimate, truth) <= kFarMm && rotation_error_deg(estimate, truth) <= kFarDeg;
+  }
+
+  ModelPointErrors surface_;
+  std::vector<Pose> symmetries_;
+};
 
 double elapsed_ms(std::chrono::steady_clock::time_point begin) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
@@ -273,28 +305,26 @@ double elapsed_ms(std::chrono::steady_clock::time_point begin) {
 
 std::vector<FrameResult> detect_cell(const std::string& folder, const SweepModel& object, const Row& row,
                                      BodyDetector& detector, KeypointBaseline* baseline,
-                                     const ModelPointErrors& surface, OcclusionMeter* occlusion) {
+                                     const PoseJudge& judge, OcclusionMeter* occlusion) {
   SequenceOptions options;
   options.grey_without_depth = row.sensor.grey;
   const Sequence sequence = Sequence::open(folder, options);
   std::vector<FrameResult> results;
   for (int i = 0; i < sequence.size(); ++i) {
     const Frame frame = sequence.load(i);
-    const Pose& truth = *frame.truth(object.name);
-    const bool absent = row.scene == Scene::kEmpty;
+    const Pose* truth = row.scene == Scene::kEmpty ? nullptr : frame.truth(object.name);
     FrameResult r;
     auto begin = std::chrono::steady_clock::now();
     const Detection d = detector.detect(frame);
     r.ms = elapsed_ms(begin);
-    if (d.found) r.icgp = judge_found(d.reference_T_body, absent, truth, surface, r.t_mm, r.r_deg);
+    if (d.found) r.icgp = judge.judge(d.reference_T_body, truth);
     if (baseline) {
       cv::Mat grey = frame.colors.front().image;
       if (grey.channels() == 3) cv::cvtColor(grey, grey, cv::COLOR_BGR2GRAY);
       begin = std::chrono::steady_clock::now();
       const std::optional<Pose> pose = baseline->locate(grey, frame.colors.front().intrinsics);
       r.baseline_ms = elapsed_ms(begin);
-      r.baseline = pose ? judge_found(*pose, absent, truth, surface, r.baseline_t_mm, r.baseline_r_deg)
-                        : Outcome::kNotFound;
+      r.baseline = pose ? judge.judge(*pose, truth) : Judged{};
     }
     if (occlusion) r.occlusion = occlusion->occlusion(frame, object.name);
     results.push_back(r);
@@ -305,7 +335,7 @@ std::vector<FrameResult> detect_cell(const std::string& folder, const SweepModel
 /// Counts of one tracker's outcomes over a row.
 struct Tally {
   int frames = 0, right = 0, equivalent = 0, wrong = 0, not_found = 0;
-  int far_wrong = 0;                    ///< wrong by more than kFarMm or kFarDeg
+  int far_wrong = 0;                    ///< wrong and far off (Judged::far)
   std::vector<double> ms, t_mm, r_deg;  ///< t_mm, r_deg: of the right ones
   /// The frame (1, 2, ...) on which the object is first found right or equivalent, worst
   /// over the row's sequences; 0 when one of them never finds it.
@@ -313,17 +343,18 @@ struct Tally {
   int frames_in_sequence = 0, found_on = 0;  ///< of the sequence being added
   void start_sequence() { frames_in_sequence = found_on = 0; }
   void end_sequence() { first_found = found_on == 0 || first_found == 0 ? 0 : std::max(first_found, found_on); }
-  void add(Outcome o, double time, double t, double r) {
+  void add(const Judged& judged, double time) {
+    const Outcome o = judged.outcome;
     ++frames;
     ++frames_in_sequence;
     ms.push_back(time);
     if (found_on == 0 && (o == Outcome::kRight || o == Outcome::kEquivalent)) found_on = frames_in_sequence;
-    if (o == Outcome::kWrong && (t > kFarMm || r > kFarDeg)) ++far_wrong;
+    far_wrong += judged.far;
     switch (o) {
       case Outcome::kRight:
         ++right;
-        t_mm.push_back(t);
-        r_deg.push_back(r);
+        t_mm.push_back(judged.t_mm);
+        r_deg.push_back(judged.r_deg);
         break;
       case Outcome::kEquivalent: ++equivalent; break;
       case Outcome::kWrong: ++wrong; break;
@@ -347,28 +378,39 @@ struct Tally {
   }
 };
 
-/// Poses sent far away over the whole bench: found, not equivalent, and more than kFarMm or
-/// kFarDeg off the truth, or found in a frame without the object.
+/// Poses sent far away over the whole bench (Judged::far), counted apart in the frames with
+/// the object in view and in those without it.
 struct FarWrongCount {
-  int icgp = 0, icgp_frames = 0, baseline = 0, baseline_frames = 0;
-  void add(const Tally& icgp_row, const std::optional<Tally>& baseline_row) {
-    icgp += icgp_row.far_wrong;
-    icgp_frames += icgp_row.frames;
+  struct Count {
+    int icgp = 0, icgp_frames = 0, baseline = 0, baseline_frames = 0;
+  };
+  Count with_object, without_object;
+  void add(const Tally& icgp_row, const std::optional<Tally>& baseline_row, bool object_in_view) {
+    Count& c = object_in_view ? with_object : without_object;
+    c.icgp += icgp_row.far_wrong;
+    c.icgp_frames += icgp_row.frames;
     if (!baseline_row) return;
-    baseline += baseline_row->far_wrong;
-    baseline_frames += baseline_row->frames;
+    c.baseline += baseline_row->far_wrong;
+    c.baseline_frames += baseline_row->frames;
   }
   void print() const {
-    std::printf("poses found more than %.0f mm or %.0f deg off (not equivalent), or with no object in view: icgp %d of %d "
-                "frames, vpKeyPoint %d of %d frames\n",
-                kFarMm, kFarDeg, icgp, icgp_frames, baseline, baseline_frames);
+    std::printf("poses found more than %.0f mm or %.0f deg off the truth and its symmetric twins (not equivalent): "
+                "icgp %d of %d frames, vpKeyPoint %d of %d frames; poses found in frames without the object: icgp %d "
+                "of %d, vpKeyPoint %d of %d\n",
+                kFarMm, kFarDeg, with_object.icgp, with_object.icgp_frames, with_object.baseline,
+                with_object.baseline_frames, without_object.icgp, without_object.icgp_frames, without_object.baseline,
+                without_object.baseline_frames);
   }
   JsonObject json() const {
     return JsonObject()
-        .add("icgp", icgp)
-        .add("icgp_frames", icgp_frames)
-        .add("vpKeyPoint", baseline)
-        .add("vpKeyPoint_frames", baseline_frames);
+        .add("icgp", with_object.icgp + without_object.icgp)
+        .add("icgp_frames", with_object.icgp_frames + without_object.icgp_frames)
+        .add("vpKeyPoint", with_object.baseline + without_object.baseline)
+        .add("vpKeyPoint_frames", with_object.baseline_frames + without_object.baseline_frames)
+        .add("icgp_with_object", with_object.icgp)
+        .add("icgp_without_object", without_object.icgp)
+        .add("vpKeyPoint_with_object", with_object.baseline)
+        .add("vpKeyPoint_without_object", without_object.baseline);
   }
 };
 
@@ -467,7 +509,7 @@ void run_detect_bench(const DetectBenchOptions& options) {
   const int row_count = static_cast<int>(objects.size() * row_list.size());
   for (const SweepModel& object : objects) {
     const Mesh mesh = load_any_mesh(object.mesh_path);
-    const ModelPointErrors surface(mesh);
+    const PoseJudge judge(mesh);
     auto renderer = std::make_shared<SceneRenderer>();
     std::unique_ptr<KeypointBaseline> baseline;
     if (has_texture(mesh))
@@ -488,21 +530,21 @@ void run_detect_bench(const DetectBenchOptions& options) {
             sequence_folder(root, object, all_objects, row.scene, row.sensor, distance, options.frames);
         icgp.start_sequence();
         if (vp) vp->start_sequence();
-        for (const FrameResult& f : detect_cell(folder, object, row, detector, baseline.get(), surface,
+        for (const FrameResult& f : detect_cell(folder, object, row, detector, baseline.get(), judge,
                                                 row.scene == Scene::kOccluded ? &occlusion : nullptr)) {
-          icgp.add(f.icgp, f.ms, f.t_mm, f.r_deg);
-          if (vp) vp->add(*f.baseline, f.baseline_ms, f.baseline_t_mm, f.baseline_r_deg);
+          icgp.add(f.icgp, f.ms);
+          if (vp) vp->add(*f.baseline, f.baseline_ms);
           if (row.scene != Scene::kOccluded) continue;
-          if (!row.sensor.grey) icgp_rgbd.add(f.occlusion, f.icgp);
+          if (!row.sensor.grey) icgp_rgbd.add(f.occlusion, f.icgp.outcome);
           if (row.sensor.grey && vp) {  // grey: the textured objects, where vpKeyPoint runs too
-            icgp_grey.add(f.occlusion, f.icgp);
-            vp_grey.add(f.occlusion, *f.baseline);
+            icgp_grey.add(f.occlusion, f.icgp.outcome);
+            vp_grey.add(f.occlusion, f.baseline->outcome);
           }
         }
         icgp.end_sequence();
         if (vp) vp->end_sequence();
       }
-      far_wrong.add(icgp, vp);
+      far_wrong.add(icgp, vp, row.scene != Scene::kEmpty);
       print_row(table, object.name, row, icgp, vp);
       JsonObject json = JsonObject()
                             .add("object", object.name)
