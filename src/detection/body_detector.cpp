@@ -66,12 +66,12 @@ constexpr double kMinAppearanceWithoutDepth = 0.9;
 /// Verified poses within this quality of the best and this rotation apart are equivalent.
 constexpr double kEquivalentQuality = 0.05;
 constexpr double kEquivalentRotation = 10.0 * kPi / 180.0;
-/// A verified pose elsewhere within this quality (and, with appearance, this agreement) of
-/// the best makes the image ambiguous: a look-alike of the body is in view, and which one
-/// is the body is a guess. A mug among
+/// A verified pose within this quality (and, with appearance, this agreement) of the best
+/// is a rival answer: elsewhere, a look-alike of the body is in view; at the same place, a
+/// turn that is no symmetry (flat colours) leaves the orientation to chance. A mug among
 /// cans of its colour fitted its own place and a can's 0.00-0.05 apart (`icgp bench
-/// --detect`, 21 of its far-off poses); refinements of one pose from different starts
-/// spread by up to 0.03.
+/// --detect`: 20 far-off poses); refinements of one pose from different starts spread by
+/// up to 0.03.
 constexpr double kRivalQuality = 0.1;
 
 /// The other bodies are rendered this many times smaller than the image to leave their
@@ -533,6 +533,43 @@ bool BodyDetector::is_symmetry(const Pose& turn) const {
   }) || Eigen::AngleAxisd(turn.rotation()).angle() <= kEquivalentRotation;
 }
 
+bool BodyDetector::apart(const Pose& a, const Pose& b) const {
+  const Sphere& sphere = templates_->sphere();
+  return (a * sphere.centre - b * sphere.centre).norm() >= 0.5 * sphere.radius;
+}
+
+std::string BodyDetector::rival_answer(const std::vector<Hypothesis>& verified) const {
+  const Hypothesis& best = verified.front();
+  const auto alike = [&](const Hypothesis& h) {
+    return h.quality >= best.quality - kRivalQuality && (!appearance_ || h.appearance >= best.appearance - kRivalQuality);
+  };
+  char why[200];
+  for (auto h = verified.begin() + 1; h != verified.end(); ++h)
+    if (alike(*h) && apart(h->reference_T_body, best.reference_T_body)) {
+      const Sphere& sphere = templates_->sphere();
+      std::snprintf(why, sizeof why,
+                    "it fits two places alike (quality %.2f, and %.2f %.0f mm away): a look-alike is in view, and "
+                    "either would be a guess",
+                    best.quality, h->quality,
+                    1e3 * (h->reference_T_body * sphere.centre - best.reference_T_body * sphere.centre).norm());
+      return why;
+    }
+  // A textured body's turns are told apart by its texture; a plain shape's turns that fit
+  // alike are its equivalents (a mug's handle out of sight).
+  if (!appearance_ || alignment_) return {};
+  for (auto h = verified.begin() + 1; h != verified.end(); ++h)
+    if (alike(*h) && !is_symmetry(best.reference_T_body.inverse() * h->reference_T_body)) {
+      std::snprintf(why, sizeof why,
+                    "it fits two orientations alike (quality %.2f, and %.2f turned %.0f deg): its shape and colours "
+                    "do not tell which",
+                    best.quality, h->quality,
+                    rotation_angle_between(h->reference_T_body.rotation(), best.reference_T_body.rotation()) * 180.0 /
+                        kPi);
+      return why;
+    }
+  return {};
+}
+
 double BodyDetector::windows_apart(const Pose& a, const Pose& b) const {
   const Sphere& sphere = templates_->sphere();
   const double moved = (a * sphere.centre - b * sphere.centre).norm() / (kNearRadiusSpheres * sphere.radius);
@@ -703,42 +740,8 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     std::stable_sort(verified.begin(), verified.begin() + contenders,
                      [](const Hypothesis& a, const Hypothesis& b) { return a.appearance > b.appearance; });
   }
-  const Eigen::Vector3d found_centre = verified.front().reference_T_body * templates_->sphere().centre;
-  const auto elsewhere = [&](const Hypothesis& h) {
-    return (h.reference_T_body * templates_->sphere().centre - found_centre).norm() >= 0.5 * templates_->sphere().radius;
-  };
-  const auto rival = std::find_if(verified.begin() + 1, verified.end(), [&](const Hypothesis& h) {
-    return elsewhere(h) && h.quality >= verified.front().quality - kRivalQuality &&
-           (!appearance_ || h.appearance >= verified.front().appearance - kRivalQuality);
-  });
-  if (rival == verified.end() && appearance_ && !alignment_) {
-    const auto other_turn = std::find_if(verified.begin() + 1, verified.end(), [&](const Hypothesis& h) {
-      return !elsewhere(h) && h.quality >= verified.front().quality - kRivalQuality &&
-             h.appearance >= verified.front().appearance - kRivalQuality &&
-             !is_symmetry(verified.front().reference_T_body.inverse() * h.reference_T_body);
-    });
-    if (other_turn != verified.end()) {
-      char why[200];
-      std::snprintf(why, sizeof why,
-                    "it fits two orientations alike (quality %.2f, and %.2f turned %.0f deg): its shape and colours "
-                    "do not tell which",
-                    verified.front().quality, other_turn->quality,
-                    rotation_angle_between(other_turn->reference_T_body.rotation(),
-                                           verified.front().reference_T_body.rotation()) * 180.0 / kPi);
-      detection.why_not = why;
-      return detection;
-    }
-  }
-  if (rival != verified.end()) {
-    char why[200];
-    std::snprintf(why, sizeof why,
-                  "it fits two places alike (quality %.2f, and %.2f %.0f mm away): a look-alike is in view, and "
-                  "either would be a guess",
-                  verified.front().quality, rival->quality,
-                  1e3 * (rival->reference_T_body * templates_->sphere().centre - found_centre).norm());
-    detection.why_not = why;
-    return detection;
-  }
+  detection.why_not = rival_answer(verified);
+  if (!detection.why_not.empty()) return detection;
   detection.found = true;
   detection.quality = verified.front().quality;
   detection.reference_T_body = verified.front().reference_T_body;
@@ -758,7 +761,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     if (appearance_ && h.appearance < verified.front().appearance - kEquivalentQuality) continue;
     const Pose& pose = h.reference_T_body;
     const bool turned = rotation_angle_between(pose.rotation(), detection.reference_T_body.rotation()) > kEquivalentRotation;
-    if (!elsewhere(h) && turned) add_equivalent(pose);
+    if (!apart(pose, detection.reference_T_body) && turned) add_equivalent(pose);
   }
   return detection;
 }

@@ -111,6 +111,12 @@ class BodyDetector {
   /// measured depth steps back or vanishes; -1 without depth there.
   /// Whether `turn` (body <- turned body) is one of the body's symmetries, or no turn.
   bool is_symmetry(const Pose& turn) const;
+  /// Whether two poses put the body's centre half its bounding radius or more apart.
+  bool apart(const Pose& a, const Pose& b) const;
+  /// Why the best of `verified` (its front) is not the image's only answer: a rival that
+  /// fits alike elsewhere, or for flat colours at a turn that is no symmetry (kRivalQuality);
+  /// empty when there is none.
+  std::string rival_answer(const std::vector<Hypothesis>& verified) const;
   double silhouette_support(const Frame& frame, const Pose& reference_T_body) const;
   /// The share of the body's contour points at `reference_T_body` that `color` sees
   /// (inside its image and its mask).
