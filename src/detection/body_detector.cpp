@@ -628,11 +628,14 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   const Pose reference_T_camera = color->camera_T_reference.inverse();
   const DepthImage* depth = depth_camera_.empty() ? nullptr : frame.find_depth(depth_camera_);
   const bool has_depth = depth && depth->delivered();
-  if (!has_depth && !appearance_) {
+  if (!has_depth && !alignment_) {
     // Measured without depth, a plain shape fits too many outlines of a cluttered image
-    // (86 % wrong poses for a mug in `icgp bench --detect`): better not found than wrong.
-    detection.why_not = "without depth, a body without texture or colours cannot be verified (give depth, or a "
-                        "model with its texture)";
+    // (86 % wrong poses for a mug in `icgp bench --detect`), and a shape of flat colours
+    // fits as many two-tone patches (the two-colour box: 13 poses far off in its grey rows
+    // against 21 right or equivalent): only a texture verifies it there. Better not found
+    // than wrong.
+    detection.why_not = "without depth, a body without texture cannot be verified (give depth, or a model with its "
+                        "texture)";
     return detection;
   }
   cv::Mat grey = color->image;
