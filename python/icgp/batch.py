@@ -231,5 +231,6 @@ def trial_line(run, trials):
     """A finished run as the icgp program prints it (without the progress part)."""
     outcome = "success" if run.succeeded else "settled off target" if run.converged else "not converged"
     stops = f", {run.safety_stops} safety stop(s)" if run.safety_stops > 0 else ""
+    lost = f", lost at the end: {run.lost_reason}" if run.lost_reason else ""
     return (f"trial {run.trial + 1}/{trials} {run.tracker}: {outcome}, final {1e3 * run.final_t:.3f} mm "
-            f"{run.final_r / (math.pi / 180):.3f} deg, tracker max {1e3 * run.max_track_t:.2f} mm{stops}")
+            f"{run.final_r / (math.pi / 180):.3f} deg, tracker max {1e3 * run.max_track_t:.2f} mm{stops}{lost}")

@@ -86,11 +86,13 @@ class IcgpEstimator : public PoseEstimator {
     tracker_.getPose(estimate.cMo);
     try {
       tracker_.testTracking();
-    } catch (const vpTrackingException&) {
+    } catch (const vpTrackingException& e) {
       estimate.lost = true;
+      estimate.why_lost = e.getStringMessage();
     }
     if (gripper_) {
       estimate.cMg = gripper_->pose();
+      if (!gripper_->tracked() && !estimate.lost) estimate.why_lost = "the gripper is lost";
       estimate.lost = estimate.lost || !gripper_->tracked();
     }
     return estimate;
@@ -106,7 +108,10 @@ class IcgpEstimator : public PoseEstimator {
     const bool found = tracker_.initFromDetection(capture.color, capture.depth_raw, capture.depth_scale);
     estimate.track_ms = ms_since(begin);
     estimate.lost = !found;
-    if (!found) return estimate;
+    if (!found) {
+      estimate.why_lost = "not found: " + tracker_.getDetectionMessage();
+      return estimate;
+    }
     tracker_.getPose(estimate.cMo);
     estimate.equivalents = tracker_.getDetectionEquivalentPoses();
     if (gripper_) estimate.cMg = cMg;
@@ -176,9 +181,10 @@ class VispEstimator : public PoseEstimator {
       }
       estimate.track_ms = ms_since(begin);
       tracker_->testTracking();
-    } catch (const vpException&) {
+    } catch (const vpException& e) {
       // ViSP throws when too few features remain or the tracking test fails: lost.
       estimate.lost = true;
+      estimate.why_lost = e.getStringMessage();
       estimate.track_ms = ms_since(begin);
     }
     tracker_->getPose(estimate.cMo);

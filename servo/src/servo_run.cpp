@@ -195,6 +195,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   const double motion_end = scenario.object.settled_time();
   vpHomogeneousMatrix previous_wMc = robot->world_T_camera();
   vpHomogeneousMatrix trusted_cMo;  ///< the last pose the tracker did not report lost
+  std::string last_why_lost;        ///< the tracker's last reason for a loss
   std::optional<vpHomogeneousMatrix> trusted_cMg;  ///< the same for the gripper (grasp)
   // Detection: the tracker finds the object in the frames of the loop itself, the robot
   // holding still until it does. Otherwise it starts at the true poses (for comparison).
@@ -259,6 +260,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
 
     vpColVector velocity;
     step.lost = estimate.lost;
+    if (estimate.lost && !estimate.why_lost.empty()) last_why_lost = estimate.why_lost;
     if (estimate.lost) {
       // Safety stop: never move on a pose the tracker itself does not trust.
       velocity = vpColVector(velocity_size(scenario.robot), 0.0);
@@ -315,6 +317,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   result.final_t = result.steps.back().servo_t;
   result.final_r = result.steps.back().servo_r;
   result.recovered = !result.steps.back().lost;
+  if (result.steps.back().lost) result.lost_reason = last_why_lost;
   result.joint_limit_stops = robot->joint_limit_stops();
   result.steps_per_s = result.steps.size() / std::max(loop_seconds, 1e-9);
   summarise_tracking(result);

@@ -140,6 +140,7 @@ std::string failure_reason(const ServoResult& r, const servo::StopSpec& stop) {
                 1e3 * stop.converged_translation, stop.converged_rotation / servo::kDegree);
   std::string reason = text;
   if (!r.converged) reason += " (limit " + yaml::plain_number(stop.max_time) + " s simulated)";
+  if (!r.lost_reason.empty()) reason += "; lost at the end: " + r.lost_reason;
   return reason;
 }
 
@@ -152,11 +153,12 @@ void run_batch(const ServoOptions& o, const Scenario& scenario, const std::strin
                 : std::vector<TrackerKind>{scenario.tracker.kind};
   BatchProgress progress(o.trials * static_cast<int>(kinds.size()));
   const servo::TrialBatch batch = servo::run_trials(scenario, kinds, o.trials, [&](int trial, const ServoResult& r) {
-    std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s %s\n", trial + 1, o.trials,
-                 r.tracker.c_str(),
+    std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s%s %s\n", trial + 1,
+                 o.trials, r.tracker.c_str(),
                  servo::succeeded(r, scenario.stop) ? "success" : r.converged ? "settled off target" : "not converged",
                  1e3 * r.final_t, r.final_r / servo::kDegree, 1e3 * r.max_track_t,
                  r.safety_stops > 0 ? (", " + std::to_string(r.safety_stops) + " safety stop(s)").c_str() : "",
+                 r.lost_reason.empty() ? "" : (", lost at the end: " + r.lost_reason).c_str(),
                  progress.trial_done().c_str());
   });
   if (batch.trials_done == 0)

@@ -109,6 +109,7 @@ py::dict summary_dict(const servo::ServoResult& r, const servo::StopSpec& stop, 
   d["steps_per_s"] = r.steps_per_s;
   d["safety_stops"] = r.safety_stops;
   d["recovered"] = r.recovered;
+  d["lost_reason"] = r.lost_reason;
   d["joint_limit_stops"] = r.joint_limit_stops;
   d["interrupted"] = r.interrupted;
   d["steps"] = std::move(steps);
@@ -234,8 +235,9 @@ Returns a dict: scenario, tracker, seed (the noise seed used), trial, succeeded 
 and the true final error within the thresholds), converged, converged_step and
 converged_time (seconds; None when it did not converge), final_t_mm and final_r_deg (true
 pose to the desired one at the end), mean/max_track_t_mm and mean/max_track_r_deg (tracker
-error over the run), median_track_ms, steps_per_s, safety_stops, recovered,
-joint_limit_stops, interrupted, and steps: one dict per step with time, cMo_true and
+error over the run), median_track_ms, steps_per_s, safety_stops, recovered, lost_reason
+(lost at the end: the tracker's last reason, such as why the object was never found;
+empty otherwise), joint_limit_stops, interrupted, and steps: one dict per step with time, cMo_true and
 cMo_estimated (4x4), servo_t_mm / servo_r_deg (true servoed pose to the desired one),
 track_t_mm / track_r_deg (estimated to true), velocity (the one applied), servo_error_norm,
 lost, safety_stop, dropped, render_ms, track_ms, control_ms.

@@ -62,7 +62,8 @@ bool same_outcome(const Trial& a, const Trial& b) {
          x.converged_step == y.converged_step && x.converged_time == y.converged_time && x.final_t == y.final_t &&
          x.final_r == y.final_r && x.mean_track_t == y.mean_track_t && x.max_track_t == y.max_track_t &&
          x.mean_track_r == y.mean_track_r && x.max_track_r == y.max_track_r && x.safety_stops == y.safety_stops &&
-         x.recovered == y.recovered && x.joint_limit_stops == y.joint_limit_stops && x.interrupted == y.interrupted;
+         x.recovered == y.recovered && x.lost_reason == y.lost_reason && x.joint_limit_stops == y.joint_limit_stops &&
+         x.interrupted == y.interrupted;
 }
 
 /// Per-step values as bytes: a pickle of 10 000 trials stays small and quick.
@@ -86,12 +87,12 @@ py::tuple pickled(const Trial& t) {
   return py::make_tuple(t.trial, t.succeeded, r.scenario, r.tracker, r.seed, r.converged, r.converged_step,
                         r.converged_time, r.final_t, r.final_r, r.mean_track_t, r.max_track_t, r.mean_track_r,
                         r.max_track_r, r.median_track_ms, r.steps_per_s, r.safety_stops, r.recovered,
-                        r.joint_limit_stops, r.interrupted, step_values(r, &ServoStep::track_t),
+                        r.joint_limit_stops, r.interrupted, r.lost_reason, step_values(r, &ServoStep::track_t),
                         step_values(r, &ServoStep::track_r), step_values(r, &ServoStep::track_ms));
 }
 
 Trial unpickled(const py::tuple& s) {
-  if (s.size() != 23) throw py::value_error("TrialResult pickle: expected 23 values, got " + std::to_string(s.size()));
+  if (s.size() != 24) throw py::value_error("TrialResult pickle: expected 24 values, got " + std::to_string(s.size()));
   Trial t;
   ServoResult& r = t.run;
   t.trial = s[0].cast<int>();
@@ -114,9 +115,10 @@ Trial unpickled(const py::tuple& s) {
   r.recovered = s[17].cast<bool>();
   r.joint_limit_stops = s[18].cast<int>();
   r.interrupted = s[19].cast<bool>();
-  set_step_values(r, &ServoStep::track_t, s[20].cast<py::bytes>());
-  set_step_values(r, &ServoStep::track_r, s[21].cast<py::bytes>());
-  set_step_values(r, &ServoStep::track_ms, s[22].cast<py::bytes>());
+  r.lost_reason = s[20].cast<std::string>();
+  set_step_values(r, &ServoStep::track_t, s[21].cast<py::bytes>());
+  set_step_values(r, &ServoStep::track_r, s[22].cast<py::bytes>());
+  set_step_values(r, &ServoStep::track_ms, s[23].cast<py::bytes>());
   return t;
 }
 
@@ -141,6 +143,7 @@ py::dict trial_dict(const Trial& t) {
   d["steps_per_s"] = r.steps_per_s;
   d["safety_stops"] = r.safety_stops;
   d["recovered"] = r.recovered;
+  d["lost_reason"] = r.lost_reason;
   d["joint_limit_stops"] = r.joint_limit_stops;
   d["interrupted"] = r.interrupted;
   d["steps"] = r.steps.size();
@@ -236,6 +239,8 @@ void register_trials(py::module_& m) {
                              "Wall-clock rate of the loop.")
       .def_property_readonly("safety_stops", [](const Trial& t) { return t.run.safety_stops; })
       .def_property_readonly("recovered", [](const Trial& t) { return t.run.recovered; })
+      .def_property_readonly("lost_reason", [](const Trial& t) { return t.run.lost_reason; },
+                             "Lost at the end: the tracker's last reason (never found, say); empty otherwise.")
       .def_property_readonly("joint_limit_stops", [](const Trial& t) { return t.run.joint_limit_stops; })
       .def_property_readonly("interrupted", [](const Trial& t) { return t.run.interrupted; })
       .def_property_readonly("steps", [](const Trial& t) { return t.run.steps.size(); }, "The number of steps run.")

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The closed loop with rendering, tracking and ViSP's control laws: PBVS and IBVS converge
 // with icgp in the loop (checked against the ground truth), and a tracker that reports lost
-// stops the robot within the step. A control law given in code replaces vpServo's.
+// stops the robot within the step; a run that ends lost says the tracker's reason. A control
+// law given in code replaces vpServo's.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "icgp/servo/scenario.h"
 #include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_controller.h"
+#include "icgp/servo/servo_report.h"
 #include "icgp/servo/servo_run.h"
 #include "icgp/visp/conversions.h"
 #include "../unit/test_temp_dir.h"
@@ -57,14 +59,18 @@ void check_converged(const ServoResult& result, double max_t, double max_r) {
   CHECK(result.steps.front().servo_t > 0.1);
 }
 
-/// Oracle poses, except that it reports lost during steps [first_lost, first_lost + count).
+/// Oracle poses, except that it reports lost during steps [first_lost, first_lost + count),
+/// with kWhyLost as its reason.
 class FailingTracker : public PoseEstimator {
  public:
+  static constexpr const char* kWhyLost = "the test hides the object";
   FailingTracker(int first_lost, int count) : first_lost_(first_lost), count_(count) {}
   void start(const RgbdCapture&, const vpHomogeneousMatrix&, const std::optional<vpHomogeneousMatrix>&) override {}
   PoseEstimate track(const RgbdCapture& capture) override {
     const int step = steps_++;
-    return {capture.cMo_true, step >= first_lost_ && step < first_lost_ + count_, 0.0};
+    PoseEstimate estimate{capture.cMo_true, step >= first_lost_ && step < first_lost_ + count_, 0.0};
+    if (estimate.lost) estimate.why_lost = kWhyLost;
+    return estimate;
   }
   std::string name() const override { return "failing oracle"; }
 
@@ -170,7 +176,21 @@ TEST_CASE("servo: a tracking loss stops the robot within the step, and the run r
   CHECK_FALSE(result.steps[kFirstLost + kLostSteps].safety_stop);
   CHECK(result.safety_stops == 1);
   CHECK(result.recovered);
+  CHECK(result.lost_reason.empty());
   CHECK(result.converged);
+}
+
+TEST_CASE("servo: a run that ends lost says the tracker's reason") {
+  ServoRunOptions options = quiet();
+  options.make_estimator = [](const RgbdSimulator&) -> std::unique_ptr<PoseEstimator> {
+    return std::make_unique<FailingTracker>(3, 1 << 20);
+  };
+  const ServoResult result = run_servo(small_scenario("pbvs", "oracle"), options);
+  CHECK_FALSE(result.recovered);
+  CHECK(result.lost_reason == FailingTracker::kWhyLost);
+  std::ostringstream report;
+  print_run(report, result, small_scenario("pbvs", "oracle").stop);
+  CHECK_THAT(report.str(), Catch::Contains(std::string("lost at the end    ") + FailingTracker::kWhyLost));
 }
 
 TEST_CASE("servo: a symmetric object's detection is servoed on the equivalent pose nearest the goal") {

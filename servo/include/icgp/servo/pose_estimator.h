@@ -24,6 +24,7 @@ struct PoseEstimate {
   /// After a detection: further poses of the object (cMo) the tracker verified as well as
   /// cMo, which a symmetry of the object makes indistinguishable from it.
   std::vector<vpHomogeneousMatrix> equivalents;
+  std::string why_lost;  ///< when lost, the tracker's reason, when it gives one
 };
 
 /// A pose tracker fed with the simulated RGB-D captures through ViSP's API.

@@ -52,6 +52,9 @@ struct ServoResult {
   double steps_per_s = 0.0;  ///< wall-clock rate of the whole loop (render + track + control)
   int safety_stops = 0;      ///< times the tracker was lost and the robot stopped
   bool recovered = true;     ///< after the last safety stop, tracking resumed (not lost at the end)
+  /// Lost at the end: the tracker's last reason (why the object was never found, say);
+  /// empty otherwise, or when the tracker gave none.
+  std::string lost_reason;
   int joint_limit_stops = 0;
   /// A stop was requested (icgp::request_stop, SIGINT) and the run ended at the step it was
   /// seen, before converging or reaching its time limit.
