@@ -168,7 +168,7 @@ constexpr double kMinColourRegionShare = 0.1;
 /// Where a body's flat colours differ, the image's must too: the squared distance of the
 /// image's mean chromaticities on either side must exceed this many times the sum of
 /// their variances. The two-colour box at its true poses: 5.8-370 (`icgp bench --detect`,
-/// 33 frames of plain, occluded and distractor scenes); on the red mug and on look-alikes
+/// 31 frames of plain, occluded and distractor scenes); on the red mug and on look-alikes
 /// painted its mean colour, where its detector had found it: 0.00-1.5. Chromaticity is
 /// blind to the camera's gain and to shading.
 constexpr double kMinColourSeparation = 2.0;
