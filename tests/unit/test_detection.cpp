@@ -4,7 +4,8 @@
 // against its ground truth, also by its keypoints in a grey image without depth, a pose a
 // few millimetres off aligned onto its texture, nothing found in frames without it (the
 // clutter alone, blank), the labelled can found at its label's turn about its axis, and a
-// textureless mug beside a copy of itself not found (which is the body is a guess).
+// textureless mug beside a copy of itself not found (which is the body is a guess), and the
+// two-colour box found where a box of its shape in one colour is not.
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -284,6 +285,26 @@ TEST_CASE("detection: a textureless body beside a copy of itself is not found, a
 
   rig.scene.renderer().set_body_visible(copy, false);
   check_found_within_5mm_5deg(rig.detector.detect(rig.scene.render(truth)), truth, "the mug without its copy");
+}
+
+TEST_CASE("detection: the two-colour box is found, and a box of its shape painted one colour is not") {
+  RgbdDetection rig(ICGP_MODELS_DIR "/two_region/object.obj", "icgp-detection-two-colour-cache");
+  // From the side and a little above: the lid's colour and the body's both show.
+  const Pose truth = Pose::from_rotation_vector(Eigen::Vector3d(0.4, 0.5, 0.1), Eigen::Vector3d(0.02, -0.01, 0.5));
+  const Detection found = rig.detector.detect(rig.scene.render(truth));
+  INFO("why not: " << found.why_not);
+  REQUIRE(found.found);
+  CHECK(translation_error_mm(found.reference_T_body, truth) < 5.0);
+
+  // Its shape in one colour, the body's mean: the grey levels of its shaded faces
+  // correlate with the two-colour render, its colours do not differ where the box's do.
+  Mesh one_colour = rig.mesh;
+  for (MeshPart& part : one_colour.parts) part.material.diffuse_rgb = Eigen::Vector3f(0.45f, 0.35f, 0.4f);
+  test::SceneRenderer painted(one_colour, RgbdDetection::intrinsics(), RgbdDetection::intrinsics(),
+                              RgbdDetection::depth_T_color());
+  const Detection look_alike = rig.detector.detect(painted.render(truth));
+  INFO("why not: " << look_alike.why_not);
+  CHECK_FALSE(look_alike.found);
 }
 
 }  // namespace
