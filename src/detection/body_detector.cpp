@@ -162,6 +162,13 @@ std::optional<ColorImage> window_crop(const ColorImage& color, const SearchWindo
   return crop;
 }
 
+/// `value` as printf's %g writes it: 0.65, not 0.650000.
+std::string shortest(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
 /// A region of flat colour counts in the colour check when it covers this share of the
 /// body's rendered pixels.
 constexpr double kMinColourRegionShare = 0.1;
@@ -186,31 +193,40 @@ class ChromaByRenderedColour {
     const Eigen::Vector3d chroma = Eigen::Vector3d(image[0], image[1], image[2]) / image_sum;
     Group& g = groups_[key];
     ++g.count;
+    g.rendered_sum += key_chroma;
     g.sum += chroma;
     g.sum_squares += chroma.squaredNorm();
     ++pixels_;
   }
 
-  /// Whether the image's colours differ where the two largest rendered colours meet, by
-  /// kMinColourSeparation; true when the render shows fewer than two colours large enough.
+  /// Whether the image's colours differ, by kMinColourSeparation, under the largest
+  /// rendered colour and the largest that differs from it; true when the render shows no
+  /// two colours large enough. One colour split between two bins is not two colours.
   bool differ_as_rendered() const {
     std::vector<const Group*> large;
     for (const auto& entry : groups_)
       if (entry.second.count >= kMinColourRegionShare * pixels_) large.push_back(&entry.second);
-    if (large.size() < 2) return true;
-    std::partial_sort(large.begin(), large.begin() + 2, large.end(),
-                      [](const Group* a, const Group* b) { return a->count > b->count; });
-    const Eigen::Vector3d a = large[0]->mean(), b = large[1]->mean();
-    return (a - b).squaredNorm() > kMinColourSeparation * (large[0]->variance() + large[1]->variance());
+    std::sort(large.begin(), large.end(), [](const Group* a, const Group* b) { return a->count > b->count; });
+    const auto other = std::find_if(large.begin(), large.end(), [&](const Group* g) {
+      return (g->rendered_mean() - large.front()->rendered_mean()).norm() >= kMinRenderedDifference;
+    });
+    if (other == large.end()) return true;
+    const Group& a = *large.front();
+    const Group& b = **other;
+    return (a.mean() - b.mean()).squaredNorm() > kMinColourSeparation * (a.variance() + b.variance());
   }
 
  private:
   static constexpr double kMinRenderedSum = 30.0;
   static constexpr int kBins = 10;
+  /// Rendered chromaticities this far apart are two colours (a bin is 0.1 wide).
+  static constexpr double kMinRenderedDifference = 0.1;
   struct Group {
     int count = 0;
+    Eigen::Vector3d rendered_sum = Eigen::Vector3d::Zero();
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     double sum_squares = 0.0;
+    Eigen::Vector3d rendered_mean() const { return rendered_sum / count; }
     Eigen::Vector3d mean() const { return sum / count; }
     double variance() const { return std::max(0.0, sum_squares / count - mean().squaredNorm()); }
   };
@@ -775,7 +791,8 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
                    verified.end());
     if (verified.empty() && fitting > 0)
       detection.why_not = "no pose that fits the image looks like the body there (its render correlates below " +
-                          std::to_string(min_appearance) + (has_depth ? "" : " without depth") + ")";
+                          shortest(min_appearance) + (has_depth ? "" : " without depth") +
+                          (alignment_ ? "" : ", or its colours do not differ where the model's do") + ")";
   } else if (!verified.empty()) {
     // Without appearance, a turn that is no symmetry of the shape shows in the fit of its
     // contour and depth (a mug's handle): every turn is refined and the best fit wins; the
@@ -793,7 +810,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     if (detection.why_not.empty())
       detection.why_not = detection.candidates == 0 ? "no template matched the image"
                                                     : "no hypothesis reached quality " +
-                                                          std::to_string(params_.accept_quality) + " after refinement";
+                                                          shortest(params_.accept_quality) + " after refinement";
     return detection;
   }
   std::stable_sort(verified.begin(), verified.end(),
