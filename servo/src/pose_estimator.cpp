@@ -109,7 +109,7 @@ class IcgpEstimator : public PoseEstimator {
     estimate.track_ms = ms_since(begin);
     estimate.lost = !found;
     if (!found) {
-      estimate.why_lost = "not found: " + tracker_.getDetectionMessage();
+      estimate.why_lost = tracker_.getDetectionMessage();
       return estimate;
     }
     tracker_.getPose(estimate.cMo);
