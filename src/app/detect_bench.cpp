@@ -284,8 +284,9 @@ class PoseJudge {
       j.outcome = Outcome::kEquivalent;
     } else {
       j.outcome = Outcome::kWrong;
-      j.far = !near(estimate, *truth);
-      for (const Pose& symmetry : symmetries_) j.far = j.far && !near(estimate, *truth * symmetry);
+      j.far = !near(estimate, *truth) && std::none_of(symmetries_.begin(), symmetries_.end(), [&](const Pose& symmetry) {
+                return near(estimate, *truth * symmetry);
+              });
     }
     return j;
   }

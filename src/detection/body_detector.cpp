@@ -2,9 +2,9 @@
 #include "icgp/detection/body_detector.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -188,10 +188,10 @@ class ChromaByRenderedColour {
     const double rendered_sum = rendered[0] + rendered[1] + rendered[2];
     if (rendered_sum < kMinRenderedSum) return;  // too dark for a chromaticity
     const Eigen::Vector3d key_chroma = Eigen::Vector3d(rendered[0], rendered[1], rendered[2]) / rendered_sum;
-    const int key = static_cast<int>(key_chroma.x() * kBins) * kBins + static_cast<int>(key_chroma.y() * kBins);
+    const int bin = static_cast<int>(key_chroma.x() * kBins) * (kBins + 1) + static_cast<int>(key_chroma.y() * kBins);
     const double image_sum = image[0] + image[1] + image[2] + 1.0;
     const Eigen::Vector3d chroma = Eigen::Vector3d(image[0], image[1], image[2]) / image_sum;
-    Group& g = groups_[key];
+    Group& g = groups_[bin];
     ++g.count;
     g.rendered_sum += key_chroma;
     g.sum += chroma;
@@ -204,8 +204,8 @@ class ChromaByRenderedColour {
   /// two colours large enough. One colour split between two bins is not two colours.
   bool differ_as_rendered() const {
     std::vector<const Group*> large;
-    for (const auto& entry : groups_)
-      if (entry.second.count >= kMinColourRegionShare * pixels_) large.push_back(&entry.second);
+    for (const Group& g : groups_)
+      if (g.count > 0 && g.count >= kMinColourRegionShare * pixels_) large.push_back(&g);
     std::sort(large.begin(), large.end(), [](const Group* a, const Group* b) { return a->count > b->count; });
     const auto other = std::find_if(large.begin(), large.end(), [&](const Group* g) {
       return (g->rendered_mean() - large.front()->rendered_mean()).norm() >= kMinRenderedDifference;
@@ -230,7 +230,9 @@ class ChromaByRenderedColour {
     Eigen::Vector3d mean() const { return sum / count; }
     double variance() const { return std::max(0.0, sum_squares / count - mean().squaredNorm()); }
   };
-  std::map<int, Group> groups_;
+  /// By the rendered chromaticity's blue and green components, kBins + 1 bins each (a
+  /// component of 1 is a bin of its own): fixed, so a check allocates nothing per pixel.
+  std::array<Group, (kBins + 1) * (kBins + 1)> groups_{};
   int pixels_ = 0;
 };
 

@@ -102,13 +102,12 @@ class BodyDetector {
                                               const Pose& start, bool from_texture, int stages,
                                               Detection& detection);
   /// Zero-mean normalised cross-correlation in [-1, 1] of the body's render (its texture
-  /// and colours) with the image over the body's pixels; -1 when it is not in view.
+  /// and colours) with the image over the body's pixels; -1 when it is not in view. For a
+  /// body of flat colours, 0 when the image's colours do not differ where the render's do.
   double appearance_agreement(const ColorImage& color, const Pose& reference_T_body);
   /// Moves a candidate along its ray so its surface points meet the measured depth; the
   /// share of them that then agree, or a negative value without enough measurements.
   double place_in_depth(const Frame& frame, PoseCandidate& candidate) const;
-  /// The share of the body's contour points at `reference_T_body` beyond which the
-  /// measured depth steps back or vanishes; -1 without depth there.
   /// Whether `turn` (body <- turned body) is one of the body's symmetries, or no turn.
   bool is_symmetry(const Pose& turn) const;
   /// Whether two poses put the body's centre half its bounding radius or more apart.
@@ -117,6 +116,8 @@ class BodyDetector {
   /// fits alike elsewhere, or for flat colours at a turn that is no symmetry (kRivalQuality);
   /// empty when there is none.
   std::string rival_answer(const std::vector<Hypothesis>& verified) const;
+  /// The share of the body's contour points at `reference_T_body` beyond which the
+  /// measured depth steps back or vanishes; -1 without depth there.
   double silhouette_support(const Frame& frame, const Pose& reference_T_body) const;
   /// The share of the body's contour points at `reference_T_body` that `color` sees
   /// (inside its image and its mask).
