@@ -754,35 +754,37 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
       turns.push_back(turn);
   if (appearance_ && !verified.empty()) {
     // The shape may not tell a box from the box turned about an axis: the appearance does.
-    // A turn that maps the shape onto itself needs no refinement to be compared, so only
-    // the turn that looks most like the image is refined.
     const Hypothesis best = *std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
       return a.quality < b.quality;
     });
-    std::optional<Pose> look_alike;
-    // A best pose that does not look like the image leaves any better-looking turn worth
-    // its refinement.
-    double look_alike_appearance = best.appearance + (best.appearance >= kMinAppearance ? kAppearanceGain : 0.0);
-    for (const Pose& turn : turns) {
-      const Pose turned = best.reference_T_body * turn;
-      const double appearance = appearance_agreement(*color, turned);
-      if (appearance <= look_alike_appearance) continue;
-      look_alike = turned;
-      look_alike_appearance = appearance;
-    }
-    if (look_alike)
-      if (const std::optional<Hypothesis> h =
-              refine_and_verify(frame, *color, grey, *look_alike, false, stages, detection))
-        verified.push_back(*h);
-    if (!alignment_)
+    if (alignment_) {
+      // A textured body: a turn that maps the shape onto itself needs no refinement to be
+      // compared, so only the turn that looks most like the image is refined. A best pose
+      // that does not look like the image leaves any better-looking turn worth it.
+      std::optional<Pose> look_alike;
+      double look_alike_appearance = best.appearance + (best.appearance >= kMinAppearance ? kAppearanceGain : 0.0);
+      for (const Pose& turn : turns) {
+        const Pose turned = best.reference_T_body * turn;
+        const double appearance = appearance_agreement(*color, turned);
+        if (appearance <= look_alike_appearance) continue;
+        look_alike = turned;
+        look_alike_appearance = appearance;
+      }
+      if (look_alike)
+        if (const std::optional<Hypothesis> h =
+                refine_and_verify(frame, *color, grey, *look_alike, false, stages, detection))
+          verified.push_back(*h);
+    } else {
       // Flat colours may not tell a turn that is no symmetry either (a box of two colours
-      // partly hidden fits a quarter turn): each is refined, to be compared below.
+      // partly hidden fits a quarter turn): each is refined, to be compared by
+      // rival_answer; a symmetric turn fits and looks as the best does.
       for (const Pose& turn : turns) {
         if (is_symmetry(turn)) continue;
         if (const std::optional<Hypothesis> h =
                 refine_and_verify(frame, *color, grey, best.reference_T_body * turn, false, stages, detection))
           verified.push_back(*h);
       }
+    }
     // Without depth only the appearance tells a textured body from a picture of its shape
     // (a painted rectangle for a box), and with depth only the appearance tells it from
     // another object of its size.
