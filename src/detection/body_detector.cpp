@@ -123,6 +123,9 @@ std::vector<Pose> symmetric_turns(const Eigen::Vector3d& c) {
 /// best of them within 7.5 degrees, which the texture alignment pulls in.
 constexpr double kRoundTurnStep = 15.0 * kPi / 180.0;
 
+/// How many of the best refinements are turned when no candidate was confident.
+constexpr std::size_t kTurnedRefinements = 2;
+
 /// The refining tracker: the body alone, with its region cue and, where the rig has one,
 /// its depth cue; texture is left out, since its keyframe would be taken at the unrefined pose.
 TrackerConfig refinement_config(const TrackerConfig& config) {
@@ -458,8 +461,14 @@ std::optional<BodyDetector::Hypothesis> BodyDetector::refine_and_verify(const Fr
                                                                       const cv::Mat& grey, const Pose& start,
                                                                       bool from_texture, int stages,
                                                                       Detection& detection) {
-  Hypothesis h = refine(frame, start, stages);
+  const Hypothesis refined = refine(frame, start, stages);
   ++detection.refined;
+  return verify(frame, color, grey, refined, start, from_texture, stages, detection);
+}
+
+std::optional<BodyDetector::Hypothesis> BodyDetector::verify(const Frame& frame, const ColorImage& color,
+                                                           const cv::Mat& grey, Hypothesis h, const Pose& start,
+                                                           bool from_texture, int stages, Detection& detection) {
   if (h.quality < params_.accept_quality) return std::nullopt;
   const auto aligned = [&](const Pose& pose) {
     return alignment_->align(grey, color.intrinsics, color.camera_T_reference, pose, refiner_->occluders());
@@ -687,6 +696,31 @@ bool BodyDetector::confirms(const Frame& frame, const Pose& reference_T_body, co
   return true;
 }
 
+std::vector<Pose> BodyDetector::poses_to_turn(std::vector<Hypothesis> refined,
+                                             const std::vector<Hypothesis>& verified) const {
+  std::stable_sort(refined.begin(), refined.end(),
+                   [](const Hypothesis& a, const Hypothesis& b) { return a.quality > b.quality; });
+  // Flat colours have every turn of their best verified pose refined after this pass: it
+  // counts as turned already.
+  std::vector<Pose> turned;
+  if (!alignment_ && !verified.empty())
+    turned.push_back(std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
+                       return a.quality < b.quality;
+                     })->reference_T_body);
+  std::vector<Pose> sources;
+  for (const Hypothesis& h : refined) {
+    if (turned.size() >= kTurnedRefinements) break;
+    const bool alike = std::any_of(turned.begin(), turned.end(), [&](const Pose& pose) {
+      return !apart(pose, h.reference_T_body) &&
+             rotation_angle_between(pose.rotation(), h.reference_T_body.rotation()) <= kEquivalentRotation;
+    });
+    if (alike) continue;
+    sources.push_back(h.reference_T_body);
+    turned.push_back(h.reference_T_body);
+  }
+  return sources;
+}
+
 Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, int hypotheses,
                                const OtherPoses& others) {
   place_others(others);
@@ -723,11 +757,13 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   cv::Mat grey = color->image;
   if (grey.channels() == 3 && (keypoints_ || alignment_)) cv::cvtColor(color->image, grey, cv::COLOR_BGR2GRAY);
   std::vector<Hypothesis> verified;
+  std::vector<Hypothesis> refined;  // every candidate's refinement, verified or not
   // Keeps a start's verified refinement, and says whether it fits so well that the other
   // candidates have nothing to win but a symmetric twin (which the turns below find).
-  const auto refined_confidently = [&](const Pose& reference_T_body, bool from_texture = false) {
-    const std::optional<Hypothesis> h =
-        refine_and_verify(frame, *color, grey, reference_T_body, from_texture, stages, detection);
+  const auto refined_confidently = [&](const Pose& start, bool from_texture = false) {
+    refined.push_back(refine(frame, start, stages));
+    ++detection.refined;
+    const std::optional<Hypothesis> h = verify(frame, *color, grey, refined.back(), start, from_texture, stages, detection);
     if (!h) return false;
     verified.push_back(*h);
     // Only a pose that also looks like the body: another object of its shape may fit as well.
@@ -745,7 +781,25 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
   }
   if (!confident)
     for (const PoseCandidate& candidate : template_candidates(frame, *color, window, hypotheses, detection))
-      if (refined_confidently(reference_T_camera * candidate.camera_T_body)) break;
+      if ((confident = refined_confidently(reference_T_camera * candidate.camera_T_body))) break;
+  if (appearance_ && !confident && !window.near) {
+    // No candidate both fits and looks like the body. A refinement started a quarter turn
+    // off stays there, fitting part of the outline: a box seen nearly edge-on fitted 0.55-0.67
+    // at turns of the right pose, which fits 0.96. So the best two refinements, verified or
+    // not, are turned about the body's axes and refined again; a turn that then fits
+    // confidently is verified as any candidate is.
+    const std::vector<Pose> sources = poses_to_turn(std::move(refined), verified);
+    for (const Pose& source : sources)
+      for (const Pose& turn : symmetric_turns(templates_->sphere().centre)) {
+        if (is_symmetry(turn)) continue;
+        const Pose start = source * turn;
+        const Hypothesis turned = refine(frame, start, stages);
+        ++detection.refined;
+        if (turned.quality < kConfidentQuality) continue;
+        if (const std::optional<Hypothesis> h = verify(frame, *color, grey, turned, start, false, stages, detection))
+          verified.push_back(*h);
+      }
+  }
   // A local search's window is near a pose the tracker trusted: of the turns, only those
   // it spans (a round shape's small turns about its axis) are tried there.
   std::vector<Pose> turns;

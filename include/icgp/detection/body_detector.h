@@ -101,6 +101,14 @@ class BodyDetector {
   std::optional<Hypothesis> refine_and_verify(const Frame& frame, const ColorImage& color, const cv::Mat& grey,
                                               const Pose& start, bool from_texture, int stages,
                                               Detection& detection);
+  /// The verification of refine_and_verify, of `refined`, the refinement of `start`.
+  std::optional<Hypothesis> verify(const Frame& frame, const ColorImage& color, const cv::Mat& grey,
+                                   Hypothesis refined, const Pose& start, bool from_texture, int stages,
+                                   Detection& detection);
+  /// The candidates' refinements whose turns are worth refining when none is confident: the
+  /// best that are not alike, best first, kTurnedRefinements of them counting the pose whose
+  /// turns search() refines anyway (for flat colours, the best verified one), which is left out.
+  std::vector<Pose> poses_to_turn(std::vector<Hypothesis> refined, const std::vector<Hypothesis>& verified) const;
   /// Zero-mean normalised cross-correlation in [-1, 1] of the body's render (its texture
   /// and colours) with the image over the body's pixels; -1 when it is not in view. For a
   /// body of flat colours, 0 when the image's colours do not differ where the render's do.
