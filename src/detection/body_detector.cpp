@@ -126,6 +126,13 @@ constexpr double kRoundTurnStep = 15.0 * kPi / 180.0;
 /// How many of the best refinements are turned when no candidate was confident.
 constexpr std::size_t kTurnedRefinements = 2;
 
+/// The hypothesis of `hypotheses` (not empty) that fits best.
+template <typename Hypothesis>
+const Hypothesis& best_fitting(const std::vector<Hypothesis>& hypotheses) {
+  return *std::max_element(hypotheses.begin(), hypotheses.end(),
+                           [](const Hypothesis& a, const Hypothesis& b) { return a.quality < b.quality; });
+}
+
 /// The refining tracker: the body alone, with its region cue and, where the rig has one,
 /// its depth cue; texture is left out, since its keyframe would be taken at the unrefined pose.
 TrackerConfig refinement_config(const TrackerConfig& config) {
@@ -278,7 +285,8 @@ BodyDetector::BodyDetector(const TrackerConfig& config, const Mesh& mesh, const 
   coarse_matcher_ = std::make_unique<TemplateMatcher>(*coarse_templates_);
   appearance_ = has_appearance(mesh);
   symmetries_ = mesh_symmetries(mesh);
-  turns_ = symmetric_turns(templates_->sphere().centre);
+  axis_turns_ = symmetric_turns(templates_->sphere().centre);
+  turns_ = axis_turns_;
   // A round shape (a labelled can) fits its contour and depth at any turn about its axis;
   // with appearance, those turns are compared too (without, they are its symmetries).
   const std::vector<BodyAxis> round_axes_of_shape = round_axes(mesh);
@@ -704,9 +712,7 @@ std::vector<Pose> BodyDetector::poses_to_turn(std::vector<Hypothesis> refined,
   // counts as turned already.
   std::vector<Pose> turned;
   if (!alignment_ && !verified.empty())
-    turned.push_back(std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
-                       return a.quality < b.quality;
-                     })->reference_T_body);
+    turned.push_back(best_fitting(verified).reference_T_body);
   std::vector<Pose> sources;
   for (const Hypothesis& h : refined) {
     if (turned.size() >= kTurnedRefinements) break;
@@ -790,7 +796,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     // confidently is verified as any candidate is.
     const std::vector<Pose> sources = poses_to_turn(std::move(refined), verified);
     for (const Pose& source : sources)
-      for (const Pose& turn : symmetric_turns(templates_->sphere().centre)) {
+      for (const Pose& turn : axis_turns_) {
         if (is_symmetry(turn)) continue;
         const Pose start = source * turn;
         const Hypothesis turned = refine(frame, start, stages);
@@ -808,9 +814,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
       turns.push_back(turn);
   if (appearance_ && !verified.empty()) {
     // The shape may not tell a box from the box turned about an axis: the appearance does.
-    const Hypothesis best = *std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
-      return a.quality < b.quality;
-    });
+    const Hypothesis best = best_fitting(verified);
     if (alignment_) {
       // A textured body: a turn that maps the shape onto itself needs no refinement to be
       // compared, so only the turn that looks most like the image is refined. A best pose
@@ -855,9 +859,7 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
     // Without appearance, a turn that is no symmetry of the shape shows in the fit of its
     // contour and depth (a mug's handle): every turn is refined and the best fit wins; the
     // turns that fit as well are the equivalent poses of a symmetric shape.
-    const Hypothesis best = *std::max_element(verified.begin(), verified.end(), [](const auto& a, const auto& b) {
-      return a.quality < b.quality;
-    });
+    const Hypothesis best = best_fitting(verified);
     for (const Pose& turn : turns) {
       const Hypothesis h = refine(frame, best.reference_T_body * turn, stages);
       ++detection.refined;

@@ -101,7 +101,7 @@ class BodyDetector {
   std::optional<Hypothesis> refine_and_verify(const Frame& frame, const ColorImage& color, const cv::Mat& grey,
                                               const Pose& start, bool from_texture, int stages,
                                               Detection& detection);
-  /// The verification of refine_and_verify, of `refined`, the refinement of `start`.
+  /// What refine_and_verify does after refining: `refined` is the refinement of `start`.
   std::optional<Hypothesis> verify(const Frame& frame, const ColorImage& color, const cv::Mat& grey,
                                    Hypothesis refined, const Pose& start, bool from_texture, int stages,
                                    Detection& detection);
@@ -147,7 +147,10 @@ class BodyDetector {
   std::unique_ptr<TemplateMatcher> coarse_matcher_;
   bool appearance_ = false;  ///< the mesh has a texture or colours to compare
   std::vector<Pose> symmetries_;  ///< mesh_symmetries of the body: S with T·S equivalent to T
-  /// Turns S of a verified pose T whose T·S the shape may fit as well (docs/detection.md, step 6).
+  /// The half and quarter turns about the body axes (symmetric_turns).
+  std::vector<Pose> axis_turns_;
+  /// Turns S of a verified pose T whose T·S the shape may fit as well (docs/detection.md,
+  /// step 6): the axis turns and, with appearance, a round shape's turns about its axis.
   std::vector<Pose> turns_;
   /// With appearance: the shape is round about an axis (round_axes), so only its texture
   /// or colours fix the turn about it.
