@@ -62,6 +62,10 @@ constexpr Interval kLinearVelocity{0.0, 10.0, true};    ///< m/s
 constexpr Interval kAngularVelocityDeg{0.0, 3600.0, true};  ///< deg/s
 constexpr Interval kThresholdMm{0.0, 1000.0};           ///< convergence thresholds and trial offsets
 constexpr Interval kThresholdDeg{0.0, 180.0};
+constexpr Interval kDelayMs{0.0, 86400e3};              ///< ms: latency (a run checks it against max_time)
+constexpr Interval kSpreadMs{0.0, 1e4};                 ///< ms: jitter, lag, compute time
+constexpr Interval kLinearAcceleration{0.0, 1e6, true};  ///< m/s²
+constexpr Interval kAngularAccelerationDeg{0.0, 1e8, true};  ///< deg/s²
 
 /// A camera-object pose: the object must be in front of the camera.
 Pose object_pose(const Value& v) {
@@ -203,18 +207,39 @@ void read_noise(const Value& v, NoiseSpec& noise) {
   if (auto x = s.get("frame_drop")) noise.frame_drop = x->number_in(kProbability);
 }
 
+void read_jitter(const Value& v, JitterSpec& jitter) {
+  const Map s(v, {"distribution", "ms"});
+  jitter.distribution = s.required("distribution")
+                            .choice<JitterSpec::Distribution>({{"none", JitterSpec::Distribution::kNone},
+                                                               {"uniform", JitterSpec::Distribution::kUniform},
+                                                               {"normal", JitterSpec::Distribution::kNormal}});
+  if (auto x = s.get("ms")) jitter.spread = x->number_in(kSpreadMs) * 1e-3;
+}
+
 void read_camera(const Value& v, CameraSpec& camera) {
-  const Map s(v, {"color", "depth", "depth_T_color", "rate_hz", "noise"});
+  const Map s(v, {"color", "depth", "depth_T_color", "rate_hz", "noise", "latency_ms", "jitter"});
   if (auto x = s.get("color")) camera.color = intrinsics(*x, camera.color);
   camera.depth = camera.color;
   if (auto x = s.get("depth")) camera.depth = intrinsics(*x, camera.color);
   if (auto x = s.get("depth_T_color")) camera.depth_T_color = pose(*x);
   if (auto x = s.get("rate_hz")) camera.rate_hz = x->number_in(kRateHz);
   if (auto x = s.get("noise")) read_noise(*x, camera.noise);
+  if (auto x = s.get("latency_ms")) camera.latency = x->number_in(kDelayMs) * 1e-3;
+  if (auto x = s.get("jitter")) read_jitter(*x, camera.jitter);
+}
+
+void read_robot_response(const Value& v, ResponseSpec& response) {
+  const Map s(v, {"lag_ms", "max_linear_acceleration", "max_angular_acceleration_deg", "max_joint_acceleration_deg"});
+  if (auto x = s.get("lag_ms")) response.lag = x->number_in(kSpreadMs) * 1e-3;
+  if (auto x = s.get("max_linear_acceleration")) response.max_linear_acceleration = x->number_in(kLinearAcceleration);
+  if (auto x = s.get("max_angular_acceleration_deg"))
+    response.max_angular_acceleration = x->number_in(kAngularAccelerationDeg) * kDegree;
+  if (auto x = s.get("max_joint_acceleration_deg"))
+    response.max_joint_acceleration = x->number_in(kAngularAccelerationDeg) * kDegree;
 }
 
 void read_tracker(const Value& v, TrackerSpec& tracker, const fs::path& scenario_dir) {
-  const Map s(v, {"type", "modalities", "config", "visp_configuration", "init"});
+  const Map s(v, {"type", "modalities", "config", "visp_configuration", "init", "timing", "compute_ms"});
   if (auto x = s.get("type"))
     tracker.kind = x->choice<TrackerKind>(tracker_names());
   if (auto x = s.get("modalities"))
@@ -230,6 +255,11 @@ void read_tracker(const Value& v, TrackerSpec& tracker, const fs::path& scenario
   }
   if (auto x = s.get("init"))
     tracker.init_by_detection = x->choice<bool>({{"detect", true}, {"truth", false}});
+  if (auto x = s.get("timing")) tracker.real_timing = x->choice<bool>({{"ideal", false}, {"real", true}});
+  if (auto x = s.get("compute_ms")) {
+    if (!tracker.real_timing) x->at.fail("a compute time counts only with timing: real");
+    tracker.compute_time = x->number_in(kSpreadMs) * 1e-3;
+  }
 }
 
 void read_gain(const Value& v, GainSpec& gain) {
@@ -323,7 +353,7 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) t
   const Value document = yaml::load_file(path, {"scenario file"});
   const Map s(document, {"name", "description", "robot", "arm", "gripper", "object", "occluder", "background", "lighting",
                          "camera", "start", "desired", "start_gMo", "desired_gMo", "tracker", "control", "stop", "trials",
-                         "seed"});
+                         "seed", "robot_response"});
   const fs::path folder = fs::path(path).parent_path();
   Scenario scenario;
   scenario.file = path;
@@ -332,6 +362,7 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) t
   if (auto x = s.get("description")) scenario.description = x->as(kString);
   if (auto x = s.get("robot")) scenario.robot = x->choice<RobotKind>(robot_names());
   if (auto x = s.get("arm")) read_arm(*x, scenario.arm);
+  if (auto x = s.get("robot_response")) read_robot_response(*x, scenario.robot_response);
   scenario.grasp = read_grasp(s, document, scenario.robot, folder.string(), models_dir);
   read_object(s.required("object"), scenario.object, folder.string(), models_dir);
   if (auto x = s.get("occluder")) scenario.occluder = read_occluder(*x);
@@ -345,6 +376,11 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) t
   if (auto x = s.get("stop")) read_stop(*x, scenario.stop);
   if (auto x = s.get("trials")) read_trials(*x, scenario.trials);
   check_run_length(scenario);
+  // A command that arrives after the run has ended would be simulated as never sent.
+  if (scenario.camera.latency >= scenario.stop.max_time)
+    s.required("camera").at.child("latency_ms").fail(
+        "expected less than stop.max_time (" + yaml::plain_number(1e3 * scenario.stop.max_time) + " ms), got " +
+        yaml::plain_number(1e3 * scenario.camera.latency));
   if (auto x = s.get("seed")) scenario.seed = x->as(Rule<unsigned>{"a non-negative integer", any<unsigned>});
   return scenario;
 } catch (const yaml::Error& e) {

@@ -24,6 +24,7 @@ namespace icgp::servo {
 namespace {
 
 constexpr double kMm = 1000.0;            // metres -> millimetres
+constexpr double kMs = 1000.0;            // seconds -> milliseconds
 constexpr double kDeg = 180.0 / kPi;      // radians -> degrees
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -120,7 +121,7 @@ std::string step_table(const ServoResult& result, char separator, bool header) {
   if (header) {
     out += "time,servo_t_mm,servo_r_deg,track_t_mm,track_r_deg,error_norm";
     for (unsigned i = 0; i < n; ++i) out += ",v" + std::to_string(i);
-    out += ",lost,safety_stop,dropped,render_ms,track_ms,control_ms\n";
+    out += ",lost,safety_stop,dropped,render_ms,track_ms,control_ms,skipped,command_delay_ms\n";
     if (separator != ',') std::replace(out.begin(), out.end(), ',', separator);
   }
   for (const ServoStep& step : result.steps) {
@@ -138,6 +139,8 @@ std::string step_table(const ServoResult& result, char separator, bool header) {
     column(data_number(step.render_ms));
     column(data_number(step.track_ms));
     column(data_number(step.control_ms));
+    column(step.skipped ? "1" : "0");
+    column(data_number(step.command_delay * kMs));
     out += line + "\n";
   }
   return out;
@@ -148,7 +151,8 @@ std::string step_table(const ServoResult& result, char separator, bool header) {
 std::string plot_script(const ServoResult& result) {
   const unsigned n = velocity_columns(result);
   // Columns of step_table: 1 time, 2 servo_t_mm, 3 servo_r_deg, 4 track_t_mm, 5 track_r_deg,
-  // 6 error_norm, 7..6+n velocity, then lost, safety_stop, dropped, render, track, control ms.
+  // 6 error_norm, 7..6+n velocity, then lost, safety_stop, dropped, render, track, control ms,
+  // skipped, command delay ms.
   const unsigned first_velocity = 7;
   const unsigned safety_column = first_velocity + n + 1;
   bool any_safety_stop = false, any_lost = false;
@@ -164,7 +168,7 @@ std::string plot_script(const ServoResult& result) {
   std::string s;
   s += gnuplot_png_preamble("icgp servo (plot_run)", "gnuplot servo_plot.gp (in this folder)", 900, 600);
   s += "# Columns: time s, servo error mm / deg, tracker error mm / deg, |s - s*|, velocity (" +
-       std::to_string(n) + "), lost, safety stop, dropped, render / track / control ms.\n";
+       std::to_string(n) + "), lost, safety stop, dropped, render / track / control ms, skipped, command delay ms.\n";
   s += "$steps << EOD\n" + step_table(result, ' ', false) + "EOD\n\n";
   s += "set key inside right top opaque\nset xlabel 'simulated time (s)'\n";
   // Errors span decades: log scale, with values at or below the floor drawn on it.

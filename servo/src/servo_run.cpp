@@ -13,6 +13,8 @@
 
 #include "icgp/base/stop_request.h"
 #include "icgp/eval/metrics.h"
+#include "icgp/servo/command_channel.h"
+#include "icgp/servo/robot_response.h"
 #include "icgp/servo/servo_controller.h"
 #include "icgp/servo/simulated_robot.h"
 #include "icgp/visp/conversions.h"
@@ -69,6 +71,52 @@ class ProgressLine {
  private:
   bool enabled_;
   Clock::time_point last_{};
+};
+
+/// Simulated times this close are one instant (k·T plus a latency against frame times).
+constexpr double kSameInstant = 1e-9;
+
+/// When the command computed from a frame reaches the robot (CameraSpec::latency and
+/// jitter, plus the tracker's time with TrackerSpec::real_timing), and whether the tracker
+/// is free to take a frame. The jitter is drawn from its own stream of the run's seed, so
+/// that it leaves the images' noise as it is.
+class PipelineTiming {
+ public:
+  PipelineTiming(const Scenario& scenario, unsigned seed)
+      : camera_(scenario.camera), tracker_(scenario.tracker), random_(seed * 0xD1B54A32D192ED03ull + 0x4A17) {}
+
+  /// Whether a frame exposed at `time` finds the tracker free (always, with ideal timing).
+  bool tracker_free(double time) const { return time >= busy_until_ - kSameInstant; }
+
+  /// The tracker took `measured` seconds on the frame exposed at `time`: it is busy until it
+  /// is done (real timing). Returns when the command computed from that frame arrives.
+  double command_arrival(double time, double measured) {
+    double delay = camera_.latency + jitter();
+    if (tracker_.real_timing) {
+      const double compute = tracker_.compute_time.value_or(measured);
+      busy_until_ = time + compute;
+      delay += compute;
+    }
+    return time + std::max(delay, 0.0);
+  }
+
+ private:
+  double jitter() {
+    switch (camera_.jitter.distribution) {
+      case JitterSpec::Distribution::kUniform:
+        return std::uniform_real_distribution<double>(-camera_.jitter.spread, camera_.jitter.spread)(random_);
+      case JitterSpec::Distribution::kNormal:
+        return std::normal_distribution<double>(0.0, camera_.jitter.spread)(random_);
+      case JitterSpec::Distribution::kNone:
+        break;
+    }
+    return 0.0;
+  }
+
+  CameraSpec camera_;
+  TrackerSpec tracker_;
+  std::mt19937_64 random_;
+  double busy_until_ = -std::numeric_limits<double>::infinity();
 };
 
 /// The pose the control law drives: the camera's to the object (cMo), or in a grasp the
@@ -208,6 +256,9 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     estimator->start(first, trusted_cMo, trusted_cMg);
   }
 
+  PipelineTiming timing(scenario, options.seed);
+  CommandChannel channel(vpColVector(velocity_size(scenario.robot), 0.0));
+  RobotResponse response(scenario.robot_response, scenario.robot);
   ConvergenceMonitor convergence(scenario.stop);
   ProgressLine progress(options.progress);
   PoseEstimate estimate;
@@ -225,7 +276,9 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     const auto t1 = Clock::now();
     previous_wMc = wMc;
     step.dropped = capture.dropped;
-    if (!capture.dropped && !started) {
+    step.skipped = !capture.dropped && !timing.tracker_free(step.time);
+    const bool tracked = !capture.dropped && !step.skipped;
+    if (tracked && !started) {
       estimate = estimator->detect(capture, kinematic_cMg());
       started = !estimate.lost;
       if (!estimate.cMg) estimate.cMg = kinematic_cMg();
@@ -242,7 +295,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
         trusted_cMo = estimate.cMo;
         trusted_cMg = estimate.cMg;
       }
-    } else if (!capture.dropped) {
+    } else if (tracked) {
       estimate = estimator->track(capture);
       if (!estimate.cMg) estimate.cMg = kinematic_cMg();
       if (estimate.lost && !estimator->recovers()) {
@@ -258,24 +311,33 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     const vpHomogeneousMatrix servoed_truth = servoed_pose(capture.cMo_true, capture.cMg_true);
     const auto t2 = Clock::now();
 
-    vpColVector velocity;
     step.lost = estimate.lost;
     if (estimate.lost && !estimate.why_lost.empty()) last_why_lost = estimate.why_lost;
-    if (estimate.lost) {
-      // Safety stop: never move on a pose the tracker itself does not trust.
-      velocity = vpColVector(velocity_size(scenario.robot), 0.0);
-      step.safety_stop = true;
-      if (!stopped) ++result.safety_stops;
-    } else if (controller) {
-      velocity = controller->compute(servoed_estimate, *robot);
-      step.servo_error_norm = controller->error().frobeniusNorm();
-    } else {
-      velocity = custom_velocity(options.control_law, {step.time, servoed_estimate, desired, scenario.robot,
-                                                       velocity_size(scenario.robot), robot_jacobian(*robot)});
-      step.servo_error_norm = std::numeric_limits<double>::quiet_NaN();  // no features s
+    // With real timing a command follows only a frame the tracker took; ideally the law also
+    // runs again on the last estimate when the sensor lost the frame.
+    step.command_delay = std::numeric_limits<double>::quiet_NaN();
+    if (tracked || !scenario.tracker.real_timing) {
+      vpColVector velocity;
+      if (estimate.lost) {
+        // Safety stop: never move on a pose the tracker itself does not trust.
+        velocity = vpColVector(velocity_size(scenario.robot), 0.0);
+        step.safety_stop = true;
+        if (!stopped) ++result.safety_stops;
+      } else if (controller) {
+        velocity = controller->compute(servoed_estimate, *robot);
+        step.servo_error_norm = controller->error().frobeniusNorm();
+      } else {
+        velocity = custom_velocity(options.control_law, {step.time, servoed_estimate, desired, scenario.robot,
+                                                         velocity_size(scenario.robot), robot_jacobian(*robot)});
+        step.servo_error_norm = std::numeric_limits<double>::quiet_NaN();  // no features s
+      }
+      stopped = estimate.lost;
+      const double arrival = timing.command_arrival(step.time, tracked ? 1e-3 * ms_between(t1, t2) : 0.0);
+      step.command_delay = arrival - step.time;
+      channel.send(velocity, arrival);
     }
-    stopped = estimate.lost;
-    step.velocity = robot->move(velocity, dt);
+    for (const CommandChannel::Hold& hold : channel.holds(step.time, dt))
+      step.velocity = response.follow(*robot, hold.velocity, hold.duration);
     const auto t3 = Clock::now();
 
     step.cMo_true = capture.cMo_true;

@@ -38,14 +38,18 @@ class FreeFlyingCamera final : public SimulatedRobot {
   // The control law gives the camera twist directly: no Jacobian to set.
   void update_jacobians(vpServo&) const override {}
 
-  vpColVector move(const vpColVector& velocity, double dt) override {
+  vpColVector saturated(const vpColVector& velocity) const override {
     if (velocity.size() != 6) throw std::invalid_argument("free-flying camera: expected a 6-vector twist");
     const double linear = std::sqrt(velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
     const double angular = std::sqrt(velocity[3] * velocity[3] + velocity[4] * velocity[4] + velocity[5] * velocity[5]);
     // One factor for both parts, so the direction of the screw motion is kept.
     const double s = std::min(scale_to_limit(linear, control_.max_linear_velocity),
                               scale_to_limit(angular, control_.max_angular_velocity));
-    const vpColVector applied = velocity * s;
+    return velocity * s;
+  }
+
+  vpColVector move(const vpColVector& velocity, double dt) override {
+    const vpColVector applied = saturated(velocity);
     simulator_.setSamplingTime(dt);
     simulator_.setVelocity(vpRobot::CAMERA_FRAME, applied);
     return applied;
@@ -82,11 +86,15 @@ class Viper850Arm : public SimulatedRobot {
                                     std::to_string(vpMath::deg(q_max_[i])) + "] deg");
   }
 
-  vpColVector move(const vpColVector& velocity, double dt) override {
+  vpColVector saturated(const vpColVector& velocity) const override {
     if (velocity.size() != 6) throw std::invalid_argument("Viper 850: expected 6 joint velocities");
     double largest = 0.0;
     for (unsigned i = 0; i < 6; ++i) largest = std::max(largest, std::abs(velocity[i]));
-    const vpColVector commanded = velocity * scale_to_limit(largest, control_.max_joint_velocity);
+    return velocity * scale_to_limit(largest, control_.max_joint_velocity);
+  }
+
+  vpColVector move(const vpColVector& velocity, double dt) override {
+    const vpColVector commanded = saturated(velocity);
     const vpColVector q_before = q_;
     q_ += commanded * dt;
     if (clamp_to_limits()) ++joint_limit_stops_;

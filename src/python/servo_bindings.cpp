@@ -82,6 +82,8 @@ py::dict step_dict(const servo::ServoStep& s) {
   d["render_ms"] = s.render_ms;
   d["track_ms"] = s.track_ms;
   d["control_ms"] = s.control_ms;
+  d["skipped"] = s.skipped;
+  d["command_delay_ms"] = s.command_delay * 1e3;
   return d;
 }
 
@@ -239,8 +241,10 @@ error over the run), median_track_ms, steps_per_s, safety_stops, recovered, lost
 (lost at the end: the tracker's last reason, such as why the object was never found;
 empty otherwise), joint_limit_stops, interrupted, and steps: one dict per step with time, cMo_true and
 cMo_estimated (4x4), servo_t_mm / servo_r_deg (true servoed pose to the desired one),
-track_t_mm / track_r_deg (estimated to true), velocity (the one applied), servo_error_norm,
-lost, safety_stop, dropped, render_ms, track_ms, control_ms.
+track_t_mm / track_r_deg (estimated to true), velocity (the one the robot follows at the
+end of the step), servo_error_norm, lost, safety_stop, dropped, render_ms, track_ms,
+control_ms, skipped (the tracker was busy: timing real) and command_delay_ms (from the
+frame's exposure to its command's arrival; NaN for a skipped frame).
 
 An exception raised in on_step or control ends the run and is raised from run() as it was
 (Ctrl-C too: KeyboardInterrupt at the next step). Bad arguments raise ValueError or

@@ -283,11 +283,11 @@ TEST_CASE("write_step_csv writes a header and one line per step", "[servo][repor
   REQUIRE(lines.size() == 1 + 3);
   CHECK(lines[0] ==
         "time,servo_t_mm,servo_r_deg,track_t_mm,track_r_deg,error_norm,v0,v1,v2,v3,v4,v5,"
-        "lost,safety_stop,dropped,render_ms,track_ms,control_ms");
-  for (const std::string& line : lines) CHECK(count(line, ',') == 17);
+        "lost,safety_stop,dropped,render_ms,track_ms,control_ms,skipped,command_delay_ms");
+  for (const std::string& line : lines) CHECK(count(line, ',') == 19);
   CHECK(lines[1].rfind("0,20,", 0) == 0);  // time 0 s, servo error 20 mm
   CHECK(lines[2].find(",0,0,0,0,0,0,0,0,0,") != std::string::npos);  // zero velocity, flags
-  CHECK(lines[3].find(",0,0,1,3,14,0.1") != std::string::npos);     // dropped, timings
+  CHECK(lines[3].find(",0,0,1,3,14,0.1,0,0") != std::string::npos);  // dropped, timings, not skipped, no delay
 }
 
 TEST_CASE("plot_run draws error.png and velocity.png with gnuplot", "[servo][report]") {

@@ -193,6 +193,11 @@ TEST_CASE("keys left out of a scenario take their defaults") {
   CHECK((s.stop.max_time == 20 && s.stop.settle_time == 0.2 && s.seed == 1));
   CHECK(s.trials.translation == Approx(0.02));
   CHECK(s.trials.rotation == Approx(10 * kDegree));
+  // The ideal loop: no latency, no jitter, the tracker takes no time, the robot follows at once.
+  CHECK((s.camera.latency == 0.0 && s.camera.jitter.spread == 0.0));
+  CHECK(s.camera.jitter.distribution == icgp::servo::JitterSpec::Distribution::kNone);
+  CHECK((!s.tracker.real_timing && !s.tracker.compute_time));
+  CHECK(s.robot_response.immediate());
 
   // The depth camera defaults to the colour camera as the file gives it; `occluder:` alone
   // places the default occluder.
@@ -219,6 +224,47 @@ TEST_CASE("a scenario sets how the tracker starts and when the object is taken a
   const std::string bad = dir.write("bad.yaml", kMinimal + "tracker: {init: guess}\n");
   CHECK_THROWS_WITH(load_scenario(bad, ICGP_MODELS_DIR),
                     Contains(bad + ": tracker.init: expected one of detect, truth"));
+}
+
+TEST_CASE("a scenario sets the loop's timing and the robot's response, each bounded") {
+  TempDir dir("icgp-scenario");
+  const Scenario s = load_scenario(
+      dir.write("timed.yaml", kMinimal + "camera: {latency_ms: 66.7, jitter: {distribution: normal, ms: 4}}\n"
+                                         "tracker: {timing: real, compute_ms: 12}\n"
+                                         "robot_response: {lag_ms: 30, max_linear_acceleration: 2, "
+                                         "max_angular_acceleration_deg: 90, max_joint_acceleration_deg: 180}\n"),
+      ICGP_MODELS_DIR);
+  CHECK(s.camera.latency == Approx(0.0667));
+  CHECK(s.camera.jitter.distribution == icgp::servo::JitterSpec::Distribution::kNormal);
+  CHECK(s.camera.jitter.spread == Approx(0.004));
+  CHECK(s.tracker.real_timing);
+  REQUIRE(s.tracker.compute_time);
+  CHECK(*s.tracker.compute_time == Approx(0.012));
+  CHECK(s.robot_response.lag == Approx(0.03));
+  CHECK(s.robot_response.max_linear_acceleration == 2.0);
+  CHECK(s.robot_response.max_angular_acceleration == Approx(90 * kDegree));
+  CHECK(s.robot_response.max_joint_acceleration == Approx(180 * kDegree));
+  CHECK_FALSE(s.robot_response.immediate());
+  // Measured compute time: timing real without compute_ms.
+  CHECK_FALSE(load_scenario(dir.write("measured.yaml", kMinimal + "tracker: {timing: real}\n"), ICGP_MODELS_DIR)
+                  .tracker.compute_time);
+
+  const std::string file = (dir.path() / "bad.yaml").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"camera: {latency_ms: -5}", "camera.latency_ms: expected a number in [0, 86400000], got -5"},
+      {"camera: {latency_ms: 20000}", "camera.latency_ms: expected less than stop.max_time (20000 ms), got 20000"},
+      {"camera: {jitter: {distribution: gamma, ms: 3}}", "camera.jitter.distribution: expected one of none, uniform, normal"},
+      {"camera: {jitter: {distribution: uniform, ms: -1}}", "camera.jitter.ms: expected a number in [0, 10000], got -1"},
+      {"tracker: {timing: fast}", "tracker.timing: expected one of ideal, real"},
+      {"tracker: {compute_ms: 10}", "tracker.compute_ms: a compute time counts only with timing: real"},
+      {"robot_response: {lag_ms: -30}", "robot_response.lag_ms: expected a number in [0, 10000], got -30"},
+      {"robot_response: {max_linear_acceleration: 0}",
+       "robot_response.max_linear_acceleration: expected a number in (0, 1000000], got 0"},
+  };
+  for (const auto& [yaml, message] : cases) {
+    INFO(yaml);
+    CHECK_THAT(error_of(dir, kMinimal + yaml + "\n"), Contains(file + ": " + message));
+  }
 }
 
 TEST_CASE("model references resolve to a folder of models/ or a file next to the scenario") {

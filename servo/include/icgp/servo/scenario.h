@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -117,6 +118,15 @@ struct NoiseSpec : SensorNoise {
   double frame_drop = 0.0;  ///< probability that a frame is lost (the tracker gets nothing new)
 };
 
+/// How a frame's latency varies from frame to frame (YAML camera.jitter: {distribution, ms}).
+struct JitterSpec {
+  enum class Distribution { kNone, kUniform, kNormal };
+  Distribution distribution = Distribution::kNone;
+  /// Seconds (YAML ms): the half-width of a uniform distribution, the standard deviation of
+  /// a normal one.
+  double spread = 0.0;
+};
+
 /// The RGB-D sensor.
 struct CameraSpec {
   Intrinsics color = Intrinsics::centred(640, 480, 600.0);
@@ -124,6 +134,11 @@ struct CameraSpec {
   Pose depth_T_color;  ///< colour camera -> depth camera (ViSP's depth_M_color)
   double rate_hz = 30.0;
   NoiseSpec noise;
+  /// Seconds from a frame's exposure to the command computed from it reaching the robot
+  /// (YAML latency_ms): readout, transport, the control computation, the robot's interface.
+  /// The tracker's own time comes on top when TrackerSpec::real_timing says so.
+  double latency = 0.0;
+  JitterSpec jitter;  ///< added to `latency` frame by frame (a negative total counts as 0)
 };
 
 struct TrackerSpec {
@@ -140,6 +155,13 @@ struct TrackerSpec {
   /// true pose ("truth", for comparison). ViSP's tracker and the oracle always start from
   /// the truth.
   bool init_by_detection = true;
+  /// Whether the tracker's time counts (YAML timing: ideal | real). Ideal: a frame is
+  /// tracked in no time. Real: its compute time delays the frame's command, and a frame
+  /// that comes while the tracker is still busy is skipped, as a real-time pipeline must.
+  bool real_timing = false;
+  /// Real timing: the compute time of every frame, seconds (YAML compute_ms), so that a
+  /// batch does not depend on the machine; unset: the time measured on each frame.
+  std::optional<double> compute_time;
 };
 
 /// vpAdaptiveGain(at_zero, at_infinity, slope_at_zero); a constant gain when at_zero ==
@@ -157,6 +179,25 @@ struct ControlSpec {
   double max_linear_velocity = 0.1;   ///< m/s, free-flying camera saturation
   double max_angular_velocity = 0.5;  ///< rad/s (YAML: deg/s), free-flying camera saturation
   double max_joint_velocity = 1.0;    ///< rad/s, arms only (YAML: deg/s)
+};
+
+/// The robot's low-level controller (YAML robot_response): how the velocity the robot
+/// follows answers the commanded one. The defaults follow it at once, as an ideal robot.
+struct ResponseSpec {
+  double lag = 0.0;  ///< first-order time constant, seconds (YAML lag_ms)
+  /// Acceleration limits (YAML max_linear_acceleration in m/s², max_angular_acceleration_deg
+  /// and max_joint_acceleration_deg in deg/s²), +inf when not given: of the free-flying
+  /// camera's linear and angular velocity (norms, so that the motion keeps its direction),
+  /// and of each joint of an arm.
+  double max_linear_acceleration = kUnlimited;   ///< m/s²
+  double max_angular_acceleration = kUnlimited;  ///< rad/s²
+  double max_joint_acceleration = kUnlimited;    ///< rad/s²
+  static constexpr double kUnlimited = std::numeric_limits<double>::infinity();
+  /// Follows every command at once.
+  bool immediate() const {
+    return lag == 0.0 && max_linear_acceleration == kUnlimited && max_angular_acceleration == kUnlimited &&
+           max_joint_acceleration == kUnlimited;
+  }
 };
 
 /// When a run ends, and what counts as success.
@@ -210,6 +251,7 @@ struct Scenario {
   std::string description;  ///< one line for the summary
   std::string file;         ///< where it was read from
   RobotKind robot = RobotKind::kFreeFlyingCamera;
+  ResponseSpec robot_response;
   ArmSpec arm;
   ObjectSpec object;
   std::optional<OccluderSpec> occluder;

@@ -26,7 +26,9 @@ struct ServoStep {
   /// Estimated servoed pose to the true one; NaN while the object is out of the scene
   /// (ObjectSpec::removed_for), as the servo error, and before the tracker first found it.
   double track_t = 0.0, track_r = 0.0;
-  vpColVector velocity;               ///< applied: camera twist (v, ω) or joint velocities
+  /// Followed by the robot at the end of the step's frame period: camera twist (v, ω) or
+  /// joint velocities.
+  vpColVector velocity;
   /// |s - s*| of the scenario's control law (vpServo); NaN when a control law given in code
   /// (ServoRunOptions::control_law) computed the velocity, as it has no features s; 0 at a
   /// safety stop, where no law runs.
@@ -34,6 +36,10 @@ struct ServoStep {
   bool lost = false;                  ///< the tracker reported lost
   bool safety_stop = false;           ///< the commanded velocity was zeroed
   bool dropped = false;               ///< the sensor lost this frame
+  bool skipped = false;  ///< the frame came while the tracker was busy (TrackerSpec::real_timing)
+  /// Seconds from the frame's exposure to the arrival at the robot of the command computed
+  /// from it; NaN when none was (a skipped frame).
+  double command_delay = 0.0;
   double render_ms = 0.0, track_ms = 0.0, control_ms = 0.0;  ///< wall time of each part
 };
 

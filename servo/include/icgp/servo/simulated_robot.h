@@ -34,10 +34,12 @@ class SimulatedRobot {
   /// set_cVf/set_fVe/set_eJe), before vpServo::computeControlLaw.
   virtual void update_jacobians(vpServo& task) const = 0;
 
-  /// Applies `velocity` (what vpServo::computeControlLaw returned: the camera twist for a
-  /// free-flying camera, joint velocities for an arm) for `dt` seconds. The velocity is
-  /// scaled down uniformly when it exceeds the robot's limits; an arm stops a joint at its
-  /// limit. Returns the velocity actually applied.
+  /// `velocity` (what vpServo::computeControlLaw returned: the camera twist for a
+  /// free-flying camera, joint velocities for an arm) scaled down uniformly to the robot's
+  /// velocity limits, when it exceeds them.
+  virtual vpColVector saturated(const vpColVector& velocity) const = 0;
+  /// Applies saturated(velocity) for `dt` seconds; an arm stops a joint at its limit.
+  /// Returns the velocity actually applied.
   virtual vpColVector move(const vpColVector& velocity, double dt) = 0;
 
   /// Number of moves in which an arm joint was stopped at its limit.
