@@ -14,6 +14,7 @@
 #include "icgp/render/scene_props.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/servo/true_object.h"
 #include "icgp/visp/conversions.h"
 
 namespace icgp::servo {
@@ -37,7 +38,8 @@ vpHomogeneousMatrix interpolate(const vpHomogeneousMatrix& from, const vpHomogen
 }  // namespace
 
 struct RgbdSimulator::Impl {
-  Scenario scenario;
+  Scenario scenario;  ///< with the true calibration: what the images are made with
+  CameraSpec nominal;  ///< the calibration the sensor reports
   Renderer renderer;
   Renderer::BodyHandle object{}, occluder{}, gripper{};  ///< occluder, gripper: when the scenario has one
   vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
@@ -45,8 +47,13 @@ struct RgbdSimulator::Impl {
   RgbdCapture capture;
   bool has_capture = false;
 
-  Impl(const Scenario& s, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& wMo, std::uint64_t seed)
-      : scenario(s), world_T_camera_start(wMc), world_T_object_start(wMo), noise(seed) {}
+  Impl(const Scenario& s, const TrueCalibration& truth, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& wMo,
+       std::uint64_t seed)
+      : scenario(s), nominal(s.camera), world_T_camera_start(wMc), world_T_object_start(wMo), noise(seed) {
+    scenario.camera.color = truth.color;
+    scenario.camera.depth = truth.depth;
+    scenario.camera.depth_T_color = truth.depth_T_color;
+  }
 
   void add_background(std::uint64_t seed) {
     const BackgroundSpec& b = scenario.background;
@@ -117,17 +124,22 @@ struct RgbdSimulator::Impl {
 
 RgbdSimulator::RgbdSimulator(const Scenario& scenario, const vpHomogeneousMatrix& world_T_camera,
                              const vpHomogeneousMatrix& world_T_object, std::uint64_t seed)
+    : RgbdSimulator(scenario, nominal_calibration(scenario), world_T_camera, world_T_object, seed) {}
+
+RgbdSimulator::RgbdSimulator(const Scenario& scenario, const TrueCalibration& truth,
+                             const vpHomogeneousMatrix& world_T_camera, const vpHomogeneousMatrix& world_T_object,
+                             std::uint64_t seed)
     // Whole frames render faster on llvmpipe's raster threads; the choice must come before
     // the process's first render (a tracker made earlier has chosen for the process).
     : impl_((choose_software_raster_threads(SoftwareRasterThreads::kPerCore),
-             std::make_unique<Impl>(scenario, world_T_camera, world_T_object, seed))) {
+             std::make_unique<Impl>(scenario, truth, world_T_camera, world_T_object, seed))) {
   Impl& d = *impl_;
   Lighting lighting;
   lighting.direction_in_camera = scenario.lighting.direction_in_camera.normalized().cast<float>();
   lighting.ambient = static_cast<float>(scenario.lighting.ambient);
   lighting.diffuse = static_cast<float>(scenario.lighting.diffuse);
   d.renderer.set_lighting(lighting);
-  d.object = d.renderer.add_body(load_any_mesh(scenario.object.model), 1);
+  d.object = d.renderer.add_body(true_object_mesh(scenario.object, seed), 1);
   d.add_background(seed);
   if (scenario.occluder) d.occluder = d.renderer.add_body(box_mesh(scenario.occluder->size, kOccluderColor), 3);
   if (scenario.grasp) d.gripper = d.renderer.add_body(load_any_mesh(scenario.grasp->gripper_model), 4);
@@ -178,10 +190,8 @@ RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc,
   return c;
 }
 
-vpCameraParameters RgbdSimulator::color_camera() const { return to_camera_parameters(impl_->scenario.camera.color); }
-vpCameraParameters RgbdSimulator::depth_camera() const { return to_camera_parameters(impl_->scenario.camera.depth); }
-vpHomogeneousMatrix RgbdSimulator::depth_M_color() const {
-  return to_homogeneous_matrix(impl_->scenario.camera.depth_T_color);
-}
+vpCameraParameters RgbdSimulator::color_camera() const { return to_camera_parameters(impl_->nominal.color); }
+vpCameraParameters RgbdSimulator::depth_camera() const { return to_camera_parameters(impl_->nominal.depth); }
+vpHomogeneousMatrix RgbdSimulator::depth_M_color() const { return to_homogeneous_matrix(impl_->nominal.depth_T_color); }
 
 }  // namespace icgp::servo

@@ -62,6 +62,10 @@ constexpr Interval kLinearVelocity{0.0, 10.0, true};    ///< m/s
 constexpr Interval kAngularVelocityDeg{0.0, 3600.0, true};  ///< deg/s
 constexpr Interval kThresholdMm{0.0, 1000.0};           ///< convergence thresholds and trial offsets
 constexpr Interval kThresholdDeg{0.0, 180.0};
+constexpr Interval kFocalErrorPercent{0.0, 50.0};     ///< %: of the focal length
+constexpr Interval kScaleErrorPercent{-50.0, 50.0};   ///< %: of the object's size
+constexpr Interval kVertexNoiseMm{0.0, 100.0};        ///< mm
+constexpr Interval kPrincipalPointErrorPx{0.0, 1000.0};  ///< px
 constexpr Interval kDelayMs{0.0, 86400e3};              ///< ms: latency (a run checks it against max_time)
 constexpr Interval kSpreadMs{0.0, 1e4};                 ///< ms: jitter, lag, compute time
 constexpr Interval kLinearAcceleration{0.0, 1e6, true};  ///< m/s²
@@ -148,8 +152,11 @@ std::optional<GraspSpec> read_grasp(const Map& s, const Value& document, RobotKi
 }
 
 void read_object(const Value& v, ObjectSpec& object, const std::string& scenario_dir, const std::string& models_dir) {
-  const Map s(v, {"model", "regions", "motion", "removed"});
+  const Map s(v, {"model", "regions", "motion", "removed", "true_model", "scale_error_percent", "vertex_noise_mm"});
   object.model = model_file(s.required("model"), scenario_dir, models_dir);
+  if (auto x = s.get("true_model")) object.true_model = model_file(*x, scenario_dir, models_dir);
+  if (auto x = s.get("scale_error_percent")) object.scale_error = x->number_in(kScaleErrorPercent) * 1e-2;
+  if (auto x = s.get("vertex_noise_mm")) object.vertex_noise = x->number_in(kVertexNoiseMm) * 1e-3;
   if (auto x = s.get("regions"))
     for (const Value& region : x->elements("a list of region meshes"))
       object.regions.push_back(model_file(region, scenario_dir, models_dir));
@@ -226,6 +233,29 @@ void read_camera(const Value& v, CameraSpec& camera) {
   if (auto x = s.get("noise")) read_noise(*x, camera.noise);
   if (auto x = s.get("latency_ms")) camera.latency = x->number_in(kDelayMs) * 1e-3;
   if (auto x = s.get("jitter")) read_jitter(*x, camera.jitter);
+}
+
+void read_calibration_error(const Value& v, CalibrationErrorSpec& error, RobotKind robot) {
+  const Map s(v, {"focal_percent", "principal_point_px", "depth_T_color", "hand_eye", "joint_offsets_deg"});
+  if (auto x = s.get("focal_percent")) error.focal = x->number_in(kFocalErrorPercent) * 1e-2;
+  if (auto x = s.get("principal_point_px")) error.principal_point = x->number_in(kPrincipalPointErrorPx);
+  const auto read_pose_error = [](const Value& v, double& translation, double& rotation) {
+    const Map p(v, {"translation_mm", "rotation_deg"});
+    if (auto x = p.get("translation_mm")) translation = x->number_in(kThresholdMm) * 1e-3;
+    if (auto x = p.get("rotation_deg")) rotation = x->number_in(kThresholdDeg) * kDegree;
+  };
+  if (auto x = s.get("depth_T_color"))
+    read_pose_error(*x, error.depth_T_color_translation, error.depth_T_color_rotation);
+  if (auto x = s.get("hand_eye")) {
+    if (robot == RobotKind::kFreeFlyingCamera)
+      x->at.fail("a free-flying camera has no hand-eye calibration (robot is " + robot_name(robot) + ")");
+    read_pose_error(*x, error.hand_eye_translation, error.hand_eye_rotation);
+  }
+  if (auto x = s.get("joint_offsets_deg")) {
+    if (robot == RobotKind::kFreeFlyingCamera)
+      x->at.fail("a free-flying camera has no joints (robot is " + robot_name(robot) + ")");
+    error.joint_offset = x->number_in(kThresholdDeg) * kDegree;
+  }
 }
 
 void read_robot_response(const Value& v, ResponseSpec& response) {
@@ -353,7 +383,7 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) t
   const Value document = yaml::load_file(path, {"scenario file"});
   const Map s(document, {"name", "description", "robot", "arm", "gripper", "object", "occluder", "background", "lighting",
                          "camera", "start", "desired", "start_gMo", "desired_gMo", "tracker", "control", "stop", "trials",
-                         "seed", "robot_response"});
+                         "seed", "robot_response", "calibration_error"});
   const fs::path folder = fs::path(path).parent_path();
   Scenario scenario;
   scenario.file = path;
@@ -369,6 +399,7 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) t
   if (auto x = s.get("background")) read_background(*x, scenario.background, folder);
   if (auto x = s.get("lighting")) read_lighting(*x, scenario.lighting);
   if (auto x = s.get("camera")) read_camera(*x, scenario.camera);
+  if (auto x = s.get("calibration_error")) read_calibration_error(*x, scenario.calibration_error, scenario.robot);
   scenario.initial_cMo = object_pose(s.required("start"));
   if (!scenario.grasp) scenario.desired_cMo = object_pose(s.required("desired"));
   if (auto x = s.get("tracker")) read_tracker(*x, scenario.tracker, folder);

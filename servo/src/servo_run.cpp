@@ -11,6 +11,7 @@
 #include <string>
 #include <tuple>
 
+#include "icgp/base/splitmix64.h"
 #include "icgp/base/stop_request.h"
 #include "icgp/eval/metrics.h"
 #include "icgp/servo/command_channel.h"
@@ -76,6 +77,9 @@ class ProgressLine {
 /// Simulated times this close are one instant (k·T plus a latency against frame times).
 constexpr double kSameInstant = 1e-9;
 
+/// The seed's stream of latency jitter (icgp::seeded_stream purposes are per use).
+constexpr std::uint64_t kJitterStream = 17;
+
 /// When the command computed from a frame reaches the robot (CameraSpec::latency and
 /// jitter, plus the tracker's time with TrackerSpec::real_timing), and whether the tracker
 /// is free to take a frame. The jitter is drawn from its own stream of the run's seed, so
@@ -83,7 +87,7 @@ constexpr double kSameInstant = 1e-9;
 class PipelineTiming {
  public:
   PipelineTiming(const Scenario& scenario, unsigned seed)
-      : camera_(scenario.camera), tracker_(scenario.tracker), random_(seed * 0xD1B54A32D192ED03ull + 0x4A17) {}
+      : camera_(scenario.camera), tracker_(scenario.tracker), random_(seeded_stream(seed, kJitterStream)) {}
 
   /// Whether a frame exposed at `time` finds the tracker free (always, with ideal timing).
   bool tracker_free(double time) const { return time >= busy_until_ - kSameInstant; }
@@ -104,9 +108,9 @@ class PipelineTiming {
   double jitter() {
     switch (camera_.jitter.distribution) {
       case JitterSpec::Distribution::kUniform:
-        return std::uniform_real_distribution<double>(-camera_.jitter.spread, camera_.jitter.spread)(random_);
+        return random_.uniform(-camera_.jitter.spread, camera_.jitter.spread);
       case JitterSpec::Distribution::kNormal:
-        return std::normal_distribution<double>(0.0, camera_.jitter.spread)(random_);
+        return camera_.jitter.spread * random_.normal();
       case JitterSpec::Distribution::kNone:
         break;
     }
@@ -115,7 +119,7 @@ class PipelineTiming {
 
   CameraSpec camera_;
   TrackerSpec tracker_;
-  std::mt19937_64 random_;
+  SplitMix64 random_;
   double busy_until_ = -std::numeric_limits<double>::infinity();
 };
 
@@ -217,8 +221,10 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   const vpHomogeneousMatrix desired =
       to_homogeneous_matrix(scenario.grasp ? scenario.grasp->desired_gMo : scenario.desired_cMo);
 
-  std::unique_ptr<SimulatedRobot> robot = make_robot(scenario);
-  RgbdSimulator simulator(scenario, robot->world_T_camera(), initial_world_T_object(scenario, *robot), options.seed);
+  const TrueCalibration truth = draw_true_calibration(scenario, options.seed);
+  std::unique_ptr<SimulatedRobot> robot = make_robot(scenario, truth);
+  RgbdSimulator simulator(scenario, truth, robot->world_T_camera(), initial_world_T_object(scenario, *robot),
+                          options.seed);
   std::unique_ptr<PoseEstimator> estimator =
       options.make_estimator ? options.make_estimator(simulator) : make_pose_estimator(scenario.tracker, scenario, simulator);
   // The scenario's law, unless one is given in code.
@@ -226,13 +232,9 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   if (!options.control_law)
     controller = std::make_unique<ServoController>(scenario.control, desired,
                                                    bounding_box_corners(scenario.object.model), *robot);
-  // A tracker that follows the object alone gets the gripper from the arm's kinematics and
-  // the camera's exact extrinsics: cMg = cMw wMe(q) eMg.
-  const auto kinematic_cMg = [&]() -> std::optional<vpHomogeneousMatrix> {
-    const std::optional<vpHomogeneousMatrix> wMg = robot->world_T_gripper();
-    if (!wMg) return std::nullopt;
-    return robot->world_T_camera().inverse() * *wMg;
-  };
+  // A tracker that follows the object alone gets the gripper from the arm's encoders,
+  // kinematics and calibrated camera pose, as a real cell's would.
+  const auto kinematic_cMg = [&] { return robot->kinematic_camera_T_gripper(); };
 
   ServoResult result;
   result.scenario = scenario.name;

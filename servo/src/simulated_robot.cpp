@@ -73,7 +73,8 @@ class FreeFlyingCamera final : public SimulatedRobot {
 // wrong twist transform would show in the tests.
 class Viper850Arm : public SimulatedRobot {
  public:
-  explicit Viper850Arm(const Scenario& scenario) : control_(scenario.control), q_(6) {
+  Viper850Arm(const Scenario& scenario, const TrueCalibration& truth)
+      : joint_offsets_(truth.joint_offsets), control_(scenario.control), q_(6) {
     for (unsigned i = 0; i < 6; ++i) q_[i] = scenario.arm.initial_joints[i];
     q_min_ = model_.getJointMin();
     q_max_ = model_.getJointMax();
@@ -105,11 +106,21 @@ class Viper850Arm : public SimulatedRobot {
   int joint_limit_stops() const override { return joint_limit_stops_; }
 
  protected:
+  /// The flange where it truly is: at the joint angles the encoders report plus their offsets.
   vpHomogeneousMatrix f_T_e() const {
+    vpColVector q = q_;
+    for (unsigned i = 0; i < 6; ++i) q[i] += joint_offsets_[static_cast<int>(i)];
+    vpHomogeneousMatrix fMe;
+    model_.get_fMe(q, fMe);
+    return fMe;
+  }
+  /// The flange where the robot's controller believes it is, from its encoders.
+  vpHomogeneousMatrix nominal_f_T_e() const {
     vpHomogeneousMatrix fMe;
     model_.get_fMe(q_, fMe);
     return fMe;
   }
+  /// The Jacobian the controller computes, at the encoders' joint angles.
   vpMatrix e_J_e() const {
     vpMatrix eJe;
     model_.get_eJe(q_, eJe);
@@ -130,6 +141,7 @@ class Viper850Arm : public SimulatedRobot {
     return stopped;
   }
 
+  Eigen::Matrix<double, 6, 1> joint_offsets_;
   ControlSpec control_;
   vpColVector q_, q_min_, q_max_;
   int joint_limit_stops_ = 0;
@@ -138,12 +150,14 @@ class Viper850Arm : public SimulatedRobot {
 // Camera on the flange: wMc = fMe(q) eMc; camera twist = cVe eJe qdot.
 class Viper850EyeInHand final : public Viper850Arm {
  public:
-  using Viper850Arm::Viper850Arm;
+  Viper850EyeInHand(const Scenario& scenario, const TrueCalibration& truth)
+      : Viper850Arm(scenario, truth), camera_error_(to_homogeneous_matrix(truth.camera_error)) {}
 
+  // The camera where it truly is on the flange; the Jacobians take the calibrated eMc.
   vpHomogeneousMatrix world_T_camera() const override {
     vpHomogeneousMatrix eMc;
     model_.get_eMc(eMc);
-    return f_T_e() * eMc;
+    return f_T_e() * eMc * camera_error_;
   }
   vpServo::vpServoType servo_type() const override { return vpServo::EYEINHAND_L_cVe_eJe; }
   void update_jacobians(vpServo& task) const override {
@@ -153,15 +167,19 @@ class Viper850EyeInHand final : public Viper850Arm {
     task.set_eJe(e_J_e());
   }
   std::string name() const override { return "Viper 850 (eye-in-hand)"; }
+
+ private:
+  vpHomogeneousMatrix camera_error_;
 };
 
 // Fixed camera watching the object held at eMo: wMo = fMe(q) eMo. The camera is placed once,
 // where it sees the object at initial_cMo with the arm at its initial joints.
 class Viper850EyeToHand final : public Viper850Arm {
  public:
-  explicit Viper850EyeToHand(const Scenario& scenario)
-      : Viper850Arm(scenario), eMo_(to_homogeneous_matrix(scenario.arm.eMo)) {
-    world_T_camera_ = f_T_e() * eMo_ * to_homogeneous_matrix(scenario.initial_cMo).inverse();
+  Viper850EyeToHand(const Scenario& scenario, const TrueCalibration& truth)
+      : Viper850Arm(scenario, truth), eMo_(to_homogeneous_matrix(scenario.arm.eMo)) {
+    nominal_world_T_camera_ = nominal_f_T_e() * eMo_ * to_homogeneous_matrix(scenario.initial_cMo).inverse();
+    world_T_camera_ = nominal_world_T_camera_ * to_homogeneous_matrix(truth.camera_error);
   }
 
   vpHomogeneousMatrix world_T_camera() const override { return world_T_camera_; }
@@ -172,15 +190,16 @@ class Viper850EyeToHand final : public Viper850Arm {
   // (rotation and the [t]x R coupling), so cVf fVe = cVe: the end-effector twist eJe qdot
   // (at e, in e) seen in the camera frame.
   void update_jacobians(vpServo& task) const override {
-    task.set_cVf(world_T_camera_.inverse());  // cMf, constant
-    task.set_fVe(f_T_e());
+    task.set_cVf(nominal_world_T_camera_.inverse());  // cMf as calibrated, constant
+    task.set_fVe(nominal_f_T_e());
     task.set_eJe(e_J_e());
   }
   std::string name() const override { return "Viper 850 (eye-to-hand)"; }
 
  private:
   vpHomogeneousMatrix eMo_;
-  vpHomogeneousMatrix world_T_camera_;
+  vpHomogeneousMatrix nominal_world_T_camera_;  ///< where the calibration puts the camera
+  vpHomogeneousMatrix world_T_camera_;          ///< where it is
 };
 
 // A gripper on the flange (eMg), a fixed camera and an object standing still: the PBVS
@@ -188,14 +207,19 @@ class Viper850EyeToHand final : public Viper850Arm {
 // it servoes. Its twist is gVe eJe qdot, as the eye-in-hand camera's is cVe eJe qdot.
 class Viper850Grasp final : public Viper850Arm {
  public:
-  explicit Viper850Grasp(const Scenario& scenario)
-      : Viper850Arm(scenario), eMg_(to_homogeneous_matrix(grasp_of(scenario).eMg)) {
+  Viper850Grasp(const Scenario& scenario, const TrueCalibration& truth)
+      : Viper850Arm(scenario, truth), eMg_(to_homogeneous_matrix(grasp_of(scenario).eMg)) {
     const GraspSpec& grasp = grasp_of(scenario);
-    world_T_camera_ = gripper() * to_homogeneous_matrix(grasp.start_gMo) * to_homogeneous_matrix(scenario.initial_cMo).inverse();
+    nominal_world_T_camera_ = nominal_f_T_e() * eMg_ * to_homogeneous_matrix(grasp.start_gMo) *
+                              to_homogeneous_matrix(scenario.initial_cMo).inverse();
+    world_T_camera_ = nominal_world_T_camera_ * to_homogeneous_matrix(truth.camera_error);
   }
 
   vpHomogeneousMatrix world_T_camera() const override { return world_T_camera_; }
-  std::optional<vpHomogeneousMatrix> world_T_gripper() const override { return gripper(); }
+  std::optional<vpHomogeneousMatrix> world_T_gripper() const override { return f_T_e() * eMg_; }
+  std::optional<vpHomogeneousMatrix> kinematic_camera_T_gripper() const override {
+    return nominal_world_T_camera_.inverse() * nominal_f_T_e() * eMg_;
+  }
   vpServo::vpServoType servo_type() const override { return vpServo::EYEINHAND_L_cVe_eJe; }
   void update_jacobians(vpServo& task) const override {
     task.set_cVe(vpVelocityTwistMatrix(eMg_.inverse()));  // gVe, from the constant gMe
@@ -208,26 +232,29 @@ class Viper850Grasp final : public Viper850Arm {
     if (!scenario.grasp) throw std::invalid_argument("Viper 850 grasp: the scenario has no gripper (GraspSpec)");
     return *scenario.grasp;
   }
-  vpHomogeneousMatrix gripper() const { return f_T_e() * eMg_; }
-
   vpHomogeneousMatrix eMg_;
-  vpHomogeneousMatrix world_T_camera_;
+  vpHomogeneousMatrix nominal_world_T_camera_;  ///< where the calibration puts the camera
+  vpHomogeneousMatrix world_T_camera_;          ///< where it is
 };
 
 }  // namespace
 
-std::unique_ptr<SimulatedRobot> make_robot(const Scenario& scenario) {
+std::unique_ptr<SimulatedRobot> make_robot(const Scenario& scenario, const TrueCalibration& truth) {
   switch (scenario.robot) {
     case RobotKind::kFreeFlyingCamera:
       return std::make_unique<FreeFlyingCamera>(scenario.control);
     case RobotKind::kViper850EyeInHand:
-      return std::make_unique<Viper850EyeInHand>(scenario);
+      return std::make_unique<Viper850EyeInHand>(scenario, truth);
     case RobotKind::kViper850EyeToHand:
-      return std::make_unique<Viper850EyeToHand>(scenario);
+      return std::make_unique<Viper850EyeToHand>(scenario, truth);
     case RobotKind::kViper850Grasp:
-      return std::make_unique<Viper850Grasp>(scenario);
+      return std::make_unique<Viper850Grasp>(scenario, truth);
   }
   throw std::invalid_argument("make_robot: unknown robot kind");
+}
+
+std::unique_ptr<SimulatedRobot> make_robot(const Scenario& scenario) {
+  return make_robot(scenario, nominal_calibration(scenario));
 }
 
 vpHomogeneousMatrix initial_world_T_object(const Scenario& scenario, const SimulatedRobot& robot) {

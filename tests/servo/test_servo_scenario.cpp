@@ -267,6 +267,47 @@ TEST_CASE("a scenario sets the loop's timing and the robot's response, each boun
   }
 }
 
+TEST_CASE("a scenario gives its calibration errors (an arm's alone for hand-eye and joints) and the object's mismatch") {
+  TempDir dir("icgp-scenario");
+  const std::string arm = "robot: viper850_eye_in_hand\n";
+  const Scenario s = load_scenario(
+      dir.write("calibrated.yaml", kMinimal + arm +
+                                       "calibration_error: {focal_percent: 1, principal_point_px: 2, "
+                                       "depth_T_color: {translation_mm: 1, rotation_deg: 0.2}, "
+                                       "hand_eye: {translation_mm: 2, rotation_deg: 0.5}, joint_offsets_deg: 0.1}\n"),
+      ICGP_MODELS_DIR);
+  const icgp::servo::CalibrationErrorSpec& e = s.calibration_error;
+  CHECK(e.focal == Approx(0.01));
+  CHECK(e.principal_point == 2.0);
+  CHECK((e.depth_T_color_translation == Approx(0.001) && e.depth_T_color_rotation == Approx(0.2 * kDegree)));
+  CHECK((e.hand_eye_translation == Approx(0.002) && e.hand_eye_rotation == Approx(0.5 * kDegree)));
+  CHECK(e.joint_offset == Approx(0.1 * kDegree));
+
+  const Scenario m = load_scenario(
+      dir.write("mismatch.yaml", "object: {model: textured_box, true_model: textured_box, scale_error_percent: -0.5, "
+                                 "vertex_noise_mm: 0.2}\n" + kMinimal.substr(kMinimal.find("start"))),
+      ICGP_MODELS_DIR);
+  CHECK(same_file(m.object.true_model, m.object.model));
+  CHECK(m.object.scale_error == Approx(-0.005));
+  CHECK(m.object.vertex_noise == Approx(0.0002));
+
+  const std::string file = (dir.path() / "bad.yaml").string();
+  CHECK_THAT(error_of(dir, "object: {model: textured_box, scale_error_percent: 60}\n" +
+                               kMinimal.substr(kMinimal.find("start"))),
+             Contains(file + ": object.scale_error_percent: expected a number in [-50, 50], got 60"));
+  CHECK_THAT(error_of(dir, "object: {model: textured_box, true_model: no_such_mesh}\n" +
+                               kMinimal.substr(kMinimal.find("start"))),
+             Contains(file + ": object.true_model"));
+  CHECK_THAT(error_of(dir, kMinimal + "calibration_error: {focal_percent: -100}\n"),
+             Contains(file + ": calibration_error.focal_percent: expected a number in [0, 50], got -100"));
+  CHECK_THAT(error_of(dir, kMinimal + "calibration_error: {hand_eye: {translation_mm: 2}}\n"),
+             Contains(file + ": calibration_error.hand_eye: a free-flying camera has no hand-eye calibration"));
+  CHECK_THAT(error_of(dir, kMinimal + "calibration_error: {joint_offsets_deg: 0.1}\n"),
+             Contains(file + ": calibration_error.joint_offsets_deg: a free-flying camera has no joints"));
+  CHECK_THAT(error_of(dir, kMinimal + arm + "calibration_error: {hand_eye: {translation: 2}}\n"),
+             Contains(file + ": calibration_error.hand_eye"));
+}
+
 TEST_CASE("model references resolve to a folder of models/ or a file next to the scenario") {
   TempDir dir("icgp-scenario");
   const std::string models = ICGP_MODELS_DIR;

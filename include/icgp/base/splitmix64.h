@@ -2,6 +2,7 @@
 // The project's one pseudo-random generator.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 namespace icgp {
@@ -24,6 +25,11 @@ class SplitMix64 {
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
   /// Uniform in [low, high).
   double uniform(double low, double high) { return low + (high - low) * uniform(); }
+  /// Standard normal (Box–Muller, one value of each pair: two draws a value).
+  double normal() {
+    const double u = 1.0 - uniform();  // (0, 1]: the logarithm stays finite
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(6.283185307179586 * uniform());
+  }
   /// Uniform in [0, n) (multiply-shift; the bias of 2^-64 per value is far below anything seen).
   int below(int n) {
     return static_cast<int>((static_cast<unsigned __int128>(next()) * static_cast<unsigned>(n)) >> 64);

@@ -10,6 +10,7 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpRGBa.h>
 
+#include "icgp/servo/calibration_errors.h"
 #include "icgp/servo/scenario.h"
 
 namespace icgp::servo {
@@ -34,7 +35,13 @@ class RgbdSimulator {
  public:
   /// `world_T_camera`: where the colour camera starts (the background plane faces it);
   /// `world_T_object`: the object's pose in the world at time 0 (initial_world_T_object).
+  /// The cameras are exactly as the scenario says.
   RgbdSimulator(const Scenario& scenario, const vpHomogeneousMatrix& world_T_camera,
+                const vpHomogeneousMatrix& world_T_object, std::uint64_t seed);
+  /// The images are made with `truth`'s intrinsics and depth_T_color; color_camera(),
+  /// depth_camera() and depth_M_color() report the scenario's, as a sensor reports its
+  /// calibration, not its errors.
+  RgbdSimulator(const Scenario& scenario, const TrueCalibration& truth, const vpHomogeneousMatrix& world_T_camera,
                 const vpHomogeneousMatrix& world_T_object, std::uint64_t seed);
   ~RgbdSimulator();
   RgbdSimulator(const RgbdSimulator&) = delete;
@@ -54,6 +61,7 @@ class RgbdSimulator {
                        const std::optional<vpHomogeneousMatrix>& held_object = std::nullopt,
                        const std::optional<vpHomogeneousMatrix>& gripper = std::nullopt);
 
+  /// The calibration the sensor reports: the scenario's nominal values.
   vpCameraParameters color_camera() const;
   vpCameraParameters depth_camera() const;
   vpHomogeneousMatrix depth_M_color() const;

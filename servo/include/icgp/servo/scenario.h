@@ -70,6 +70,14 @@ struct ObjectSpec {
   std::string model;
   /// Meshes of the object's colour regions (multi-region tracking), resolved the same way.
   std::vector<std::string> regions;
+  /// The object is not its model: what the scene shows, while the tracker loads `model`.
+  /// Another mesh of the same object (YAML true_model, resolved as `model`; empty: `model`),
+  /// scaled about its origin by (1 + scale_error) (YAML scale_error_percent, signed), its
+  /// vertices moved by normal noise of this standard deviation (metres; YAML
+  /// vertex_noise_mm), the same at coincident vertices so that the surface stays closed.
+  std::string true_model;
+  double scale_error = 0.0;
+  double vertex_noise = 0.0;
   /// Moving target: constant linear velocity (m/s, world frame) during [start, start +
   /// duration] seconds of simulated time. Zero: static.
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
@@ -200,6 +208,23 @@ struct ResponseSpec {
   }
 };
 
+/// How far the cell's calibration is from the truth (YAML calibration_error). The tracker and
+/// the control law get the scenario's values, the nominal calibration; the simulator renders
+/// and moves with values this far from them, drawn per run from its seed
+/// (draw_calibration_errors): each size is given, its sign or direction is drawn. Zero: exact.
+struct CalibrationErrorSpec {
+  double focal = 0.0;            ///< relative error of fu and fv, both cameras (YAML focal_percent)
+  double principal_point = 0.0;  ///< pixels, both cameras (YAML principal_point_px)
+  /// The depth camera's extrinsics (YAML depth_T_color: {translation_mm, rotation_deg}).
+  double depth_T_color_translation = 0.0;  ///< metres
+  double depth_T_color_rotation = 0.0;     ///< radians
+  /// Hand-eye (YAML hand_eye: {translation_mm, rotation_deg}): the camera on the flange of an
+  /// eye-in-hand arm, or the fixed camera's pose in the arm's base frame.
+  double hand_eye_translation = 0.0;  ///< metres
+  double hand_eye_rotation = 0.0;     ///< radians
+  double joint_offset = 0.0;  ///< radians, each joint of an arm (YAML joint_offsets_deg)
+};
+
 /// When a run ends, and what counts as success.
 struct StopSpec {
   /// Success: the true final pose is this close to the desired pose.
@@ -258,6 +283,7 @@ struct Scenario {
   BackgroundSpec background;
   LightingSpec lighting;
   CameraSpec camera;
+  CalibrationErrorSpec calibration_error;
   /// Camera-object poses (ViSP cMo): where the run starts, and where the servo must bring it.
   /// A grasp has no desired_cMo (its camera and object stand still): it servoes
   /// grasp->desired_gMo.

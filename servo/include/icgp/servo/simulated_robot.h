@@ -9,6 +9,7 @@
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/vs/vpServo.h>
 
+#include "icgp/servo/calibration_errors.h"
 #include "icgp/servo/scenario.h"
 
 namespace icgp::servo {
@@ -27,6 +28,10 @@ class SimulatedRobot {
   /// Grasp: the gripper's pose in the world (wMg = fMe(q) eMg) as the arm's kinematics give
   /// it; nullopt for robots without a gripper.
   virtual std::optional<vpHomogeneousMatrix> world_T_gripper() const { return std::nullopt; }
+  /// Grasp: the gripper in the camera frame as the robot knows it, from its joint encoders,
+  /// its kinematics and the camera's calibrated pose (cMg = cMf fMe(q) eMg, nominal); nullopt
+  /// for robots without a gripper.
+  virtual std::optional<vpHomogeneousMatrix> kinematic_camera_T_gripper() const { return std::nullopt; }
 
   /// The vpServo interaction type this robot is controlled with (vpServo::setServo).
   virtual vpServo::vpServoType servo_type() const = 0;
@@ -50,7 +55,11 @@ class SimulatedRobot {
 /// The robot of `scenario`, at its start: the free-flying camera at the world origin, an
 /// arm at ArmSpec::initial_joints. Eye-to-hand, the fixed camera is placed where it sees
 /// the held object at the scenario's initial_cMo. Grasp, the object stands at
-/// GraspSpec::start_gMo from the gripper and the fixed camera sees it at initial_cMo.
+/// GraspSpec::start_gMo from the gripper and the fixed camera sees it at initial_cMo. With
+/// `truth`, the arm's joints and camera are truly where it says (its joint offsets and
+/// camera error): the robot moves and shows the camera there, while its Jacobians, and the
+/// placements above, take the nominal calibration. Without, the calibration is exact.
+std::unique_ptr<SimulatedRobot> make_robot(const Scenario& scenario, const TrueCalibration& truth);
 std::unique_ptr<SimulatedRobot> make_robot(const Scenario& scenario);
 
 /// Where the object is in the world at the start, so that the camera sees it at
