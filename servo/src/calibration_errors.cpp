@@ -51,6 +51,7 @@ TrueCalibration draw_true_calibration(const Scenario& scenario, std::uint64_t se
   const double color_angle = random.uniform(0.0, 2.0 * kPi), depth_angle = random.uniform(0.0, 2.0 * kPi);
   truth.color = moved_intrinsics(scenario.camera.color, color_sign * e.focal, e.principal_point, color_angle);
   truth.depth = moved_intrinsics(scenario.camera.depth, depth_sign * e.focal, e.principal_point, depth_angle);
+  truth.color_k1 = e.k1;
   truth.depth_T_color =
       random_motion(random, e.depth_T_color_translation, e.depth_T_color_rotation) * scenario.camera.depth_T_color;
   truth.camera_error = random_motion(random, e.hand_eye_translation, e.hand_eye_rotation);

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 #include <visp3/core/vpImageConvert.h>
 
 #include "icgp/base/pose.h"
@@ -35,11 +38,36 @@ vpHomogeneousMatrix interpolate(const vpHomogeneousMatrix& from, const vpHomogen
   return from * partial;
 }
 
+/// Where each pixel of an image through a lens of radial distortion k1 (x_d = x (1 + k1 r²))
+/// looks in the pinhole image of the same intrinsics: the maps of cv::remap. The
+/// undistorted point is found by fixed-point iteration; a pixel where the lens model folds
+/// over (1 + k1 r² near 0, far out in a wide image) maps outside the image, to black.
+std::pair<cv::Mat, cv::Mat> lens_maps(const Intrinsics& k, double k1) {
+  cv::Mat map_u(k.height, k.width, CV_32F), map_v(k.height, k.width, CV_32F);
+  for (int row = 0; row < k.height; ++row)
+    for (int col = 0; col < k.width; ++col) {
+      const double xd = (col - k.pu) / k.fu, yd = (row - k.pv) / k.fv;
+      double x = xd, y = yd;
+      bool folds = false;
+      for (int i = 0; i < 50 && !folds; ++i) {
+        const double factor = 1.0 + k1 * (x * x + y * y);
+        folds = factor < 0.25;
+        x = xd / factor;
+        y = yd / factor;
+      }
+      map_u.at<float>(row, col) = folds ? -1.f : static_cast<float>(k.fu * x + k.pu);
+      map_v.at<float>(row, col) = folds ? -1.f : static_cast<float>(k.fv * y + k.pv);
+    }
+  return {map_u, map_v};
+}
+
 }  // namespace
 
 struct RgbdSimulator::Impl {
   Scenario scenario;  ///< with the true calibration: what the images are made with
   CameraSpec nominal;  ///< the calibration the sensor reports
+  /// The colour lens's distortion as cv::remap maps; empty without.
+  cv::Mat lens_map_u, lens_map_v;
   Renderer renderer;
   Renderer::BodyHandle object{}, occluder{}, gripper{};  ///< occluder, gripper: when the scenario has one
   vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
@@ -53,6 +81,7 @@ struct RgbdSimulator::Impl {
     scenario.camera.color = truth.color;
     scenario.camera.depth = truth.depth;
     scenario.camera.depth_T_color = truth.depth_T_color;
+    if (truth.color_k1 != 0.0) std::tie(lens_map_u, lens_map_v) = lens_maps(truth.color, truth.color_k1);
   }
 
   void add_background(std::uint64_t seed) {
@@ -182,6 +211,13 @@ RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc,
   if (gripper) d.renderer.set_body_pose(d.gripper, to_pose(*gripper));
   d.place_occluder(time);
   cv::Mat color = d.render_color(wMc, previous_wMc);
+  if (!d.lens_map_u.empty()) {
+    // The lens bends the image before the sensor's noise; what it brings in from beyond
+    // the pinhole's field of view is black.
+    cv::Mat through_lens;
+    cv::remap(color, through_lens, d.lens_map_u, d.lens_map_v, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+    color = through_lens;
+  }
   d.noise.add_color_noise(color, d.scenario.camera.noise.color_sigma);
   to_vp_image(color, c.color);
   vpImageConvert::convert(c.color, c.grey);

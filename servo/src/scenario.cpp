@@ -64,6 +64,7 @@ constexpr Interval kThresholdMm{0.0, 1000.0};           ///< convergence thresho
 constexpr Interval kThresholdDeg{0.0, 180.0};
 constexpr Interval kFocalErrorPercent{0.0, 50.0};     ///< %: of the focal length
 constexpr Interval kScaleErrorPercent{-50.0, 50.0};   ///< %: of the object's size
+constexpr Interval kRadialDistortion{-0.5, 0.5};      ///< k1, normalised coordinates
 constexpr Interval kVertexNoiseMm{0.0, 100.0};        ///< mm
 constexpr Interval kPrincipalPointErrorPx{0.0, 1000.0};  ///< px
 constexpr Interval kDelayMs{0.0, 86400e3};              ///< ms: latency (a run checks it against max_time)
@@ -236,9 +237,10 @@ void read_camera(const Value& v, CameraSpec& camera) {
 }
 
 void read_calibration_error(const Value& v, CalibrationErrorSpec& error, RobotKind robot) {
-  const Map s(v, {"focal_percent", "principal_point_px", "depth_T_color", "hand_eye", "joint_offsets_deg"});
+  const Map s(v, {"focal_percent", "principal_point_px", "k1", "depth_T_color", "hand_eye", "joint_offsets_deg"});
   if (auto x = s.get("focal_percent")) error.focal = x->number_in(kFocalErrorPercent) * 1e-2;
   if (auto x = s.get("principal_point_px")) error.principal_point = x->number_in(kPrincipalPointErrorPx);
+  if (auto x = s.get("k1")) error.k1 = x->number_in(kRadialDistortion);
   const auto read_pose_error = [](const Value& v, double& translation, double& rotation) {
     const Map p(v, {"translation_mm", "rotation_deg"});
     if (auto x = p.get("translation_mm")) translation = x->number_in(kThresholdMm) * 1e-3;

@@ -5,6 +5,7 @@
 // against ViSP's Viper 850 model and the rendered images), and an object that is not its
 // model (checked against the model's own geometry).
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <visp3/core/vpMath.h>
@@ -189,4 +190,54 @@ TEST_CASE("model mismatch: the scene's object is scaled and its vertices moved, 
   CHECK(std::sqrt(sum_sq / a.size()) == Approx(std::sqrt(3.0) * 1e-3).epsilon(0.6));
   CHECK(true_object_mesh(object, 1).all_vertices() == b);  // the same seed, the same object
   CHECK(true_object_mesh(object, 2).all_vertices() != b);
+}
+
+TEST_CASE("calibration: a colour lens's radial distortion moves the image as x (1 + k1 r²) says", "[servo][calibration]") {
+  Scenario s;
+  s.object.model = ICGP_MODELS_DIR "/textured_box/textured_box.obj";
+  s.camera.color = s.camera.depth = icgp::Intrinsics::centred(320, 240, 300.0);
+  s.background.enabled = false;
+  // The box's front face 0.12 m right of the optical axis, where barrel distortion pulls it in.
+  s.initial_cMo = icgp::Pose::from_rotation_vector(Eigen::Vector3d(M_PI, 0, 0), Eigen::Vector3d(0.12, 0, 0.4));
+  TrueCalibration truth = nominal_calibration(s);
+  truth.color_k1 = -0.5;
+  const auto robot = make_robot(s);
+  const vpHomogeneousMatrix wMc = robot->world_T_camera();
+  const vpHomogeneousMatrix wMo = initial_world_T_object(s, *robot);
+  RgbdSimulator pinhole(s, wMc, wMo, 1), lens(s, truth, wMc, wMo, 1);
+  const auto on_box = [](const vpRGBa& p) { return p.R + p.G + p.B > 30; };
+  // The pinhole image's box pixels, moved by the forward model and weighted by the area the
+  // lens gives them (its Jacobian, (1 + k1 r²)(1 + 3 k1 r²)), against the lens image's.
+  const RgbdCapture& straight = pinhole.capture(0.0, wMc, wMc);
+  const icgp::Intrinsics& k = s.camera.color;
+  double predicted = 0.0, weight = 0.0, n = 0.0;
+  for (unsigned v = 0; v < straight.color.getHeight(); ++v)
+    for (unsigned u = 0; u < straight.color.getWidth(); ++u)
+      if (on_box(straight.color[v][u])) {
+        const double x = (u - k.pu) / k.fu, y = (v - k.pv) / k.fv, r2 = x * x + y * y;
+        const double area = (1.0 + truth.color_k1 * r2) * (1.0 + 3.0 * truth.color_k1 * r2);
+        predicted += area * (k.pu + k.fu * x * (1.0 + truth.color_k1 * r2));
+        weight += area;
+        n += 1.0;
+      }
+  predicted /= weight;
+  const RgbdCapture& bent = lens.capture(0.0, wMc, wMc);
+  double measured = 0.0, m = 0.0;
+  for (unsigned v = 0; v < bent.color.getHeight(); ++v)
+    for (unsigned u = 0; u < bent.color.getWidth(); ++u)
+      if (on_box(bent.color[v][u])) measured += u, m += 1.0;
+  measured /= m;
+  double straight_centroid = 0.0;
+  for (unsigned v = 0; v < straight.color.getHeight(); ++v)
+    for (unsigned u = 0; u < straight.color.getWidth(); ++u)
+      if (on_box(straight.color[v][u])) straight_centroid += u;
+  straight_centroid /= n;
+  INFO("box centroid: pinhole " << straight_centroid << " px, predicted " << predicted << ", through the lens "
+                                << measured);
+  CHECK(straight_centroid - predicted > 4.0);  // the distortion is large enough to see
+  CHECK(measured == Approx(predicted).margin(0.3));
+  // The sensor reports no distortion, and its depth image stays rectified.
+  CHECK(lens.color_camera().get_kud() == 0.0);
+  const unsigned pixels = straight.depth_raw.getSize();
+  CHECK(std::equal(straight.depth_raw.bitmap, straight.depth_raw.bitmap + pixels, bent.depth_raw.bitmap));
 }

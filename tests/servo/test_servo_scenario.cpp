@@ -272,13 +272,14 @@ TEST_CASE("a scenario gives its calibration errors (an arm's alone for hand-eye 
   const std::string arm = "robot: viper850_eye_in_hand\n";
   const Scenario s = load_scenario(
       dir.write("calibrated.yaml", kMinimal + arm +
-                                       "calibration_error: {focal_percent: 1, principal_point_px: 2, "
+                                       "calibration_error: {focal_percent: 1, principal_point_px: 2, k1: -0.05, "
                                        "depth_T_color: {translation_mm: 1, rotation_deg: 0.2}, "
                                        "hand_eye: {translation_mm: 2, rotation_deg: 0.5}, joint_offsets_deg: 0.1}\n"),
       ICGP_MODELS_DIR);
   const icgp::servo::CalibrationErrorSpec& e = s.calibration_error;
   CHECK(e.focal == Approx(0.01));
   CHECK(e.principal_point == 2.0);
+  CHECK(e.k1 == -0.05);
   CHECK((e.depth_T_color_translation == Approx(0.001) && e.depth_T_color_rotation == Approx(0.2 * kDegree)));
   CHECK((e.hand_eye_translation == Approx(0.002) && e.hand_eye_rotation == Approx(0.5 * kDegree)));
   CHECK(e.joint_offset == Approx(0.1 * kDegree));

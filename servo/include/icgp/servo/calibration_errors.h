@@ -15,6 +15,7 @@ namespace icgp::servo {
 /// moves with these; the tracker and the control law get the scenario's nominal values.
 struct TrueCalibration {
   Intrinsics color, depth;  ///< the cameras' true intrinsics
+  double color_k1 = 0.0;    ///< the colour lens's radial distortion (CalibrationErrorSpec::k1)
   Pose depth_T_color;       ///< the true colour camera -> depth camera
   /// Nominal camera -> true camera: on the flange (eye-in-hand, eMc_true = eMc eMc_error), or
   /// of the fixed camera in the arm's base frame (eye-to-hand and grasp).

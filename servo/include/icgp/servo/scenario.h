@@ -215,6 +215,10 @@ struct ResponseSpec {
 struct CalibrationErrorSpec {
   double focal = 0.0;            ///< relative error of fu and fv, both cameras (YAML focal_percent)
   double principal_point = 0.0;  ///< pixels, both cameras (YAML principal_point_px)
+  /// The colour lens's radial distortion, x_d = x (1 + k1 r²) in normalised coordinates
+  /// (signed, not drawn; negative: barrel), which the nominal calibration leaves out. The
+  /// depth image stays undistorted, as an RGB-D sensor rectifies its depth.
+  double k1 = 0.0;
   /// The depth camera's extrinsics (YAML depth_T_color: {translation_mm, rotation_deg}).
   double depth_T_color_translation = 0.0;  ///< metres
   double depth_T_color_rotation = 0.0;     ///< radians
