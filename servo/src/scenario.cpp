@@ -24,6 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using yaml::any;
+using yaml::convert;
+using yaml::Location;
 using yaml::Interval;
 using yaml::kBool;
 using yaml::kNonEmptyString;
@@ -381,8 +383,45 @@ const std::vector<std::pair<std::string, TrackerKind>>& tracker_names() {
   return names;
 }
 
-Scenario load_scenario(const std::string& path, const std::string& models_dir) try {
+namespace {
+
+/// Writes `override.value` at its dotted key path in `document`, creating the sections on
+/// the way; refuses a path through a value that is not a section, and a field that holds
+/// something other than a number.
+void write_field(const Value& document, const FieldValue& override) {
+  YAML::Node node = document.node;
+  Location at = document.at;
+  std::string::size_type begin = 0;
+  while (true) {
+    const std::string::size_type dot = override.field.find('.', begin);
+    const std::string key = override.field.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin);
+    if (key.empty()) at.fail("'" + override.field + "' is not a field (an empty key)");
+    if (!node.IsMap() && !node.IsNull()) at.fail("is not a section, so '" + override.field + "' is not a field");
+    at = at.child(key);
+    YAML::Node child = node[key];
+    if (dot == std::string::npos) {
+      if (child.IsDefined() && !child.IsNull() && !(child.IsScalar() && convert<double>(child)))
+        at.fail("holds " + yaml::describe(child) + ", not a number: only a numeric field can be set to " +
+                yaml::plain_number(override.value));
+      child = override.value;
+      return;
+    }
+    if (!child.IsDefined() || child.IsNull()) child = YAML::Node(YAML::NodeType::Map);
+    node.reset(child);
+    begin = dot + 1;
+  }
+}
+
+}  // namespace
+
+Scenario load_scenario(const std::string& path, const std::string& models_dir) {
+  return load_scenario(path, models_dir, {});
+}
+
+Scenario load_scenario(const std::string& path, const std::string& models_dir,
+                       const std::vector<FieldValue>& overrides) try {
   const Value document = yaml::load_file(path, {"scenario file"});
+  for (const FieldValue& override : overrides) write_field(document, override);
   const Map s(document, {"name", "description", "robot", "arm", "gripper", "object", "occluder", "background", "lighting",
                          "camera", "start", "desired", "start_gMo", "desired_gMo", "tracker", "control", "stop", "trials",
                          "seed", "robot_response", "calibration_error"});

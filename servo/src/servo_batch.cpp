@@ -17,7 +17,7 @@ ServoResult run_trial(const Scenario& scenario, TrackerKind tracker, int trial, 
 }
 
 TrialBatch run_trials(const Scenario& scenario, const std::vector<TrackerKind>& trackers, int trials,
-                      const RunDone& on_run, const ServoRunOptions& each_run) {
+                      const RunDone& on_run, const ServoRunOptions& each_run, const RunFailed& on_failure) {
   TrialBatch batch;
   batch.runs.resize(trackers.size());
   for (int i = 0; i < trials; ++i) {
@@ -28,13 +28,20 @@ TrialBatch run_trials(const Scenario& scenario, const std::vector<TrackerKind>& 
         batch.interrupted = true;
         return batch;
       }
-      trial.push_back(run_trial(scenario, tracker, i, each_run));
+      try {
+        trial.push_back(run_trial(scenario, tracker, i, each_run));
+      } catch (const std::exception& error) {
+        if (!on_failure) throw;
+        on_failure(i, tracker, error);
+        break;
+      }
       if (trial.back().interrupted) {
         batch.interrupted = true;
         return batch;
       }
       if (on_run) on_run(i, trial.back());
     }
+    if (trial.size() < trackers.size()) continue;  // a run threw: the trial is left out
     for (std::size_t k = 0; k < trackers.size(); ++k) batch.runs[k].push_back(std::move(trial[k]));
     ++batch.trials_done;
   }

@@ -63,27 +63,6 @@ void create_parent_folder(const std::string& path) {
                              "': " + error.message());
 }
 
-JsonObject summary_json(const TrialsSummary& s) {
-  const auto pair = [](const char* a, double va, const char* b, double vb) { return JsonObject().add(a, va).add(b, vb); };
-  return JsonObject()
-      .add("scenario", s.scenario)
-      .add("tracker", s.tracker)
-      .add("trials", s.trials)
-      .add("converged", s.converged)
-      .add("success_rate", s.success_rate)
-      .add("final_t_mm", pair("median", s.final_t_median * kMm, "max", s.final_t_max * kMm))
-      .add("final_r_deg", pair("median", s.final_r_median * kDeg, "max", s.final_r_max * kDeg))
-      .add("median_track_ms", s.median_track_ms)
-      .add("steps_per_s", s.steps_per_s)
-      .add("safety_stops", s.safety_stops)
-      .add("recovered", s.recovered)
-      // null when no run converged (-1 in TrialsSummary).
-      .add("converged_time_s_median", s.converged_time_median >= 0.0 ? s.converged_time_median : kNaN)
-      .add("track_t_mm", pair("mean", s.mean_track_t * kMm, "max", s.max_track_t * kMm))
-      .add("track_r_deg", pair("mean", s.mean_track_r * kDeg, "max", s.max_track_r * kDeg))
-      .add("interrupted", s.interrupted);
-}
-
 void write_text_file(const std::string& path, const std::string& text, const char* what) {
   create_parent_folder(path);
   std::ofstream out(path, std::ios::binary);
@@ -223,6 +202,28 @@ std::string plot_script(const ServoResult& result) {
 }
 
 }  // namespace
+
+JsonObject summary_json(const TrialsSummary& s) {
+  const auto pair = [](const char* a, double va, const char* b, double vb) { return JsonObject().add(a, va).add(b, vb); };
+  return JsonObject()
+      .add("scenario", s.scenario)
+      .add("tracker", s.tracker)
+      .add("trials", s.trials)
+      .add("converged", s.converged)
+      .add("success_rate", s.success_rate)
+      .add("final_t_mm", pair("median", s.final_t_median * kMm, "max", s.final_t_max * kMm))
+      .add("final_r_deg", pair("median", s.final_r_median * kDeg, "max", s.final_r_max * kDeg))
+      .add("median_track_ms", s.median_track_ms)
+      .add("steps_per_s", s.steps_per_s)
+      .add("safety_stops", s.safety_stops)
+      .add("recovered", s.recovered)
+      // null when no run converged (-1 in TrialsSummary).
+      .add("converged_time_s_median", s.converged_time_median >= 0.0 ? s.converged_time_median : kNaN)
+      .add("track_t_mm", pair("mean", s.mean_track_t * kMm, "max", s.max_track_t * kMm))
+      .add("track_r_deg", pair("mean", s.mean_track_r * kDeg, "max", s.max_track_r * kDeg))
+      .add("interrupted", s.interrupted);
+}
+
 
 bool succeeded(const ServoResult& result, const StopSpec& stop) {
   return result.converged && result.final_t <= stop.converged_translation &&

@@ -23,6 +23,7 @@
 #include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_report.h"
 #include "icgp/servo/servo_run.h"
+#include "icgp/servo/servo_sweep.h"
 #include "icgp/visp/cao_mesh_loader.h"
 #include "icgp/visp/conversions.h"
 #include "option_ranges.h"
@@ -53,6 +54,7 @@ struct ServoOptions {
   bool quiet = false;
   std::string scheduler;  ///< a Dask scheduler's address: the trials run on its workers
   int jobs = 0;           ///< > 0: the trials run on this many local worker processes
+  std::string sweep;      ///< FIELD=V1,V2,...: the trials at each value of a scenario field
 };
 
 TrackerKind tracker_kind(const std::string& name) {
@@ -256,7 +258,44 @@ void run_single(const ServoOptions& o, const Scenario& scenario, const fs::path&
 #endif
 }
 
+/// --sweep: the trials at each value of a scenario field, on the same seeded starts; the
+/// table, sweep.json (after every value) and sweep.png. Every value is read first, so that a
+/// field or value the scenario refuses stops the sweep before anything runs.
+void run_sweep(const ServoOptions& o, const fs::path& out) {
+  if (!o.video.empty() || o.display) throw std::invalid_argument("--video and --display show a single run, not a sweep");
+  const servo::SweepSpec sweep = servo::parse_sweep(o.sweep);
+  for (double value : sweep.values) servo::load_scenario(o.scenario, models_dir(), {{sweep.field, value}});
+  const Scenario scenario = servo::load_scenario(o.scenario, models_dir());
+  const std::vector<TrackerKind> kinds =
+      o.compare ? std::vector<TrackerKind>{TrackerKind::kOracle, TrackerKind::kVisp, TrackerKind::kIcgp}
+                : std::vector<TrackerKind>{o.tracker.empty() ? scenario.tracker.kind : tracker_kind(o.tracker)};
+  const std::string json = o.summary.empty() ? (out / "sweep.json").string() : o.summary;
+  BatchProgress progress(o.trials * static_cast<int>(kinds.size() * sweep.values.size()));
+  std::vector<servo::SweepValue> values;
+  for (std::size_t i = 0; i < sweep.values.size() && !stop_requested(); ++i) {
+    values.push_back(servo::run_sweep_value(
+        o.scenario, models_dir(), sweep, i, kinds, o.trials, o.seed, [&](int trial, const ServoResult& r) {
+          std::fprintf(stderr, "%s %s trial %d/%d %s: %s, final %.3f mm %.3f deg %s\n", sweep.field.c_str(),
+                       yaml::plain_number(sweep.values[i]).c_str(), trial + 1, o.trials, r.tracker.c_str(),
+                       servo::succeeded(r, scenario.stop) ? "success" : "failure", 1e3 * r.final_t,
+                       r.final_r / servo::kDegree, progress.trial_done().c_str());
+        }));
+    if (!values.back().error.empty())
+      std::fprintf(stderr, "%s %s: %s\n", sweep.field.c_str(), yaml::plain_number(sweep.values[i]).c_str(),
+                   values.back().error.c_str());
+    servo::write_sweep_json(sweep, values, json);
+  }
+  servo::print_sweep(std::cout, sweep, values);
+  servo::plot_sweep(sweep, values, out.string());
+  std::cout << "wrote " << json << ", " << (out / "sweep.png").string() << "\n";
+  if (stop_requested())
+    throw CommandOutcome(kExitInterrupted, "interrupted: " + std::to_string(values.size()) + " of " +
+                                               std::to_string(sweep.values.size()) + " values swept, in " + json);
+}
+
 void run_command(const ServoOptions& o) {
+  if (!o.sweep.empty() && (!o.scheduler.empty() || o.jobs > 0))
+    throw std::invalid_argument("--sweep runs its trials in this process: --jobs and --scheduler do not take it yet");
   if (!o.scheduler.empty() || o.jobs > 0) run_on_workers(o);
   // Runs and batches can take hours: Ctrl-C stops them at the next step, writing what is done.
   install_stop_on_sigint();
@@ -266,7 +305,9 @@ void run_command(const ServoOptions& o) {
   const fs::path out = o.out.empty() ? fs::path("out") / "servo" / scenario.name : fs::path(o.out);
   const std::string summary = o.summary.empty() ? (out / "summary.json").string() : o.summary;
   std::cerr << "scenario " << scenario.name << (scenario.description.empty() ? "" : ": " + scenario.description) << "\n";
-  if (o.compare || o.trials > 1)
+  if (!o.sweep.empty())
+    run_sweep(o, out);
+  else if (o.compare || o.trials > 1)
     run_batch(o, scenario, summary);
   else
     run_single(o, scenario, out, summary);
@@ -304,6 +345,9 @@ void register_servo_command(CLI::App& app) {
       cmd->add_option("--scheduler", o->scheduler,
                       "Batch: run the trials on the workers of this Dask scheduler (tcp://HOST:PORT), through "
                       "icgp's Python package; each worker needs the package and the scenario's files");
+  cmd->add_option("--sweep", o->sweep,
+                  "FIELD=V1,V2,...: the trials (--trials, --compare) at each value of a numeric scenario field, "
+                  "e.g. camera.latency_ms=0,50,100; writes OUT/sweep.json and OUT/sweep.png");
   cmd->add_option("--jobs", o->jobs, "Batch: run the trials on this many local worker processes (Dask)")
       ->check(integer_in(1, 1024))
       ->excludes(scheduler);

@@ -326,6 +326,19 @@ void check_run_length(const Scenario& scenario);
 /// icgp/base/resource_limits.h and the length of a run by kMaxSimulatedSteps.
 Scenario load_scenario(const std::string& path, const std::string& models_dir);
 
+/// A numeric field of a scenario file by its dotted key path ("camera.latency_ms",
+/// "control.gain"), set to `value` (icgp servo --sweep).
+struct FieldValue {
+  std::string field;
+  double value = 0.0;
+};
+/// load_scenario with `overrides` written into the file's document first, as if the file
+/// said so: each is then read and checked as the file's own values are (an unknown key or a
+/// value out of range is the reader's error, naming the field). Throws ScenarioError naming
+/// the field when it holds a list, a section or text rather than a number, or when a key on
+/// its path is not a section.
+Scenario load_scenario(const std::string& path, const std::string& models_dir, const std::vector<FieldValue>& overrides);
+
 /// The mesh file of a model reference of the scenario (ObjectSpec::model, regions): a
 /// folder name of models_dir or a path relative to the scenario's folder. Throws
 /// ScenarioError when it does not exist.

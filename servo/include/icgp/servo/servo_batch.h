@@ -3,6 +3,7 @@
 // compared on identical trials, stoppable between and within runs.
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <vector>
 
@@ -20,6 +21,8 @@ struct TrialBatch {
 
 /// Called after each finished run with the index of its trial.
 using RunDone = std::function<void(int trial, const ServoResult& run)>;
+/// Called for a run that threw, with its trial, its tracker and what it threw.
+using RunFailed = std::function<void(int trial, TrackerKind tracker, const std::exception& error)>;
 
 /// Runs trial `trial` of a batch of `scenario` with `tracker`: from
 /// perturbed_start(scenario.trials, scenario.seed, trial) with the noise seed
@@ -35,8 +38,11 @@ ServoResult run_trial(const Scenario& scenario, TrackerKind tracker, int trial, 
 /// made after any run averages over all trackers. A stop request (icgp::stop_requested())
 /// ends the batch before the next run, or within a run at its next step; the trial it cut
 /// short is left out. `each_run` holds the options of every run (on_step: a live view,
-/// tests); its start_offset, seed and progress are the trial's.
+/// tests); its start_offset, seed and progress are the trial's. With `on_failure`, a run
+/// that throws is reported to it and its trial left out for every tracker, and the batch goes
+/// on; without, the exception ends the batch.
 TrialBatch run_trials(const Scenario& scenario, const std::vector<TrackerKind>& trackers, int trials,
-                      const RunDone& on_run = {}, const ServoRunOptions& each_run = {});
+                      const RunDone& on_run = {}, const ServoRunOptions& each_run = {},
+                      const RunFailed& on_failure = {});
 
 }  // namespace icgp::servo

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "icgp/eval/json_object.h"
 #include "icgp/servo/servo_run.h"
 
 namespace icgp::servo {
@@ -48,6 +49,8 @@ void print_summaries(std::ostream& out, const std::vector<TrialsSummary>& summar
 /// ("interrupted": true when a stop request cut the work short);
 /// with several summaries (--compare) an array of them.
 void write_summary_json(const std::vector<TrialsSummary>& summaries, const std::string& path);
+/// One summary as write_summary_json writes it.
+JsonObject summary_json(const TrialsSummary& summary);
 
 /// One line per step: time, true and estimated errors, tracker error, velocity, flags, timings.
 void write_step_csv(const ServoResult& result, const std::string& path);
