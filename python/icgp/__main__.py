@@ -12,7 +12,7 @@ import os
 import sys
 
 from . import Error
-from . import batch
+from . import _icgp, batch
 
 EXIT_ERROR = 1
 EXIT_NOT_ACHIEVED = 2
@@ -62,6 +62,7 @@ def parser():
     servo.add_argument("--compare", action="store_true", help="oracle, visp and icgp on identical trials")
     servo.add_argument("--summary", help="summary JSON (default: OUT/summary.json)")
     servo.add_argument("--out", help="folder of the default summary (default: out/servo/<scenario name>)")
+    servo.add_argument("--sweep", metavar="FIELD=V1,V2,...", help="the trials at each value of a numeric field")
     workers = servo.add_mutually_exclusive_group()
     workers.add_argument("--scheduler", help="run on the Dask cluster of this scheduler (tcp://HOST:PORT)")
     workers.add_argument("--jobs", type=int_in(1, 1024), help="run on this many local worker processes")
@@ -86,18 +87,29 @@ def connect(options):
 def servo(options):
     if options.compare and options.tracker:
         raise UsageError("--tracker and --compare: give one (--compare runs oracle, visp and icgp)")
-    if options.trials == 1 and not options.compare and (options.scheduler or options.jobs):
-        raise UsageError("--scheduler and --jobs run batch trials: give --trials N with N > 1, or --compare")
+    if options.trials == 1 and not options.compare and not options.sweep and (options.scheduler or options.jobs):
+        raise UsageError("--scheduler and --jobs run batch trials: give --trials N with N > 1, --compare or --sweep")
     scenario = batch.load(options.scenario, options.seed or None)
     print(f"scenario {scenario.name}" + (f": {scenario.description}" if scenario.description else ""), file=sys.stderr)
     out = options.out or os.path.join("out", "servo", scenario.name)
     summary = options.summary or os.path.join(out, "summary.json")
     trackers = ["oracle", "visp", "icgp"] if options.compare else [options.tracker] if options.tracker else None
 
+    sweep = _icgp.servo.parse_sweep(options.sweep) if options.sweep else None
     client = cluster = None
     if options.scheduler or options.jobs:
         client, cluster = connect(options)
     try:
+        if sweep:
+            field, values = sweep
+            json = options.summary or os.path.join(out, "sweep.json")
+            table, interrupted = batch.sweep(options.scenario, field, values, options.trials, options.seed or None,
+                                             trackers, client, json, out)
+            sys.stdout.write(table)
+            print(f"wrote {json}, {os.path.join(out, 'sweep.png')}", flush=True)
+            if interrupted:
+                raise CommandOutcome(EXIT_INTERRUPTED, f"interrupted: the values swept are in {json}")
+            return
         try:
             result = batch.trials(scenario, options.trials, trackers=trackers, client=client)
         except KeyboardInterrupt:

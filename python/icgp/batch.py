@@ -129,20 +129,58 @@ def run_batch(scenario, trackers, indices):
     return [[_icgp.servo.run_trial(scenario, tracker, i) for tracker in trackers] for i in indices]
 
 
-def load(scenario, seed=None):
-    """`scenario` (a Scenario or its YAML file) with `seed` (None: its own), as trials() runs it."""
+def load(scenario, seed=None, overrides=None):
+    """`scenario` (a Scenario or its YAML file) with `seed` (None: its own) and `overrides`
+    ({key path: number} set over the file's fields, as `icgp servo --sweep` sets them; None:
+    the scenario's own), as trials() runs it."""
     if isinstance(scenario, (str, os.PathLike)):
         # Absolute: workers read it again, maybe from another working directory.
-        scenario = _icgp.servo.load_scenario(Path(scenario).absolute())
+        scenario = _icgp.servo.load_scenario(Path(scenario).absolute(), overrides or {})
     elif not isinstance(scenario, Scenario):
         raise TypeError(f"scenario: expected an icgp.servo.Scenario or a YAML file path, got {type(scenario).__name__}")
+    elif overrides is not None:
+        scenario = _icgp.servo.load_scenario(Path(scenario.file).absolute(), {**scenario.overrides, **overrides})
     if seed is not None:
         seed = _count(seed, "seed", minimum=0)
         if seed > 0xFFFFFFFF:
             raise ValueError(f"seed: expected an integer in [0, 4294967295], got {seed}")
-        scenario = _icgp.servo.load_scenario(Path(scenario.file).absolute())  # the caller's stays as it was
+        # A copy: the caller's stays as it was.
+        scenario = _icgp.servo.load_scenario(Path(scenario.file).absolute(), scenario.overrides)
         scenario.seed = seed
     return scenario
+
+
+def sweep(scenario, field, values, n, seed=None, trackers=None, client=None, json=None, plot_dir=None,
+          progress=True):
+    """Runs trials() of `scenario` (its YAML file) at each of `values` of the numeric `field`
+    (a key path, 'camera.latency_ms'), on the same seeded starts at every value, as `icgp
+    servo --sweep` does; every value is read before any runs, so a field or value the
+    scenario refuses raises icgp.Error before anything runs. After every value, `json` (when
+    given) is written, and at the end the plot in `plot_dir` (when given). A value whose trials
+    raise is reported and the next one runs. Ctrl-C stops the sweep after what is done.
+    Returns (the table, interrupted)."""
+    values = [float(v) for v in values]
+    scenarios = [load(scenario, seed, {field: v}) for v in values]
+    done = []
+    interrupted = False
+    for index, (value, at_value) in enumerate(zip(values, scenarios)):
+        if progress:
+            print(f"{field} = {value:g} (value {index + 1} of {len(values)})", file=sys.stderr, flush=True)
+        try:
+            result = trials(at_value, n, trackers=trackers, client=client, progress=progress)
+            done.append((value, at_value, result.results, "", result.interrupted))
+            interrupted = result.interrupted
+        except KeyboardInterrupt:
+            interrupted = True
+        except Exception as e:  # the trials of one value failed: say so, go on
+            done.append((value, at_value, [], f"{type(e).__name__}: {e}", False))
+            print(f"{field} {value:g}: {type(e).__name__}: {e}", file=sys.stderr, flush=True)
+        if json:
+            _icgp.servo.write_sweep(field, values, done, json, "")
+        if interrupted:
+            break
+    table = _icgp.servo.write_sweep(field, values, done, json or os.devnull, plot_dir or "")
+    return table, interrupted
 
 
 def _count(value, name, minimum=1):

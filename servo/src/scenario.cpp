@@ -428,6 +428,7 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir,
   const fs::path folder = fs::path(path).parent_path();
   Scenario scenario;
   scenario.file = path;
+  scenario.overrides = overrides;
   scenario.name = fs::path(path).stem().string();
   if (auto x = s.get("name")) scenario.name = x->as(kNonEmptyString);
   if (auto x = s.get("description")) scenario.description = x->as(kString);

@@ -68,6 +68,28 @@ SweepSpec parse_sweep(const std::string& text) {
   return sweep;
 }
 
+SweepValue sweep_value(double value, const std::vector<std::vector<ServoResult>>& runs_by_tracker,
+                       const StopSpec& stop, bool interrupted) {
+  SweepValue out;
+  out.value = value;
+  for (const std::vector<ServoResult>& runs : runs_by_tracker) {
+    if (runs.empty()) continue;
+    SweepRow row;
+    row.value = value;
+    row.summary = summarise(runs, stop);
+    row.summary.interrupted = row.summary.interrupted || interrupted;
+    std::vector<double> final_t, final_r;
+    for (const ServoResult& r : runs) {
+      final_t.push_back(r.final_t);
+      final_r.push_back(r.final_r);
+    }
+    row.final_t_p95 = percentile(final_t, 0.95);
+    row.final_r_p95 = percentile(final_r, 0.95);
+    out.rows.push_back(row);
+  }
+  return out;
+}
+
 SweepValue run_sweep_value(const std::string& scenario_file, const std::string& models_dir, const SweepSpec& sweep,
                            std::size_t index, const std::vector<TrackerKind>& trackers, int trials, unsigned seed,
                            const RunDone& on_run) {
@@ -82,22 +104,8 @@ SweepValue run_sweep_value(const std::string& scenario_file, const std::string& 
           failures += (failures.empty() ? "" : "; ") + std::string("trial ") + std::to_string(trial + 1) + " (" +
                       name_of(tracker, tracker_names()) + "): " + e.what();
         });
+    out = sweep_value(out.value, batch.runs, scenario.stop, batch.interrupted);
     out.error = failures;
-    for (const std::vector<ServoResult>& runs : batch.runs) {
-      if (runs.empty()) continue;
-      SweepRow row;
-      row.value = out.value;
-      row.summary = summarise(runs, scenario.stop);
-      row.summary.interrupted = batch.interrupted;
-      std::vector<double> final_t, final_r;
-      for (const ServoResult& r : runs) {
-        final_t.push_back(r.final_t);
-        final_r.push_back(r.final_r);
-      }
-      row.final_t_p95 = percentile(final_t, 0.95);
-      row.final_r_p95 = percentile(final_r, 0.95);
-      out.rows.push_back(row);
-    }
   } catch (const std::exception& e) {
     out.error = e.what();
   }

@@ -213,8 +213,8 @@ void run_single(const ServoOptions& o, const Scenario& scenario, const fs::path&
   const std::string option = o.jobs > 0 ? "--jobs" : "--scheduler";
   if (!o.video.empty() || o.display)
     throw std::invalid_argument(option + " runs trials on workers; --video and --display show a single run");
-  if (o.trials < 2 && !o.compare)
-    throw std::invalid_argument(option + " runs batch trials: give --trials N with N > 1, or --compare");
+  if (o.trials < 2 && !o.compare && o.sweep.empty())
+    throw std::invalid_argument(option + " runs batch trials: give --trials N with N > 1, --compare or --sweep");
 #ifdef ICGP_PYTHON_EXECUTABLE
   std::vector<std::string> args{ICGP_PYTHON_EXECUTABLE, "-m", "icgp", "servo", o.scenario, "--trials",
                                 std::to_string(o.trials)};
@@ -224,6 +224,7 @@ void run_single(const ServoOptions& o, const Scenario& scenario, const fs::path&
   add("--seed", o.seed != 0 ? std::to_string(o.seed) : "");
   add("--tracker", o.tracker);
   if (o.compare) args.push_back("--compare");
+  add("--sweep", o.sweep);
   add("--summary", o.summary);
   add("--out", o.out);
   add("--scheduler", o.scheduler);
@@ -294,8 +295,6 @@ void run_sweep(const ServoOptions& o, const fs::path& out) {
 }
 
 void run_command(const ServoOptions& o) {
-  if (!o.sweep.empty() && (!o.scheduler.empty() || o.jobs > 0))
-    throw std::invalid_argument("--sweep runs its trials in this process: --jobs and --scheduler do not take it yet");
   if (!o.scheduler.empty() || o.jobs > 0) run_on_workers(o);
   // Runs and batches can take hours: Ctrl-C stops them at the next step, writing what is done.
   install_stop_on_sigint();

@@ -256,6 +256,19 @@ TypeError naming them; a run the scenario cannot make raises icgp.Error with the
     print(r["succeeded"], r["final_t_mm"], r["final_r_deg"])
 )doc";
 
+/// Fields set over a scenario file's, as a dict {key path: value} in their order.
+py::dict overrides_dict(const std::vector<servo::FieldValue>& overrides) {
+  py::dict d;
+  for (const servo::FieldValue& o : overrides) d[py::str(o.field)] = o.value;
+  return d;
+}
+
+std::vector<servo::FieldValue> overrides_of(const py::dict& d) {
+  std::vector<servo::FieldValue> overrides;
+  for (const auto& [field, value] : d) overrides.push_back({field.cast<std::string>(), value.cast<double>()});
+  return overrides;
+}
+
 }  // namespace
 
 void register_servo(py::module_& m) {
@@ -302,19 +315,31 @@ void register_servo(py::module_& m) {
       // Sent to other processes (Dask workers) as its file, made absolute here since a
       // worker may run in another folder, and its seed; read again there: the file and the
       // models it names must be readable where the trial runs.
+      .def_property_readonly("overrides", [](const Scenario& s) { return overrides_dict(s.overrides); },
+                             "The fields load_scenario set over the file's: {'camera.latency_ms': 66.7, ...}.")
+      // Sent to other processes (Dask workers) as its file, made absolute here since a
+      // worker may run in another folder, its fields set over the file's and its seed; read
+      // again there: the file and the models it names must be readable where the trial runs.
       .def(py::pickle(
-          [](const Scenario& s) { return py::make_tuple(std::filesystem::absolute(s.file).string(), s.seed); },
+          [](const Scenario& s) {
+            return py::make_tuple(std::filesystem::absolute(s.file).string(), s.seed, overrides_dict(s.overrides));
+          },
           [](const py::tuple& state) {
-            Scenario s = servo::load_scenario(state[0].cast<std::string>(), models_dir());
+            Scenario s = servo::load_scenario(state[0].cast<std::string>(), models_dir(),
+                                              overrides_of(state[2].cast<py::dict>()));
             s.seed = state[1].cast<unsigned>();
             return s;
           }));
   servo.def(
       "load_scenario",
-      [](const std::filesystem::path& path) { return servo::load_scenario(path.string(), models_dir()); },
-      py::arg("path"),
-      "Reads a scenario file (YAML, docs/servo.md); models are named against icgp.models_dir(). A file that cannot\n"
-      "be used raises icgp.Error naming the file and the key, as `icgp servo` says it.");
+      [](const std::filesystem::path& path, const py::dict& overrides) {
+        return servo::load_scenario(path.string(), models_dir(), overrides_of(overrides));
+      },
+      py::arg("path"), py::arg("overrides") = py::dict(),
+      "Reads a scenario file (YAML, docs/servo.md); models are named against icgp.models_dir(). `overrides` sets\n"
+      "numeric fields over the file's by their key paths, {'camera.latency_ms': 66.7}, read as the file's own\n"
+      "values are (icgp servo --sweep). A file that cannot be used raises icgp.Error naming the file and the key,\n"
+      "as `icgp servo` says it.");
   servo.def("run", &run, py::arg("scenario"), py::arg("tracker") = py::none(), py::kw_only(),
             py::arg("seed") = py::none(), py::arg("trial") = py::none(), py::arg("on_step") = py::none(),
             py::arg("control") = py::none(), py::arg("progress") = false, kRunDoc);

@@ -20,6 +20,7 @@
 #include "icgp/servo/scenario.h"
 #include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_report.h"
+#include "icgp/servo/servo_sweep.h"
 #include "servo_names.h"
 
 namespace icgp::python {
@@ -174,10 +175,10 @@ py::dict summary_dict(const TrialsSummary& s) {
   return d;
 }
 
-/// The summaries of `trials`, one per tracker in the order they first appear, each over its
-/// trials in index order (the order run_trials sums them in, so the numbers are the CLI's).
-std::vector<TrialsSummary> summarise(const std::vector<Trial>& trials, const servo::Scenario& scenario,
-                                     bool interrupted) {
+/// The runs of `trials` by tracker, in the order the trackers first appear, each tracker's
+/// in trial index order (the order run_trials sums them in, so the numbers are the CLI's).
+std::vector<std::vector<ServoResult>> runs_by_tracker(const std::vector<Trial>& trials,
+                                                      const servo::Scenario& scenario) {
   if (trials.empty()) throw py::value_error("results: no trials to summarise");
   std::vector<std::string> order;
   std::map<std::string, std::vector<const Trial*>> by_tracker;
@@ -189,20 +190,56 @@ std::vector<TrialsSummary> summarise(const std::vector<Trial>& trials, const ser
     if (group.empty()) order.push_back(t.run.tracker);
     group.push_back(&t);
   }
-  std::vector<TrialsSummary> summaries;
-  for (const std::string& tracker : order) {
-    std::vector<const Trial*>& group = by_tracker[tracker];
+  std::vector<std::vector<ServoResult>> runs(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    std::vector<const Trial*>& group = by_tracker[order[k]];
     std::stable_sort(group.begin(), group.end(), [](const Trial* a, const Trial* b) { return a->trial < b->trial; });
-    std::vector<ServoResult> runs;
     for (std::size_t i = 0; i < group.size(); ++i) {
       if (i > 0 && group[i]->trial == group[i - 1]->trial)
-        throw py::value_error("results: trial " + std::to_string(group[i]->trial) + " of " + tracker + " twice");
-      runs.push_back(group[i]->run);
+        throw py::value_error("results: trial " + std::to_string(group[i]->trial) + " of " + order[k] + " twice");
+      runs[k].push_back(group[i]->run);
     }
+  }
+  return runs;
+}
+
+/// The summaries of `trials`, one per tracker (runs_by_tracker).
+std::vector<TrialsSummary> summarise(const std::vector<Trial>& trials, const servo::Scenario& scenario,
+                                     bool interrupted) {
+  std::vector<TrialsSummary> summaries;
+  for (const std::vector<ServoResult>& runs : runs_by_tracker(trials, scenario)) {
     summaries.push_back(servo::summarise(runs, scenario.stop));
     summaries.back().interrupted = summaries.back().interrupted || interrupted;
   }
   return summaries;
+}
+
+/// What `icgp servo --sweep` prints and writes, from the trials at each value done so far:
+/// `done` holds (value, the Scenario read with it, its TrialResults, the error that stopped
+/// its trials or "", interrupted). Writes `json` and, unless `plot_dir` is empty, the plot;
+/// returns the table.
+std::string write_sweep(const std::string& field, const std::vector<double>& swept, const py::list& done,
+                        const std::filesystem::path& json, const std::filesystem::path& plot_dir) {
+  const servo::SweepSpec sweep{field, swept};
+  std::vector<servo::SweepValue> values;
+  for (const py::handle& item : done) {
+    const py::tuple entry = item.cast<py::tuple>();
+    if (entry.size() != 5)
+      throw py::value_error("done: expected (value, scenario, results, error, interrupted) per value");
+    const double value = entry[0].cast<double>();
+    const auto& scenario = entry[1].cast<const servo::Scenario&>();
+    const auto trials = entry[2].cast<std::vector<Trial>>();
+    servo::SweepValue v = trials.empty() ? servo::SweepValue{value, {}, {}}
+                                         : servo::sweep_value(value, runs_by_tracker(trials, scenario), scenario.stop,
+                                                              entry[4].cast<bool>());
+    v.error = entry[3].cast<std::string>();
+    values.push_back(std::move(v));
+  }
+  servo::write_sweep_json(sweep, values, json.string());
+  if (!plot_dir.empty()) servo::plot_sweep(sweep, values, plot_dir.string());
+  std::ostringstream table;
+  servo::print_sweep(table, sweep, values);
+  return table.str();
 }
 
 constexpr const char* kTrialDoc =
@@ -305,6 +342,18 @@ void register_trials(py::module_& m) {
             "The TrialsSummary of each tracker among `results` (TrialResults of `scenario`), in the order the\n"
             "trackers first appear, each over its trials in index order: the numbers `icgp servo --trials` prints.\n"
             "`interrupted`: a stop ended the batch before all its trials (marked in each summary).");
+  servo.def(
+      "parse_sweep",
+      [](const std::string& text) {
+        const servo::SweepSpec sweep = servo::parse_sweep(text);
+        return py::make_tuple(sweep.field, sweep.values);
+      },
+      py::arg("text"), "FIELD=V1,V2,... as `icgp servo --sweep` reads it: (field, [values]); ValueError otherwise.");
+  servo.def("write_sweep", &write_sweep, py::arg("field"), py::arg("values"), py::arg("done"), py::arg("json"),
+            py::arg("plot_dir"),
+            "Writes sweep.json (and sweep.png in plot_dir, unless empty) of `icgp servo --sweep` from `done`, a list\n"
+            "of (value, Scenario, [TrialResult], error text or '', interrupted) per value swept so far; returns the\n"
+            "table it prints.");
   servo.def(
       "table",
       [](const std::vector<TrialsSummary>& summaries) {

@@ -120,6 +120,38 @@ def test_jobs_runs_the_trials_on_local_workers(cli, tmp_path):
     assert trial_lines(jobs.stderr) == trial_lines(run.stderr)
 
 
+def sweep_without_timings(path):
+    data = json.loads(Path(path).read_text())
+    for row in data["rows"]:
+        for key in TIMING_KEYS:
+            row.pop(key)
+    return data
+
+
+def test_a_sweep_on_local_workers_gives_the_sweep_of_one_process(tmp_path):
+    # The C++ program sweeps in its own process; with --jobs, Python's package on 2 Dask
+    # workers, each reading the scenario again with the value set over the file's.
+    args = ["--sweep", "camera.latency_ms=0,100", "--trials", "2", "--tracker", "oracle"]
+    here = icgp_servo(*args, "--out", str(tmp_path / "here"))
+    jobs = icgp_servo(*args, "--jobs", "2", "--out", str(tmp_path / "jobs"))
+    assert here.returncode == 0, here.stderr
+    assert jobs.returncode == 0, jobs.stderr
+    swept = sweep_without_timings(tmp_path / "here" / "sweep.json")
+    assert [row["value"] for row in swept["rows"]] == [0, 100]
+    assert all(row["trials"] == 2 for row in swept["rows"])
+    assert sweep_without_timings(tmp_path / "jobs" / "sweep.json") == swept
+    assert (tmp_path / "jobs" / "sweep.png").stat().st_size > 0
+
+
+def test_a_scenario_read_with_a_field_set_keeps_it_across_processes():
+    scenario = servo.load_scenario(SCENARIO, {"camera.latency_ms": 50})
+    assert scenario.overrides == {"camera.latency_ms": 50.0}
+    assert pickle.loads(pickle.dumps(scenario)).overrides == {"camera.latency_ms": 50.0}
+    assert icgp.batch.load(scenario, seed=9).overrides == {"camera.latency_ms": 50.0}
+    with pytest.raises(icgp.Error, match="control.law: holds 'pbvs', not a number"):
+        servo.load_scenario(SCENARIO, {"control.law": 1})
+
+
 def test_jobs_exits_2_naming_the_tracker_whose_runs_did_not_succeed(tmp_path):
     scenario = SOURCE / "tests" / "servo" / "data" / "too_short.yaml"
     run = subprocess.run([ICGP, "servo", str(scenario), "--trials", "2", "--jobs", "2", "--out", str(tmp_path)],
@@ -136,7 +168,7 @@ def test_an_unreachable_scheduler_is_a_clear_error():
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--trials", "1", "--jobs", "2"], "--jobs runs batch trials: give --trials N with N > 1, or --compare"),
+    (["--trials", "1", "--jobs", "2"], "--jobs runs batch trials: give --trials N with N > 1, --compare or --sweep"),
     (["--trials", "4", "--jobs", "2", "--video", "v.avi"],
      "--jobs runs trials on workers; --video and --display show a single run"),
     (["--trials", "4", "--jobs", "2", "--scheduler", "tcp://127.0.0.1:9"], "--scheduler excludes --jobs"),

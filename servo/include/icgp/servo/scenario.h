@@ -275,10 +275,20 @@ struct GraspSpec {
   Pose desired_gMo;  ///< the pre-grasp pose (YAML: desired_gMo)
 };
 
+/// A numeric field of a scenario file by its dotted key path ("camera.latency_ms",
+/// "control.gain"), set to `value` (icgp servo --sweep).
+struct FieldValue {
+  std::string field;
+  double value = 0.0;
+};
+
 struct Scenario {
   std::string name;         ///< from the file name unless given
   std::string description;  ///< one line for the summary
   std::string file;         ///< where it was read from
+  /// The fields set over the file's (load_scenario with overrides): reading `file` with them
+  /// gives this scenario again (another process does, for a trial of a sweep).
+  std::vector<FieldValue> overrides;
   RobotKind robot = RobotKind::kFreeFlyingCamera;
   ResponseSpec robot_response;
   ArmSpec arm;
@@ -326,12 +336,6 @@ void check_run_length(const Scenario& scenario);
 /// icgp/base/resource_limits.h and the length of a run by kMaxSimulatedSteps.
 Scenario load_scenario(const std::string& path, const std::string& models_dir);
 
-/// A numeric field of a scenario file by its dotted key path ("camera.latency_ms",
-/// "control.gain"), set to `value` (icgp servo --sweep).
-struct FieldValue {
-  std::string field;
-  double value = 0.0;
-};
 /// load_scenario with `overrides` written into the file's document first, as if the file
 /// said so: each is then read and checked as the file's own values are (an unknown key or a
 /// value out of range is the reader's error, naming the field). Throws ScenarioError naming

@@ -39,6 +39,11 @@ struct SweepValue {
   std::string error;  ///< why its trials did not run (empty: they did)
 };
 
+/// The rows of the runs at one value: runs_by_tracker[k] are tracker k's runs (trials in
+/// index order), judged against `stop`; `interrupted` marks a batch a stop request cut short.
+SweepValue sweep_value(double value, const std::vector<std::vector<ServoResult>>& runs_by_tracker,
+                       const StopSpec& stop, bool interrupted);
+
 /// The rows at one value of `sweep`: the scenario read with the field set to it, then its
 /// trials with every tracker of `trackers` on the same seeded starts at every value (the
 /// scenario's seed, or `seed` when not 0). `on_run` reports each run as run_trials does.
