@@ -122,7 +122,12 @@ struct ServoRunOptions {
 
 /// Runs `scenario` to convergence or to its time limit: each step captures the RGB-D
 /// frame at the robot's pose, tracks it, computes the control law (the scenario's, or
-/// options.control_law) from the estimated pose and moves the robot for one frame period. When the tracker reports lost, the commanded
+/// options.control_law) from the estimated pose and moves the robot for one frame period.
+/// The command reaches the robot after the scenario's latency (and jitter, and the tracker's
+/// time with real timing; a frame that comes while the tracker is busy is skipped), the
+/// robot follows it through its response (ResponseSpec), and the cell's true calibration is
+/// drawn from options.seed (draw_true_calibration); the defaults are the ideal loop. When
+/// the tracker reports lost, the commanded
 /// velocity is zero (safety stop) and the tracker restarts at the last pose it did not
 /// report lost, until it tracks again. The run converges when the servo
 /// error as the tracker estimates it stays within the scenario's thresholds for its settle
