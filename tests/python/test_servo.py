@@ -116,6 +116,15 @@ def test_on_step_sees_every_step_in_order(scenario):
     assert step["cMo_true"].shape == (4, 4) and step["velocity"].shape == (6,)
     assert not step["lost"] and not step["safety_stop"]
     np.testing.assert_allclose(step["cMo_true"], scenario.initial_cMo, atol=1e-9)
+    # The ideal loop: every frame taken, every command at once.
+    assert not any(s["skipped"] for s in seen)
+    assert all(s["command_delay_ms"] == 0.0 for s in seen)
+
+
+def test_a_scenario_with_latency_logs_each_commands_delay(scenario):
+    delayed = icgp.servo.load_scenario(scenario.file, {"camera.latency_ms": 100})
+    result = icgp.servo.run(delayed, "oracle")
+    assert [s["command_delay_ms"] for s in result["steps"]] == pytest.approx([100.0] * len(result["steps"]))
 
 
 def test_a_control_law_in_python_converges(scenario):
