@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <Eigen/Eigenvalues>
 #include <visp3/core/vpExponentialMap.h>
 
 #include "../unit/test_temp_dir.h"
@@ -228,12 +229,14 @@ TEST_CASE("jitter: latencies drawn from the scenario's distribution, the same wi
 namespace {
 
 /// The error of a PBVS loop with the oracle tracker at constant gain `gain` (1/s), frame
-/// period 50 ms, `delay_frames` frames of latency and no lag, started 5 mm from its goal by a
-/// pure translation (the loop is then linear: e(k+1) = e(k) - λT e(k - d)). Returns the
-/// largest translation error over the last 10 steps divided by the first step's.
-double pbvs_error_growth(double gain, int delay_frames) {
-  const ServoResult result =
-      oracle_run("latency_ms: " + std::to_string(50 * delay_frames), "tracker: {type: oracle}\n", gain, 6.0);
+/// period 50 ms, `delay_frames` frames of latency and a robot lag of `lag_ms`, started 5 mm
+/// from its goal by a pure translation (the loop is then linear; without a lag,
+/// e(k+1) = e(k) - λT e(k - d)). Returns the largest translation error over the last 10
+/// steps divided by the first step's.
+double pbvs_error_growth(double gain, int delay_frames, double lag_ms = 0.0) {
+  const std::string response = lag_ms > 0.0 ? "robot_response: {lag_ms: " + std::to_string(lag_ms) + "}\n" : "";
+  const ServoResult result = oracle_run("latency_ms: " + std::to_string(50 * delay_frames),
+                                        "tracker: {type: oracle}\n" + response, gain, 6.0);
   REQUIRE(result.steps.size() > 20);
   double last = 0.0;
   for (std::size_t k = result.steps.size() - 10; k < result.steps.size(); ++k)
@@ -256,4 +259,53 @@ TEST_CASE("delay: PBVS with d frames of latency is stable exactly below λT = 2 
     CHECK(below < 0.5);
     CHECK(above > 2.0);
   }
+}
+
+namespace {
+
+/// The largest gain at which the discrete PBVS loop with `delay_frames` frames of delay, period
+/// `period` and a first-order robot lag `lag` (both seconds) is stable: the commanded velocity
+/// u held over each period drives v' = (u - v)/τ, p' = v (exactly discretised: a = e^(-T/τ),
+/// v(k+1) = a v(k) + (1 - a) u(k), p(k+1) = p(k) + τ(1 - a) v(k) + (T - τ(1 - a)) u(k)), with
+/// u(k) = -λ p(k - d). Found by bisection on the spectral radius of the loop's state matrix:
+/// the root locus of the discrete loop crossing the unit circle.
+double critical_gain(double period, int delay_frames, double lag) {
+  const double a = std::exp(-period / lag);
+  const auto spectral_radius = [&](double gain) {
+    // State: p(k), v(k), p(k-1), ..., p(k-d).
+    const int n = 2 + delay_frames;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+    const int delayed = delay_frames == 0 ? 0 : 1 + delay_frames;
+    A(0, 0) = 1.0;
+    A(0, 1) = lag * (1.0 - a);
+    A(1, 1) = a;
+    A(0, delayed) += -gain * (period - lag * (1.0 - a));
+    A(1, delayed) += -gain * (1.0 - a);
+    for (int i = 0; i < delay_frames; ++i) A(2 + i, i == 0 ? 0 : 1 + i) = 1.0;
+    return Eigen::EigenSolver<Eigen::MatrixXd>(A).eigenvalues().cwiseAbs().maxCoeff();
+  };
+  double stable = 0.0, unstable = 1000.0;
+  for (int i = 0; i < 60; ++i) {
+    const double gain = 0.5 * (stable + unstable);
+    (spectral_radius(gain) < 1.0 ? stable : unstable) = gain;
+  }
+  return stable;
+}
+
+}  // namespace
+
+TEST_CASE("delay with a lagging robot: PBVS is stable below the critical gain of the discrete loop's root locus",
+          "[servo][timing][textbook]") {
+  // Without a lag the locus gives the closed form back.
+  CHECK(critical_gain(0.05, 1, 1e-9) == Approx(20.0).epsilon(1e-6));
+  // A 50 ms lag at 20 Hz with one frame of delay: the bound falls from 20 to 16.1 /s, and the
+  // slowest root decays to 0.975 or grows to 1.024 per step 10 % either side.
+  const double bound = critical_gain(0.05, 1, 0.05);
+  CHECK(bound == Approx(16.09).epsilon(1e-3));
+  const double below = pbvs_error_growth(0.9 * bound, 1, 50.0), above = pbvs_error_growth(1.1 * bound, 1, 50.0);
+  INFO("gain bound " << bound << " /s: error growth " << below << " at 0.9 x, " << above << " at 1.1 x");
+  CHECK(below < 0.5);
+  CHECK(above > 2.0);
+  // Without the lag, 1.1 x this bound would be stable: the lag is what the loop feels.
+  CHECK(pbvs_error_growth(1.1 * bound, 1) < 0.5);
 }
