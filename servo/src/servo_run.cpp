@@ -338,8 +338,11 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
       step.command_delay = arrival - step.time;
       channel.send(velocity, arrival);
     }
+    // Counted per frame period, however many moves the holds and the response take in it.
+    const int limit_stops_before = robot->joint_limit_stops();
     for (const CommandChannel::Hold& hold : channel.holds(step.time, dt))
       step.velocity = response.follow(*robot, hold.velocity, hold.duration);
+    if (robot->joint_limit_stops() > limit_stops_before) ++result.joint_limit_stops;
     const auto t3 = Clock::now();
 
     step.cMo_true = capture.cMo_true;
@@ -382,7 +385,6 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   result.final_r = result.steps.back().servo_r;
   result.recovered = !result.steps.back().lost;
   if (result.steps.back().lost) result.lost_reason = last_why_lost;
-  result.joint_limit_stops = robot->joint_limit_stops();
   result.steps_per_s = result.steps.size() / std::max(loop_seconds, 1e-9);
   summarise_tracking(result);
   return result;

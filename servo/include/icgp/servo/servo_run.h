@@ -61,7 +61,7 @@ struct ServoResult {
   /// Lost at the end: the tracker's last reason (why the object was never found, say);
   /// empty otherwise, or when the tracker gave none.
   std::string lost_reason;
-  int joint_limit_stops = 0;
+  int joint_limit_stops = 0;  ///< frame periods in which an arm joint was stopped at its limit
   /// A stop was requested (icgp::request_stop, SIGINT) and the run ended at the step it was
   /// seen, before converging or reaching its time limit.
   bool interrupted = false;
