@@ -69,14 +69,17 @@ SweepSpec parse_sweep(const std::string& text) {
 }
 
 SweepValue sweep_value(double value, const std::vector<std::vector<ServoResult>>& runs_by_tracker,
-                       const StopSpec& stop, bool interrupted) {
+                       const Scenario& scenario, bool interrupted) {
   SweepValue out;
   out.value = value;
   for (const std::vector<ServoResult>& runs : runs_by_tracker) {
     if (runs.empty()) continue;
     SweepRow row;
     row.value = value;
-    row.summary = summarise(runs, stop);
+    row.summary = summarise(runs, scenario.stop);
+    // Only icgp detects; the others' names start with theirs (PoseEstimator::name).
+    const bool icgp = row.summary.tracker.rfind(name_of(TrackerKind::kIcgp, tracker_names()), 0) == 0;
+    row.starts_from_truth = !icgp || !scenario.tracker.init_by_detection;
     row.summary.interrupted = row.summary.interrupted || interrupted;
     std::vector<double> final_t, final_r;
     for (const ServoResult& r : runs) {
@@ -104,7 +107,7 @@ SweepValue run_sweep_value(const std::string& scenario_file, const std::string& 
           failures += (failures.empty() ? "" : "; ") + std::string("trial ") + std::to_string(trial + 1) + " (" +
                       name_of(tracker, tracker_names()) + "): " + e.what();
         });
-    out = sweep_value(out.value, batch.runs, scenario.stop, batch.interrupted);
+    out = sweep_value(out.value, batch.runs, scenario, batch.interrupted);
     out.error = failures;
   } catch (const std::exception& e) {
     out.error = e.what();
@@ -114,14 +117,15 @@ SweepValue run_sweep_value(const std::string& scenario_file, const std::string& 
 
 void print_sweep(std::ostream& out, const SweepSpec& sweep, const std::vector<SweepValue>& values) {
   char line[256];
-  std::snprintf(line, sizeof line, "%14s  %-34s %6s %8s %19s %19s\n", sweep.field.c_str(), "tracker", "trials",
-                "success", "final mm med/p95", "final deg med/p95");
+  std::snprintf(line, sizeof line, "%14s  %-34s %-6s %6s %8s %19s %19s\n", sweep.field.c_str(), "tracker", "start",
+                "trials", "success", "final mm med/p95", "final deg med/p95");
   out << line;
   for (const SweepValue& v : values) {
     for (const SweepRow& row : v.rows) {
       const TrialsSummary& s = row.summary;
-      std::snprintf(line, sizeof line, "%14s  %-34s %6d %7.1f%% %9.3f / %-7.3f %9.3f / %-7.3f\n",
-                    yaml::plain_number(v.value).c_str(), s.tracker.c_str(), s.trials, 100.0 * s.success_rate,
+      std::snprintf(line, sizeof line, "%14s  %-34s %-6s %6d %7.1f%% %9.3f / %-7.3f %9.3f / %-7.3f\n",
+                    yaml::plain_number(v.value).c_str(), s.tracker.c_str(), row.starts_from_truth ? "truth" : "detect",
+                    s.trials, 100.0 * s.success_rate,
                     kMm * s.final_t_median, kMm * row.final_t_p95, kDeg * s.final_r_median, kDeg * row.final_r_p95);
       out << line;
     }
@@ -137,6 +141,7 @@ void write_sweep_json(const SweepSpec& sweep, const std::vector<SweepValue>& val
                          .add("value", row.value)
                          .add("final_t_mm_p95", kMm * row.final_t_p95)
                          .add("final_r_deg_p95", kDeg * row.final_r_p95)
+                         .add("starts_from_truth", row.starts_from_truth)
                          .add_fields(summary_json(row.summary)));
     if (!v.error.empty()) errors.push_back(JsonObject().add("value", v.value).add("error", v.error));
   }

@@ -230,7 +230,7 @@ std::string write_sweep(const std::string& field, const std::vector<double>& swe
     const auto& scenario = entry[1].cast<const servo::Scenario&>();
     const auto trials = entry[2].cast<std::vector<Trial>>();
     servo::SweepValue v = trials.empty() ? servo::SweepValue{value, {}, {}}
-                                         : servo::sweep_value(value, runs_by_tracker(trials, scenario), scenario.stop,
+                                         : servo::sweep_value(value, runs_by_tracker(trials, scenario), scenario,
                                                               entry[4].cast<bool>());
     v.error = entry[3].cast<std::string>();
     values.push_back(std::move(v));

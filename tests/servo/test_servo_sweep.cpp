@@ -4,6 +4,7 @@
 // with a frame of latency that finds the delay bound's onset, with the same starts at every
 // value.
 #include <catch2/catch.hpp>
+#include <sstream>
 #include <string>
 
 #include "../unit/test_temp_dir.h"
@@ -92,4 +93,29 @@ TEST_CASE("sweep: the PBVS gain with a frame of latency succeeds below the delay
   // The same seeded starts at every value: a sweep is a comparison.
   const SweepValue again = run_sweep_value(file, ICGP_MODELS_DIR, sweep, 0, {TrackerKind::kOracle}, 2, 0, {});
   CHECK(again.rows[0].summary.final_t_median == values[0].rows[0].summary.final_t_median);
+}
+
+TEST_CASE("sweep: a row says whether its tracker started by detection or from the truth", "[servo][sweep]") {
+  const auto runs_of = [](const std::string& tracker) {
+    ServoResult run;
+    run.tracker = tracker;
+    run.converged = true;
+    run.steps.resize(1);
+    return std::vector<ServoResult>{run};
+  };
+  Scenario scenario;
+  const std::vector<std::vector<ServoResult>> runs = {
+      runs_of("icgp (region + depth + texture)"), runs_of("visp (edge + KLT + dense depth)"),
+      runs_of("oracle (ground truth)")};
+  const SweepValue detected = sweep_value(50, runs, scenario, false);
+  REQUIRE(detected.rows.size() == 3);
+  CHECK_FALSE(detected.rows[0].starts_from_truth);  // icgp finds the object itself
+  CHECK(detected.rows[1].starts_from_truth);        // ViSP's tracker cannot detect
+  CHECK(detected.rows[2].starts_from_truth);
+  scenario.tracker.init_by_detection = false;
+  CHECK(sweep_value(50, runs, scenario, false).rows[0].starts_from_truth);
+  std::ostringstream table;
+  print_sweep(table, SweepSpec{"camera.latency_ms", {50}}, {detected});
+  CHECK_THAT(table.str(), Contains("icgp (region + depth + texture)    detect"));
+  CHECK_THAT(table.str(), Contains("visp (edge + KLT + dense depth)    truth"));
 }

@@ -30,6 +30,9 @@ struct SweepRow {
   TrialsSummary summary;
   double final_t_p95 = 0.0;  ///< metres, over the trials
   double final_r_p95 = 0.0;  ///< radians
+  /// The tracker started from the true pose rather than by detection: ViSP's tracker and the
+  /// oracle always, icgp with `tracker.init: truth`. Its row is then no test of the start.
+  bool starts_from_truth = false;
 };
 
 /// What happened at one value: a row per tracker, or the error that stopped its trials.
@@ -40,9 +43,10 @@ struct SweepValue {
 };
 
 /// The rows of the runs at one value: runs_by_tracker[k] are tracker k's runs (trials in
-/// index order), judged against `stop`; `interrupted` marks a batch a stop request cut short.
+/// index order) of `scenario`, judged against its stop thresholds; `interrupted` marks a
+/// batch a stop request cut short.
 SweepValue sweep_value(double value, const std::vector<std::vector<ServoResult>>& runs_by_tracker,
-                       const StopSpec& stop, bool interrupted);
+                       const Scenario& scenario, bool interrupted);
 
 /// The rows at one value of `sweep`: the scenario read with the field set to it, then its
 /// trials with every tracker of `trackers` on the same seeded starts at every value (the
@@ -53,7 +57,8 @@ SweepValue run_sweep_value(const std::string& scenario_file, const std::string& 
                            std::size_t index, const std::vector<TrackerKind>& trackers, int trials, unsigned seed,
                            const RunDone& on_run);
 
-/// The table: value, tracker, success rate, final error median / p95 (mm, deg).
+/// The table: value, tracker, how it started (detect or truth), success rate, final error
+/// median / p95 (mm, deg).
 void print_sweep(std::ostream& out, const SweepSpec& sweep, const std::vector<SweepValue>& values);
 /// sweep.json: {"field", "values": [...], "rows": [{"value", "p95": {...}, summary...}],
 /// "errors": [{"value", "error"}]}; written after every value, so a stopped sweep keeps
