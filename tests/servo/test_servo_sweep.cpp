@@ -119,3 +119,20 @@ TEST_CASE("sweep: a row says whether its tracker started by detection or from th
   CHECK_THAT(table.str(), Contains("icgp (region + depth + texture)    detect"));
   CHECK_THAT(table.str(), Contains("visp (edge + KLT + dense depth)    truth"));
 }
+
+TEST_CASE("sweep: a trial that throws is reported with its number and tracker, and the sweep goes on",
+          "[servo][sweep]") {
+  // A Viper 850 started outside its joint limits: every run of it throws.
+  const icgp::test::TempDir dir("icgp-test-sweep");
+  const std::string file = dir.write(
+      "bad_arm.yaml", "robot: viper850_eye_in_hand\narm: {initial_joints_deg: [0, -60, 300, 0, 70, 0]}\n" +
+                          kDelayed.substr(0, kDelayed.find("stop:")) + "stop: {max_time: 1}\n");
+  const SweepSpec sweep = parse_sweep("camera.latency_ms=0,50");
+  for (std::size_t i = 0; i < sweep.values.size(); ++i) {
+    const SweepValue v = run_sweep_value(file, ICGP_MODELS_DIR, sweep, i, {TrackerKind::kOracle}, 2, 0, {});
+    INFO(v.error);
+    CHECK(v.rows.empty());
+    CHECK_THAT(v.error, Contains("trial 1 (oracle): Viper 850: initial joint 3"));
+    CHECK_THAT(v.error, Contains("; trial 2 (oracle): "));
+  }
+}
