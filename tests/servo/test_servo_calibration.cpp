@@ -44,6 +44,27 @@ Scenario arm_scenario(RobotKind robot = RobotKind::kViper850EyeInHand) {
 
 double angle_of(const icgp::Pose& p) { return Eigen::AngleAxisd(p.rotation()).angle(); }
 
+/// The textured box alone (no background) facing a 320x240 free-flying camera 0.4 m away,
+/// `right` metres right of the optical axis.
+Scenario facing_box(double right) {
+  Scenario s;
+  s.object.model = ICGP_MODELS_DIR "/textured_box/textured_box.obj";
+  s.camera.color = s.camera.depth = icgp::Intrinsics::centred(320, 240, 300.0);
+  s.background.enabled = false;
+  s.initial_cMo = icgp::Pose::from_rotation_vector(Eigen::Vector3d(M_PI, 0, 0), Eigen::Vector3d(right, 0, 0.4));
+  return s;
+}
+
+/// The mean column of the pixels of `image` where `on` holds.
+template <typename Pixel, typename Test>
+double column_centroid(const vpImage<Pixel>& image, Test on) {
+  double sum = 0.0, n = 0.0;
+  for (unsigned v = 0; v < image.getHeight(); ++v)
+    for (unsigned u = 0; u < image.getWidth(); ++u)
+      if (on(image[v][u])) sum += u, n += 1.0;
+  return sum / n;
+}
+
 }  // namespace
 
 TEST_CASE("calibration: the true values are drawn at the sizes given, in directions the seed sets",
@@ -129,11 +150,7 @@ TEST_CASE("calibration: a grasp's tracker gets the gripper from the nominal kine
 
 TEST_CASE("calibration: the images are made with the true intrinsics, the sensor reports the nominal ones",
           "[servo][calibration]") {
-  Scenario s;
-  s.object.model = ICGP_MODELS_DIR "/textured_box/textured_box.obj";
-  s.camera.color = s.camera.depth = icgp::Intrinsics::centred(320, 240, 300.0);
-  s.background.enabled = false;
-  s.initial_cMo = icgp::Pose::from_rotation_vector(Eigen::Vector3d(M_PI, 0, 0), Eigen::Vector3d(0, 0, 0.4));
+  const Scenario s = facing_box(0.0);
   TrueCalibration truth = nominal_calibration(s);
   truth.depth.pu += 10.0;  // the depth camera's principal point 10 px right of what it reports
   const auto robot = make_robot(s);
@@ -141,15 +158,9 @@ TEST_CASE("calibration: the images are made with the true intrinsics, the sensor
   const vpHomogeneousMatrix wMo = initial_world_T_object(s, *robot);
   RgbdSimulator exact(s, wMc, wMo, 1), shifted(s, truth, wMc, wMo, 1);
   // The column centroid of the measured pixels (the box alone: no background).
-  const auto centroid_u = [](const RgbdCapture& c) {
-    double sum = 0.0, n = 0.0;
-    for (unsigned v = 0; v < c.depth_raw.getHeight(); ++v)
-      for (unsigned u = 0; u < c.depth_raw.getWidth(); ++u)
-        if (c.depth_raw[v][u] > 0) sum += u, n += 1.0;
-    return sum / n;
-  };
-  const double u_exact = centroid_u(exact.capture(0.0, wMc, wMc));
-  const double u_shifted = centroid_u(shifted.capture(0.0, wMc, wMc));
+  const auto measured = [](uint16_t z) { return z > 0; };
+  const double u_exact = column_centroid(exact.capture(0.0, wMc, wMc).depth_raw, measured);
+  const double u_shifted = column_centroid(shifted.capture(0.0, wMc, wMc).depth_raw, measured);
   CHECK(u_shifted - u_exact == Approx(10.0).margin(0.5));
   CHECK(shifted.depth_camera().get_u0() == Approx(s.camera.depth.pu));
 }
@@ -193,12 +204,8 @@ TEST_CASE("model mismatch: the scene's object is scaled and its vertices moved, 
 }
 
 TEST_CASE("calibration: a colour lens's radial distortion moves the image as x (1 + k1 r²) says", "[servo][calibration]") {
-  Scenario s;
-  s.object.model = ICGP_MODELS_DIR "/textured_box/textured_box.obj";
-  s.camera.color = s.camera.depth = icgp::Intrinsics::centred(320, 240, 300.0);
-  s.background.enabled = false;
   // The box's front face 0.12 m right of the optical axis, where barrel distortion pulls it in.
-  s.initial_cMo = icgp::Pose::from_rotation_vector(Eigen::Vector3d(M_PI, 0, 0), Eigen::Vector3d(0.12, 0, 0.4));
+  const Scenario s = facing_box(0.12);
   TrueCalibration truth = nominal_calibration(s);
   truth.color_k1 = -0.5;
   const auto robot = make_robot(s);
@@ -210,7 +217,7 @@ TEST_CASE("calibration: a colour lens's radial distortion moves the image as x (
   // lens gives them (its Jacobian, (1 + k1 r²)(1 + 3 k1 r²)), against the lens image's.
   const RgbdCapture& straight = pinhole.capture(0.0, wMc, wMc);
   const icgp::Intrinsics& k = s.camera.color;
-  double predicted = 0.0, weight = 0.0, n = 0.0;
+  double predicted = 0.0, weight = 0.0;
   for (unsigned v = 0; v < straight.color.getHeight(); ++v)
     for (unsigned u = 0; u < straight.color.getWidth(); ++u)
       if (on_box(straight.color[v][u])) {
@@ -218,20 +225,11 @@ TEST_CASE("calibration: a colour lens's radial distortion moves the image as x (
         const double area = (1.0 + truth.color_k1 * r2) * (1.0 + 3.0 * truth.color_k1 * r2);
         predicted += area * (k.pu + k.fu * x * (1.0 + truth.color_k1 * r2));
         weight += area;
-        n += 1.0;
       }
   predicted /= weight;
   const RgbdCapture& bent = lens.capture(0.0, wMc, wMc);
-  double measured = 0.0, m = 0.0;
-  for (unsigned v = 0; v < bent.color.getHeight(); ++v)
-    for (unsigned u = 0; u < bent.color.getWidth(); ++u)
-      if (on_box(bent.color[v][u])) measured += u, m += 1.0;
-  measured /= m;
-  double straight_centroid = 0.0;
-  for (unsigned v = 0; v < straight.color.getHeight(); ++v)
-    for (unsigned u = 0; u < straight.color.getWidth(); ++u)
-      if (on_box(straight.color[v][u])) straight_centroid += u;
-  straight_centroid /= n;
+  const double measured = column_centroid(bent.color, on_box);
+  const double straight_centroid = column_centroid(straight.color, on_box);
   INFO("box centroid: pinhole " << straight_centroid << " px, predicted " << predicted << ", through the lens "
                                 << measured);
   CHECK(straight_centroid - predicted > 4.0);  // the distortion is large enough to see
