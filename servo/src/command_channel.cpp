@@ -4,12 +4,6 @@
 #include <algorithm>
 
 namespace icgp::servo {
-namespace {
-
-/// Simulated times this close are one instant: k·T + d·T and (k + d)·T differ by rounding.
-constexpr double kSameInstant = 1e-9;
-
-}  // namespace
 
 CommandChannel::CommandChannel(vpColVector initial) : held_(std::move(initial)) {}
 

@@ -74,9 +74,6 @@ class ProgressLine {
   Clock::time_point last_{};
 };
 
-/// Simulated times this close are one instant (k·T plus a latency against frame times).
-constexpr double kSameInstant = 1e-9;
-
 /// The seed's stream of latency jitter (icgp::seeded_stream purposes are per use).
 constexpr std::uint64_t kJitterStream = 17;
 

@@ -9,6 +9,10 @@
 
 namespace icgp::servo {
 
+/// Simulated times this close are one instant: k·T plus a latency of d·T and (k + d)·T
+/// differ by rounding.
+inline constexpr double kSameInstant = 1e-9;
+
 /// Velocity commands on their way to the robot (CameraSpec::latency). Each is held from the
 /// time it arrives until the next one arrives (a zero-order hold), and none overtakes the
 /// one sent before it, as on a real link.
