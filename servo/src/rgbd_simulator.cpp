@@ -66,8 +66,9 @@ std::pair<cv::Mat, cv::Mat> lens_maps(const Intrinsics& k, double k1) {
 struct RgbdSimulator::Impl {
   Scenario scenario;  ///< with the true calibration: what the images are made with
   CameraSpec nominal;  ///< the calibration the sensor reports
-  /// The colour lens's distortion as cv::remap maps; empty without.
-  cv::Mat lens_map_u, lens_map_v;
+  /// The colour lens's distortion as cv::remap maps; empty without. The image through the
+  /// lens is made in `through_lens`, kept from frame to frame.
+  cv::Mat lens_map_u, lens_map_v, through_lens;
   Renderer renderer;
   Renderer::BodyHandle object{}, occluder{}, gripper{};  ///< occluder, gripper: when the scenario has one
   vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
@@ -214,9 +215,8 @@ RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc,
   if (!d.lens_map_u.empty()) {
     // The lens bends the image before the sensor's noise; what it brings in from beyond
     // the pinhole's field of view is black.
-    cv::Mat through_lens;
-    cv::remap(color, through_lens, d.lens_map_u, d.lens_map_v, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
-    color = through_lens;
+    cv::remap(color, d.through_lens, d.lens_map_u, d.lens_map_v, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+    color = d.through_lens;
   }
   d.noise.add_color_noise(color, d.scenario.camera.noise.color_sigma);
   to_vp_image(color, c.color);
