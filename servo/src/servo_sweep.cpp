@@ -18,8 +18,6 @@ namespace {
 
 /// The most values one sweep takes: each is a whole batch of trials.
 constexpr std::size_t kMaxSweepValues = 1000;
-constexpr double kMm = 1000.0;
-constexpr double kDeg = 180.0 / kPi;
 
 /// The rows of `values`, in order.
 std::vector<const SweepRow*> all_rows(const std::vector<SweepValue>& values) {
@@ -126,7 +124,7 @@ void print_sweep(std::ostream& out, const SweepSpec& sweep, const std::vector<Sw
       std::snprintf(line, sizeof line, "%14s  %-34s %-6s %6d %7.1f%% %9.3f / %-7.3f %9.3f / %-7.3f\n",
                     yaml::plain_number(v.value).c_str(), s.tracker.c_str(), row.starts_from_truth ? "truth" : "detect",
                     s.trials, 100.0 * s.success_rate,
-                    kMm * s.final_t_median, kMm * row.final_t_p95, kDeg * s.final_r_median, kDeg * row.final_r_p95);
+                    1e3 * s.final_t_median, 1e3 * row.final_t_p95, s.final_r_median / kDegree, row.final_r_p95 / kDegree);
       out << line;
     }
     if (!v.error.empty()) out << yaml::plain_number(v.value) << ": " << v.error << "\n";
@@ -139,8 +137,8 @@ void write_sweep_json(const SweepSpec& sweep, const std::vector<SweepValue>& val
     for (const SweepRow& row : v.rows)
       rows.push_back(JsonObject()
                          .add("value", row.value)
-                         .add("final_t_mm_p95", kMm * row.final_t_p95)
-                         .add("final_r_deg_p95", kDeg * row.final_r_p95)
+                         .add("final_t_mm_p95", 1e3 * row.final_t_p95)
+                         .add("final_r_deg_p95", row.final_r_p95 / kDegree)
                          .add("starts_from_truth", row.starts_from_truth)
                          .add_fields(summary_json(row.summary)));
     if (!v.error.empty()) errors.push_back(JsonObject().add("value", v.value).add("error", v.error));
@@ -162,7 +160,7 @@ void plot_sweep(const SweepSpec& sweep, const std::vector<SweepValue>& values, c
       if (row->summary.tracker == trackers[k]) {
         char line[160];
         std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.9g\n", row->value, 100.0 * row->summary.success_rate,
-                      kMm * row->summary.final_t_median, kMm * row->final_t_p95);
+                      1e3 * row->summary.final_t_median, 1e3 * row->final_t_p95);
         s += line;
       }
     s += "EOD\n";
