@@ -15,6 +15,7 @@
 #include "icgp/base/resource_limits.h"
 #include "icgp/io/model_reference.h"
 #include "icgp/io/yaml_reader.h"
+#include "icgp/servo/scenario_profile.h"
 #include "icgp/modality/cue_kind.h"
 #include "icgp/tracker/cue_registry.h"
 
@@ -385,31 +386,64 @@ const std::vector<std::pair<std::string, TrackerKind>>& tracker_names() {
 
 namespace {
 
-/// Writes `override.value` at its dotted key path in `document`, creating the sections on
-/// the way; refuses a path through a value that is not a section, and a field that holds
-/// something other than a number.
-void write_field(const Value& document, const FieldValue& override) {
+/// The node at the dotted key path `field` of `document`, and where it is, creating the
+/// sections on the way when `create`; refuses a path through a value that is not a section.
+/// Without `create`, an undefined node when the path does not exist.
+std::pair<YAML::Node, Location> field_node(const Value& document, const std::string& field, bool create) {
   YAML::Node node = document.node;
   Location at = document.at;
   std::string::size_type begin = 0;
   while (true) {
-    const std::string::size_type dot = override.field.find('.', begin);
-    const std::string key = override.field.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin);
-    if (key.empty()) at.fail("'" + override.field + "' is not a field (an empty key)");
-    if (!node.IsMap() && !node.IsNull()) at.fail("is not a section, so '" + override.field + "' is not a field");
+    const std::string::size_type dot = field.find('.', begin);
+    const std::string key = field.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin);
+    if (key.empty()) at.fail("'" + field + "' is not a field (an empty key)");
+    if (!node.IsMap() && !node.IsNull()) at.fail("is not a section, so '" + field + "' is not a field");
     at = at.child(key);
+    if (!create && !node[key].IsDefined()) return {YAML::Node(YAML::NodeType::Undefined), at};
     YAML::Node child = node[key];
-    if (dot == std::string::npos) {
-      if (child.IsDefined() && !child.IsNull() && !(child.IsScalar() && convert<double>(child)))
-        at.fail("holds " + yaml::describe(child) + ", not a number: only a numeric field can be set to " +
-                yaml::plain_number(override.value));
-      child = override.value;
-      return;
-    }
+    if (dot == std::string::npos) return {child, at};
     if (!child.IsDefined() || child.IsNull()) child = YAML::Node(YAML::NodeType::Map);
     node.reset(child);
     begin = dot + 1;
   }
+}
+
+bool file_sets(const Value& document, const std::string& field) {
+  const YAML::Node node = field_node(document, field, false).first;
+  return node.IsDefined() && !node.IsNull();
+}
+
+/// Writes `override.value` at its dotted key path in `document`; refuses a field that holds
+/// something other than a number.
+void write_field(const Value& document, const FieldValue& override) {
+  auto [node, at] = field_node(document, override.field, true);
+  if (node.IsDefined() && !node.IsNull() && !(node.IsScalar() && convert<double>(node)))
+    at.fail("holds " + yaml::describe(node) + ", not a number: only a numeric field can be set to " +
+            yaml::plain_number(override.value));
+  node = override.value;
+}
+
+/// The file's profile (realistic unless it says ideal) and its fields under the file's own:
+/// the document then reads as if the file gave them.
+Profile apply_profile(const Value& document) {
+  Profile profile = Profile::kRealistic;
+  if (!document.node.IsMap()) return profile;  // the reader's error names what the file holds
+  if (document.node["profile"].IsDefined())
+    profile = Value{document.node["profile"], document.at.child("profile")}.choice<Profile>(profile_names());
+  RobotKind robot = RobotKind::kFreeFlyingCamera;
+  if (document.node["robot"].IsDefined())
+    robot = Value{document.node["robot"], document.at.child("robot")}.choice<RobotKind>(robot_names());
+  // Chosen against the file alone, before any is written: `unless_set` means the file's.
+  std::vector<ProfileField> missing;
+  for (const ProfileField& given : profile_fields(profile, robot)) {
+    // Not into a missing object: the reader's error says the file lacks the whole section.
+    if (given.field.rfind("object.", 0) == 0 && !file_sets(document, "object")) continue;
+    if (file_sets(document, given.field)) continue;
+    if (!given.unless_set.empty() && file_sets(document, given.unless_set)) continue;
+    missing.push_back(given);
+  }
+  for (const ProfileField& given : missing) field_node(document, given.field, true).first = YAML::Load(given.value);
+  return profile;
 }
 
 }  // namespace
@@ -422,13 +456,15 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir,
                        const std::vector<FieldValue>& overrides) try {
   const Value document = yaml::load_file(path, {"scenario file"});
   for (const FieldValue& override : overrides) write_field(document, override);
-  const Map s(document, {"name", "description", "robot", "arm", "gripper", "object", "occluder", "background", "lighting",
+  const Profile profile = apply_profile(document);
+  const Map s(document, {"name", "description", "profile", "robot", "arm", "gripper", "object", "occluder", "background", "lighting",
                          "camera", "start", "desired", "start_gMo", "desired_gMo", "tracker", "control", "stop", "trials",
                          "seed", "robot_response", "calibration_error"});
   const fs::path folder = fs::path(path).parent_path();
   Scenario scenario;
   scenario.file = path;
   scenario.overrides = overrides;
+  scenario.profile = profile;
   scenario.name = fs::path(path).stem().string();
   if (auto x = s.get("name")) scenario.name = x->as(kNonEmptyString);
   if (auto x = s.get("description")) scenario.description = x->as(kString);

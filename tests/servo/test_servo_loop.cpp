@@ -25,7 +25,8 @@ namespace {
 Scenario small_scenario(const std::string& law, const std::string& tracker) {
   const icgp::test::TempDir dir("icgp-test-servo-loop");
   std::ostringstream yaml;
-  yaml << "object: {model: textured_box}\n"
+  yaml << "profile: ideal\n"
+          "object: {model: textured_box}\n"
                          "camera:\n"
                          "  color: {width: 320, height: 240, focal: 300}\n"
                          "  depth_T_color: {t: [-0.025, 0, 0], r_deg: [0, 0, 0]}\n"

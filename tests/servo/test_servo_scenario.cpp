@@ -162,9 +162,11 @@ seed: 7
   CHECK(s.seed == 7);
 }
 
-TEST_CASE("keys left out of a scenario take their defaults") {
+TEST_CASE("keys left out of an ideal scenario take their defaults") {
   TempDir dir("icgp-scenario");
-  const Scenario s = load_scenario(dir.write("pbvs-box.yaml", kMinimal + "control: {gain: 0.8}\n"), ICGP_MODELS_DIR);
+  const Scenario s =
+      load_scenario(dir.write("pbvs-box.yaml", "profile: ideal\n" + kMinimal + "control: {gain: 0.8}\n"), ICGP_MODELS_DIR);
+  CHECK(s.profile == icgp::servo::Profile::kIdeal);
   CHECK((s.name == "pbvs-box" && s.description.empty()));
   CHECK(s.robot == icgp::servo::RobotKind::kFreeFlyingCamera);
   CHECK(s.arm.initial_joints[1] == Approx(-60 * icgp::servo::kDegree));
@@ -198,15 +200,69 @@ TEST_CASE("keys left out of a scenario take their defaults") {
   CHECK(s.camera.jitter.distribution == icgp::servo::JitterSpec::Distribution::kNone);
   CHECK((!s.tracker.real_timing && !s.tracker.compute_time));
   CHECK(s.robot_response.immediate());
+  CHECK((s.calibration_error.focal == 0.0 && s.calibration_error.principal_point == 0.0));
+  CHECK((s.calibration_error.depth_T_color_translation == 0.0 && s.calibration_error.depth_T_color_rotation == 0.0));
+  CHECK(s.object.scale_error == 0.0);
 
   // The depth camera defaults to the colour camera as the file gives it; `occluder:` alone
   // places the default occluder.
   const Scenario t = load_scenario(
-      dir.write("b.yaml", kMinimal + "occluder:\ncamera: {color: {width: 100, height: 80, focal: 90}}\n"),
+      dir.write("b.yaml", "profile: ideal\n" + kMinimal + "occluder:\ncamera: {color: {width: 100, height: 80, focal: 90}}\n"),
       ICGP_MODELS_DIR);
   CHECK((t.camera.depth.width == 100 && t.camera.depth.fu == 90 && t.camera.depth.pu == 49.5));
   REQUIRE(t.occluder);
   CHECK(t.occluder->size.isApprox(Eigen::Vector3d(0.03, 0.3, 0.03)));
+}
+
+TEST_CASE("a scenario without a profile is a realistic cell, each of whose fields the file may set") {
+  TempDir dir("icgp-scenario");
+  const Scenario s = load_scenario(dir.write("cell.yaml", kMinimal), ICGP_MODELS_DIR);
+  CHECK(s.profile == icgp::servo::Profile::kRealistic);
+  // docs/servo.md, "Profiles": two frames at 30 Hz plus the tracker's time, a 30 ms lag, a
+  // calibrated camera's errors, an object half a percent off its model, and success judged
+  // as closely as such a cell knows itself.
+  CHECK(s.camera.latency == Approx(0.067));
+  CHECK((s.camera.jitter.distribution == icgp::servo::JitterSpec::Distribution::kNormal &&
+         s.camera.jitter.spread == Approx(0.005)));
+  CHECK(s.tracker.real_timing);
+  REQUIRE(s.tracker.compute_time);
+  CHECK(*s.tracker.compute_time == Approx(0.010));
+  CHECK(s.robot_response.lag == Approx(0.030));
+  CHECK(s.robot_response.max_linear_acceleration == Approx(13.0));
+  CHECK(s.robot_response.max_angular_acceleration == Approx(1432 * kDegree));
+  CHECK(s.calibration_error.focal == Approx(0.005));
+  CHECK(s.calibration_error.principal_point == Approx(1.5));
+  CHECK((s.calibration_error.depth_T_color_translation == Approx(0.001) &&
+         s.calibration_error.depth_T_color_rotation == Approx(0.2 * kDegree)));
+  CHECK((s.calibration_error.hand_eye_translation == 0.0 && s.calibration_error.joint_offset == 0.0));  // no arm
+  CHECK(s.object.scale_error == Approx(0.005));
+  CHECK((s.stop.converged_translation == Approx(0.005) && s.stop.converged_rotation == Approx(kDegree)));
+
+  // An arm gets joint accelerations, a hand-eye error and joint offsets instead of Cartesian limits.
+  const Scenario arm =
+      load_scenario(dir.write("arm.yaml", "robot: viper850_eye_in_hand\n" + kMinimal), ICGP_MODELS_DIR);
+  CHECK(arm.robot_response.max_joint_acceleration == Approx(430 * kDegree));
+  CHECK(arm.robot_response.max_linear_acceleration == icgp::servo::ResponseSpec::kUnlimited);
+  CHECK((arm.calibration_error.hand_eye_translation == Approx(0.0015) &&
+         arm.calibration_error.hand_eye_rotation == Approx(0.3 * kDegree)));
+  CHECK(arm.calibration_error.joint_offset == Approx(0.02 * kDegree));
+
+  // The file's own values win, a sweep's override too; a timing the file sets takes the
+  // profile's compute time with it, and a jitter the file gives is the file's whole.
+  const Scenario own = load_scenario(
+      dir.write("own.yaml", kMinimal + "camera: {latency_ms: 0, jitter: {distribution: uniform}}\n"
+                                       "tracker: {timing: ideal}\nstop: {translation_mm: 2}\n"),
+      ICGP_MODELS_DIR, {{"calibration_error.focal_percent", 2.0}});
+  CHECK(own.camera.latency == 0.0);
+  CHECK((own.camera.jitter.distribution == icgp::servo::JitterSpec::Distribution::kUniform &&
+         own.camera.jitter.spread == 0.0));
+  CHECK((!own.tracker.real_timing && !own.tracker.compute_time));
+  CHECK(own.calibration_error.focal == Approx(0.02));
+  CHECK(own.stop.converged_translation == Approx(0.002));
+  CHECK(own.stop.converged_rotation == Approx(kDegree));  // the profile's, beside the file's translation
+
+  CHECK_THAT(error_of(dir, "profile: exact\n" + kMinimal),
+             Contains((dir.path() / "bad.yaml").string() + ": profile: expected one of realistic, ideal"));
 }
 
 TEST_CASE("a scenario sets how the tracker starts and when the object is taken away") {
@@ -256,7 +312,7 @@ TEST_CASE("a scenario sets the loop's timing and the robot's response, each boun
       {"camera: {jitter: {distribution: gamma, ms: 3}}", "camera.jitter.distribution: expected one of none, uniform, normal"},
       {"camera: {jitter: {distribution: uniform, ms: -1}}", "camera.jitter.ms: expected a number in [0, 10000], got -1"},
       {"tracker: {timing: fast}", "tracker.timing: expected one of ideal, real"},
-      {"tracker: {compute_ms: 10}", "tracker.compute_ms: a compute time counts only with timing: real"},
+      {"tracker: {timing: ideal, compute_ms: 10}", "tracker.compute_ms: a compute time counts only with timing: real"},
       {"robot_response: {lag_ms: -30}", "robot_response.lag_ms: expected a number in [0, 10000], got -30"},
       {"robot_response: {max_linear_acceleration: 0}",
        "robot_response.max_linear_acceleration: expected a number in (0, 1000000], got 0"},

@@ -18,6 +18,7 @@ namespace {
 
 /// An oracle PBVS loop at 20 Hz with one frame of latency and a constant gain of 10 /s.
 const std::string kDelayed =
+    "profile: ideal\n"
     "object: {model: textured_box}\n"
     "camera: {color: {width: 160, height: 120, focal: 150}, rate_hz: 20, latency_ms: 50}\n"
     "start: {t: [0.005, 0, 0.35], r_deg: [131.2, 26.8, -37.57]}\n"

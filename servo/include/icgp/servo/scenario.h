@@ -42,6 +42,13 @@ enum class ControlLawKind {
   kIbvs,  ///< image-based: projected bounding-box corners (x, y) against their desired positions
 };
 
+/// The cell a scenario runs in unless its file says otherwise (top-level key `profile`;
+/// scenario_profile.h gives the fields of each).
+enum class Profile {
+  kRealistic,  ///< a real cell's latency, robot response, calibration and object errors (the default)
+  kIdeal,      ///< the exact world: no latency, an exact robot, calibration and object
+};
+
 enum class TrackerKind {
   kIcgp,    ///< vpMbIcgTracker
   kVisp,    ///< vpMbGenericTracker
@@ -289,6 +296,9 @@ struct Scenario {
   /// The fields set over the file's (load_scenario with overrides): reading `file` with them
   /// gives this scenario again (another process does, for a trial of a sweep).
   std::vector<FieldValue> overrides;
+  /// The profile load_scenario applied (the file's; realistic unless it says ideal). The
+  /// values of a Scenario built in code are the ideal ones.
+  Profile profile = Profile::kIdeal;
   RobotKind robot = RobotKind::kFreeFlyingCamera;
   ResponseSpec robot_response;
   ArmSpec arm;
@@ -329,7 +339,8 @@ double simulated_steps(double max_time, double rate_hz);
 /// 20001 steps), and run_servo again for scenarios built in code.
 void check_run_length(const Scenario& scenario);
 
-/// Reads and validates a scenario. Relative paths in it are resolved against the file's
+/// Reads and validates a scenario: its profile's fields (profile_fields) first, then the
+/// file's over them. Relative paths in it are resolved against the file's
 /// folder, model names against `models_dir`. Throws ScenarioError naming the file and the
 /// field for anything missing, unknown, of the wrong type or out of range, with the range:
 /// every number is bounded (docs/servo.md, "Limits"), image sizes by
