@@ -29,7 +29,7 @@ from pathlib import Path
 from . import _icgp
 from ._icgp.servo import Scenario
 
-TRACKERS = ("icgp", "visp", "oracle")
+TRACKERS = ("icgp", "visp", "oracle", "image_oracle")
 
 # Every trial on one core: two trials on two cores must not fight over both. OpenMP (ViSP and
 # the tracker use it) reads this when icgp's extension loads, so it is set when a worker
@@ -96,7 +96,7 @@ def local_cluster(workers, **options):
 
 def trials(scenario, n, seed=None, trackers=None, client=None, batch_size=None, progress=True):
     """Runs trials 0 .. n-1 of `scenario` (a Scenario or its YAML file) with each of `trackers`
-    ('icgp', 'visp', 'oracle'; default: the scenario's), as `icgp servo --trials n` does.
+    ('icgp', 'visp', 'oracle', 'image_oracle'; default: the scenario's), as `icgp servo --trials n` does.
     `seed` replaces the scenario's seed (the random starts and the noise follow from it).
 
     Without `client`, in this process: every tracker runs trial i before any runs trial i + 1.
@@ -196,10 +196,10 @@ def _trackers(trackers):
         trackers = [trackers]
     trackers = list(trackers)
     if not trackers:
-        raise ValueError("trackers: expected at least one of 'icgp', 'visp', 'oracle'")
+        raise ValueError(f"trackers: expected at least one of {', '.join(TRACKERS)}")
     for t in trackers:
         if t not in TRACKERS:
-            raise ValueError(f"trackers: expected 'icgp', 'visp' or 'oracle', got {t!r}")
+            raise ValueError(f"trackers: expected one of {', '.join(TRACKERS)}, got {t!r}")
     if len(set(trackers)) != len(trackers):
         raise ValueError(f"trackers: each tracker once, got {trackers}")
     return trackers

@@ -8,8 +8,10 @@
 #include <stdexcept>
 #include <visp3/core/vpTrackingException.h>
 #include <visp3/mbt/vpMbGenericTracker.h>
+#include <visp3/vision/vpPose.h>
 
 #include "icgp/base/camera_names.h"
+#include "icgp/servo/servo_controller.h"
 #include "icgp/tracker/tracker_config.h"
 #include "icgp/visp/rgbd_tracking_loop.h"
 #include "icgp/visp/visp_baseline.h"
@@ -224,6 +226,43 @@ class OracleEstimator : public PoseEstimator {
   std::string name() const override { return "oracle (ground truth)"; }
 };
 
+/// TrackerKind::kImageOracle: the corners' true image points, through the true lens (its
+/// distortion too) and read with the nominal intrinsics, as a calibrated program reads an
+/// image; vpPose on them. The gripper of a grasp comes from the arm's kinematics.
+class ImageOracleEstimator : public PoseEstimator {
+ public:
+  ImageOracleEstimator(const Scenario& scenario, const RgbdSimulator& simulator)
+      : corners_(bounding_box_corners(scenario.object.model)),
+        truth_(simulator.true_calibration()),
+        nominal_(scenario.camera.color) {}
+
+  void start(const RgbdCapture&, const vpHomogeneousMatrix&, const std::optional<vpHomogeneousMatrix>&) override {}
+  PoseEstimate track(const RgbdCapture& capture) override {
+    const auto begin = Clock::now();
+    vpPose pose;
+    for (vpPoint corner : corners_) {
+      corner.track(capture.cMo_true);
+      const double x = corner.get_x(), y = corner.get_y();
+      const double lens = 1.0 + truth_.color_k1 * (x * x + y * y);
+      const double u = truth_.color.fu * x * lens + truth_.color.pu;
+      const double v = truth_.color.fv * y * lens + truth_.color.pv;
+      corner.set_x((u - nominal_.pu) / nominal_.fu);
+      corner.set_y((v - nominal_.pv) / nominal_.fv);
+      pose.addPoint(corner);
+    }
+    PoseEstimate estimate;
+    pose.computePose(vpPose::DEMENTHON_VIRTUAL_VS, estimate.cMo);  // eight corners, not coplanar
+    estimate.track_ms = ms_since(begin);
+    return estimate;
+  }
+  std::string name() const override { return "image oracle (exact corners, nominal calibration)"; }
+
+ private:
+  std::vector<vpPoint> corners_;
+  TrueCalibration truth_;
+  Intrinsics nominal_;
+};
+
 }  // namespace
 
 std::unique_ptr<PoseEstimator> make_pose_estimator(const TrackerSpec& spec, const Scenario& scenario,
@@ -235,6 +274,8 @@ std::unique_ptr<PoseEstimator> make_pose_estimator(const TrackerSpec& spec, cons
       return std::make_unique<VispEstimator>(spec, scenario, simulator);
     case TrackerKind::kOracle:
       return std::make_unique<OracleEstimator>();
+    case TrackerKind::kImageOracle:
+      return std::make_unique<ImageOracleEstimator>(scenario, simulator);
   }
   throw std::logic_error("unknown tracker kind");
 }

@@ -65,6 +65,7 @@ std::pair<cv::Mat, cv::Mat> lens_maps(const Intrinsics& k, double k1) {
 
 struct RgbdSimulator::Impl {
   Scenario scenario;  ///< with the true calibration: what the images are made with
+  TrueCalibration truth;
   CameraSpec nominal;  ///< the calibration the sensor reports
   /// The colour lens's distortion as cv::remap maps; empty without. The image through the
   /// lens is made in `through_lens`, kept from frame to frame.
@@ -78,7 +79,7 @@ struct RgbdSimulator::Impl {
 
   Impl(const Scenario& s, const TrueCalibration& truth, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& wMo,
        std::uint64_t seed)
-      : scenario(s), nominal(s.camera), world_T_camera_start(wMc), world_T_object_start(wMo), noise(seed) {
+      : scenario(s), truth(truth), nominal(s.camera), world_T_camera_start(wMc), world_T_object_start(wMo), noise(seed) {
     scenario.camera.color = truth.color;
     scenario.camera.depth = truth.depth;
     scenario.camera.depth_T_color = truth.depth_T_color;
@@ -225,6 +226,8 @@ RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc,
   d.has_capture = true;
   return c;
 }
+
+const TrueCalibration& RgbdSimulator::true_calibration() const { return impl_->truth; }
 
 vpCameraParameters RgbdSimulator::color_camera() const { return to_camera_parameters(impl_->nominal.color); }
 vpCameraParameters RgbdSimulator::depth_camera() const { return to_camera_parameters(impl_->nominal.depth); }

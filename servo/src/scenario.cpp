@@ -310,7 +310,7 @@ void read_gain(const Value& v, GainSpec& gain) {
 }
 
 void read_control(const Value& v, ControlSpec& control, RobotKind robot) {
-  const Map s(v, {"law", "gain", "max_linear_velocity", "max_angular_velocity_deg", "max_joint_velocity_deg"});
+  const Map s(v, {"law", "gain", "max_linear_velocity", "max_angular_velocity_deg", "max_joint_velocity_deg", "teach"});
   if (auto x = s.get("law")) {
     control.law = x->choice<ControlLawKind>(control_law_names());
     // IBVS features are image points of a camera that moves; a grasp's camera stands still.
@@ -321,6 +321,12 @@ void read_control(const Value& v, ControlSpec& control, RobotKind robot) {
   if (auto x = s.get("max_linear_velocity")) control.max_linear_velocity = x->number_in(kLinearVelocity);
   if (auto x = s.get("max_angular_velocity_deg")) control.max_angular_velocity = x->number_in(kAngularVelocityDeg) * kDegree;
   if (auto x = s.get("max_joint_velocity_deg")) control.max_joint_velocity = x->number_in(kAngularVelocityDeg) * kDegree;
+  if (auto x = s.get("teach")) {
+    control.taught_by_showing = x->choice<bool>({{"pose", false}, {"showing", true}});
+    // The gripper would have to be shown at the goal; a grasp's goal is given in its frame.
+    if (control.taught_by_showing && robot == RobotKind::kViper850Grasp)
+      x->expected("pose (a viper850_grasp scenario gives its goal as desired_gMo)");
+  }
 }
 
 void read_stop(const Value& v, StopSpec& stop) {
@@ -380,7 +386,10 @@ const std::vector<std::pair<std::string, ControlLawKind>>& control_law_names() {
 
 const std::vector<std::pair<std::string, TrackerKind>>& tracker_names() {
   static const std::vector<std::pair<std::string, TrackerKind>> names = {
-      {"icgp", TrackerKind::kIcgp}, {"visp", TrackerKind::kVisp}, {"oracle", TrackerKind::kOracle}};
+      {"icgp", TrackerKind::kIcgp},
+      {"visp", TrackerKind::kVisp},
+      {"oracle", TrackerKind::kOracle},
+      {"image_oracle", TrackerKind::kImageOracle}};
   return names;
 }
 

@@ -141,6 +141,36 @@ vpHomogeneousMatrix nearest_to_goal(const PoseEstimate& estimate, const vpHomoge
   return nearest;
 }
 
+/// How many times the tracker refines its pose on the frame a goal is taught with: the
+/// robot stands still there, so a tracker settles as it would over so many frames.
+constexpr int kTeachingIterations = 10;
+
+/// The goal as the cell's own camera and tracker see it (ControlSpec::taught_by_showing):
+/// the camera (or, eye-to-hand, the object the arm holds) put at the scenario's desired
+/// pose `desired_cMo` at time 0, and the pose the tracker measures there. A tracker that
+/// detects finds the object itself; the others start at the truth, as they do in the loop.
+vpHomogeneousMatrix shown_goal(const SimulatedRobot& robot, RgbdSimulator& simulator, PoseEstimator& estimator,
+                               const vpHomogeneousMatrix& desired_cMo, bool by_detection) {
+  vpHomogeneousMatrix wMc = robot.world_T_camera();
+  std::optional<vpHomogeneousMatrix> held = robot.world_T_held_object();
+  if (held)
+    held = wMc * desired_cMo;
+  else
+    wMc = simulator.world_T_object(0.0) * desired_cMo.inverse();
+  const RgbdCapture& shown = simulator.capture(0.0, wMc, wMc, held, robot.world_T_gripper());
+  PoseEstimate estimate;
+  if (by_detection && estimator.detects()) {
+    estimate = estimator.detect(shown, std::nullopt);
+    if (estimate.lost)
+      throw std::runtime_error("teaching by showing: the tracker did not find the object at the desired pose" +
+                               (estimate.why_lost.empty() ? std::string() : " (" + estimate.why_lost + ")"));
+  } else {
+    estimator.start(shown, shown.cMo_true, shown.cMg_true);
+  }
+  for (int i = 0; i < kTeachingIterations; ++i) estimate = estimator.track(shown);
+  return estimate.cMo;
+}
+
 /// What the values of a velocity for `robot` are (velocity_size), for error messages.
 std::string velocity_meaning(RobotKind robot) {
   if (robot == RobotKind::kFreeFlyingCamera) return "the camera twist (v, w) in the camera frame, m/s and rad/s";
@@ -215,6 +245,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     scenario.grasp->start_gMo = options.start_offset * original.grasp->start_gMo;
   else
     scenario.initial_cMo = options.start_offset * original.initial_cMo;
+  // Where the servo must bring the cell: the truth scores the run against it.
   const vpHomogeneousMatrix desired =
       to_homogeneous_matrix(scenario.grasp ? scenario.grasp->desired_gMo : scenario.desired_cMo);
 
@@ -224,10 +255,16 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
                           options.seed);
   std::unique_ptr<PoseEstimator> estimator =
       options.make_estimator ? options.make_estimator(simulator) : make_pose_estimator(scenario.tracker, scenario, simulator);
+  // The goal the law and the tracker work toward: the desired pose, or what the cell
+  // measured there when it was taught by showing.
+  const vpHomogeneousMatrix goal =
+      scenario.control.taught_by_showing
+          ? shown_goal(*robot, simulator, *estimator, desired, scenario.tracker.init_by_detection)
+          : desired;
   // The scenario's law, unless one is given in code.
   std::unique_ptr<ServoController> controller;
   if (!options.control_law)
-    controller = std::make_unique<ServoController>(scenario.control, desired,
+    controller = std::make_unique<ServoController>(scenario.control, goal,
                                                    bounding_box_corners(scenario.object.model), *robot);
   // A tracker that follows the object alone gets the gripper from the arm's encoders,
   // kinematics and calibrated camera pose, as a real cell's would.
@@ -284,7 +321,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
       if (started && !estimate.equivalents.empty()) {
         // A symmetric object looks the same at each of these poses: servo on the one that
         // needs the smallest motion to the goal, not on whichever the detector ranked first.
-        const vpHomogeneousMatrix nearest = nearest_to_goal(estimate, desired);
+        const vpHomogeneousMatrix nearest = nearest_to_goal(estimate, goal);
         if (nearest != estimate.cMo) {
           estimate.cMo = nearest;
           estimator->start(capture, estimate.cMo, estimate.cMg);
@@ -326,7 +363,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
         velocity = controller->compute(servoed_estimate, *robot);
         step.servo_error_norm = controller->error().frobeniusNorm();
       } else {
-        velocity = custom_velocity(options.control_law, {step.time, servoed_estimate, desired, scenario.robot,
+        velocity = custom_velocity(options.control_law, {step.time, servoed_estimate, goal, scenario.robot,
                                                          velocity_size(scenario.robot), robot_jacobian(*robot)});
         step.servo_error_norm = std::numeric_limits<double>::quiet_NaN();  // no features s
       }
@@ -361,7 +398,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     if (options.on_step) options.on_step(capture, step);
     progress.show(step);
 
-    const bool settled = !estimate.lost && convergence.update(step.time, pose_error(servoed_estimate, desired),
+    const bool settled = !estimate.lost && convergence.update(step.time, pose_error(servoed_estimate, goal),
                                                               step.time >= motion_end);
     if (settled) {
       result.converged = true;

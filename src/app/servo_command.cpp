@@ -60,7 +60,7 @@ struct ServoOptions {
 TrackerKind tracker_kind(const std::string& name) {
   for (const auto& [known, kind] : servo::tracker_names())
     if (known == name) return kind;
-  throw std::invalid_argument("--tracker: expected icgp, visp or oracle, got '" + name + "'");
+  throw std::invalid_argument("--tracker: expected icgp, visp, oracle or image_oracle, got '" + name + "'");
 }
 
 /// Writes the overlay video and shows the live window of a single run.
@@ -326,8 +326,9 @@ void register_servo_command(CLI::App& app) {
       "servo", "Close the loop: simulated RGB-D camera -> tracker -> ViSP control law -> simulated robot, for a scenario");
   o->scenario = default_scenario_path();
   cmd->add_option("scenario", o->scenario, "Scenario file (YAML, see scenarios/)")->check(CLI::ExistingFile)->capture_default_str();
-  cmd->add_option("--tracker", o->tracker, "Tracker in the loop instead of the scenario's: icgp, visp or oracle")
-      ->check(CLI::IsMember({"icgp", "visp", "oracle"}));
+  cmd->add_option("--tracker", o->tracker,
+                  "Tracker in the loop instead of the scenario's: icgp, visp, oracle or image_oracle")
+      ->check(CLI::IsMember({"icgp", "visp", "oracle", "image_oracle"}));
   cmd->add_option("--trials", o->trials,
                   "Batch: runs from random starts within the scenario's trial ranges (Ctrl-C stops it and writes "
                   "the trials done)")

@@ -208,7 +208,7 @@ def test_bad_arguments_name_themselves(sequential):
         servo.summarise(sequential.results[:1] * 2, sequential.scenario)
     with pytest.raises(ValueError, match="n: expected an integer >= 1, got 0"):
         icgp.batch.trials(SCENARIO, 0)
-    with pytest.raises(ValueError, match="trackers: expected 'icgp', 'visp' or 'oracle', got 'kalman'"):
+    with pytest.raises(ValueError, match="trackers: expected one of icgp, visp, oracle, image_oracle, got 'kalman'"):
         icgp.batch.trials(SCENARIO, 2, trackers=["kalman"])
     with pytest.raises(icgp.Error):
         icgp.batch.trials(SOURCE / "tests" / "servo" / "data" / "malformed.yaml", 2)

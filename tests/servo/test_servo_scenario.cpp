@@ -635,16 +635,16 @@ TEST_CASE("a scenario run is bounded in simulated steps (stop.max_time x camera.
   CHECK(icgp::servo::simulated_steps(0.01, 30.0) == 2.0);
 }
 
-TEST_CASE("every scenario shipped in scenarios/ loads") {
+TEST_CASE("every scenario shipped in scenarios/ and its folders loads") {
   namespace fs = std::filesystem;
   int count = 0;
-  for (const fs::directory_entry& entry : fs::directory_iterator(ICGP_MODELS_DIR "/../scenarios")) {
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(ICGP_MODELS_DIR "/../scenarios")) {
     if (entry.path().extension() != ".yaml") continue;
     INFO(entry.path());
     CHECK_NOTHROW(load_scenario(entry.path().string(), ICGP_MODELS_DIR));
     ++count;
   }
-  CHECK(count >= 10);
+  CHECK(count >= 15);  // the 13 scenarios and the two of scenarios/textbook
 }
 
 TEST_CASE("lighting: a light on the camera, its direction must not be zero") {

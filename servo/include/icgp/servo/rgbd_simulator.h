@@ -65,6 +65,8 @@ class RgbdSimulator {
   vpCameraParameters color_camera() const;
   vpCameraParameters depth_camera() const;
   vpHomogeneousMatrix depth_M_color() const;
+  /// What the images are made with (the oracles' view of the cell: a tracker gets the above).
+  const TrueCalibration& true_calibration() const;
 
  private:
   struct Impl;

@@ -53,6 +53,10 @@ enum class TrackerKind {
   kIcgp,    ///< vpMbIcgTracker
   kVisp,    ///< vpMbGenericTracker
   kOracle,  ///< the ground-truth pose
+  /// A perfect feature tracker: the bounding-box corners measured exactly where the true
+  /// camera images them, read through the nominal calibration, the pose from them by vpPose.
+  /// What the calibration does to a pose computed from an image, without a tracker's errors.
+  kImageOracle,
 };
 
 /// The names scenario files give them (robot:, control.law:, tracker.type:), which
@@ -194,6 +198,11 @@ struct ControlSpec {
   double max_linear_velocity = 0.1;   ///< m/s, free-flying camera saturation
   double max_angular_velocity = 0.5;  ///< rad/s (YAML: deg/s), free-flying camera saturation
   double max_joint_velocity = 1.0;    ///< rad/s, arms only (YAML: deg/s)
+  /// Where the goal comes from (YAML teach: pose | showing). Pose: the scenario's desired
+  /// pose, as given. Showing: the robot is first put at that pose and the goal is what the
+  /// cell's own camera and tracker measure there (the desired image recorded with the same,
+  /// maybe miscalibrated, camera), as a user teaches an IBVS task.
+  bool taught_by_showing = false;
 };
 
 /// The robot's low-level controller (YAML robot_response): how the velocity the robot
