@@ -165,10 +165,10 @@ void plot_sweep(const SweepSpec& sweep, const std::vector<SweepValue>& values, c
       }
     s += "EOD\n";
   }
-  std::string field = sweep.field;
-  std::replace(field.begin(), field.end(), '_', '-');  // no subscripts in gnuplot's enhanced text
-  s += "set output 'sweep.png'\nset multiplot layout 2,1\nset key outside right top\n";
-  s += "set xlabel '" + field + "'\nset ylabel 'success (%)'\nset yrange [0:105]\nplot ";
+  // Plain text (field names have underscores); the legends under the plots, whose width
+  // long tracker names would otherwise take.
+  s += "set output 'sweep.png'\nset termoption noenhanced\nset multiplot layout 2,1\nset key below\n";
+  s += "set xlabel '" + sweep.field + "'\nset ylabel 'success (%)'\nset yrange [0:105]\nplot ";
   for (std::size_t k = 0; k < trackers.size(); ++k)
     s += std::string(k ? ", " : "") + "$t" + std::to_string(k) + " using 1:2 with linespoints lw 2 title '" +
          trackers[k] + "'";
