@@ -12,6 +12,7 @@
 
 #include "bindings.h"
 #include "icgp/servo/scenario.h"
+#include "icgp/servo/scenario_profile.h"
 #include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_report.h"
 #include "icgp/servo/servo_run.h"
@@ -37,6 +38,7 @@ std::string repr_text(const py::handle& object) { return py::repr(object).cast<s
 std::string servo_name(RobotKind robot) { return servo::name_of(robot, servo::robot_names()); }
 std::string servo_name(ControlLawKind law) { return servo::name_of(law, servo::control_law_names()); }
 std::string servo_name(TrackerKind tracker) { return servo::name_of(tracker, servo::tracker_names()); }
+std::string servo_name(servo::Profile profile) { return servo::name_of(profile, servo::profile_names()); }
 
 /// An integer argument in [0, max], or nullopt for None. bool is refused: True is no seed.
 std::optional<long long> integer_or_none(const py::object& value, const char* argument, long long max, const char* none) {
@@ -286,7 +288,9 @@ void register_servo(py::module_& m) {
       .def_property_readonly("law", [](const Scenario& s) { return servo_name(s.control.law); },
                              "The scenario's control law: 'pbvs' or 'ibvs'.")
       .def_property_readonly("tracker", [](const Scenario& s) { return servo_name(s.tracker.kind); },
-                             "The tracker in the loop: 'icgp', 'visp' or 'oracle'.")
+                             "The tracker in the loop: 'icgp', 'visp', 'oracle' or 'image_oracle'.")
+      .def_property_readonly("profile", [](const Scenario& s) { return servo_name(s.profile); },
+                             "The cell the file's fields were read over: 'realistic' or 'ideal'.")
       .def_property_readonly("rate_hz", [](const Scenario& s) { return s.camera.rate_hz; },
                              "Frames per second of the camera: one step of the loop per frame.")
       .def_property_readonly("image_size", [](const Scenario& s) {

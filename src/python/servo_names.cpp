@@ -12,7 +12,7 @@ std::optional<servo::TrackerKind> tracker_kind(const py::handle& tracker) {
     for (const auto& [known, kind] : servo::tracker_names())
       if (known == name) return kind;
   }
-  throw py::value_error("tracker: expected 'icgp', 'visp', 'oracle' or None (the scenario's), got " +
+  throw py::value_error("tracker: expected 'icgp', 'visp', 'oracle', 'image_oracle' or None (the scenario's), got " +
                         py::repr(tracker).cast<std::string>());
 }
 

@@ -11,8 +11,8 @@
 
 namespace icgp::python {
 
-/// The tracker of a `tracker` argument: None (nullopt: the scenario's), "icgp", "visp" or
-/// "oracle"; ValueError naming the argument otherwise.
+/// The tracker of a `tracker` argument: None (nullopt: the scenario's), "icgp", "visp",
+/// "oracle" or "image_oracle"; ValueError naming the argument otherwise.
 std::optional<servo::TrackerKind> tracker_kind(const pybind11::handle& tracker);
 
 }  // namespace icgp::python

@@ -198,7 +198,7 @@ def test_an_icgp_trial_is_the_same_run_every_time(sequential):
 
 
 def test_bad_arguments_name_themselves(sequential):
-    with pytest.raises(ValueError, match="tracker: expected 'icgp', 'visp', 'oracle' or None"):
+    with pytest.raises(ValueError, match="tracker: expected 'icgp', 'visp', 'oracle', 'image_oracle' or None"):
         servo.run_trial(sequential.scenario, "kalman", 0)
     with pytest.raises(ValueError, match="trial: expected an index >= 0, got -1"):
         servo.run_trial(sequential.scenario, "oracle", -1)

@@ -54,6 +54,8 @@ def test_scenario_properties_and_pickle(scenario):
     import pickle
     assert scenario.name == "small_pbvs"
     assert (scenario.robot, scenario.law, scenario.tracker) == ("free_flying", "pbvs", "icgp")
+    assert scenario.profile == "ideal"
+    assert icgp.servo.load_scenario(SOURCE / "scenarios" / "default.yaml").profile == "realistic"
     assert scenario.image_size == (320, 240) and scenario.rate_hz == 30
     assert scenario.stop == pytest.approx({"translation_mm": 1, "rotation_deg": 0.1, "settle_time": 0.2, "max_time": 8})
     assert scenario.trials == pytest.approx({"translation_mm": 10, "rotation_deg": 5})
@@ -226,7 +228,7 @@ def test_ctrl_c_stops_a_run_without_callbacks(tmp_path):
 
 
 def test_bad_arguments_name_themselves(scenario):
-    with pytest.raises(ValueError, match="tracker: expected 'icgp', 'visp', 'oracle' or None"):
+    with pytest.raises(ValueError, match="tracker: expected 'icgp', 'visp', 'oracle', 'image_oracle' or None"):
         icgp.servo.run(scenario, "orcale")
     with pytest.raises(ValueError, match=r"seed: expected an integer in \[0, 4294967295\]"):
         icgp.servo.run(scenario, "oracle", seed=-1)
