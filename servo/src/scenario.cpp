@@ -15,8 +15,8 @@
 #include "icgp/base/resource_limits.h"
 #include "icgp/io/model_reference.h"
 #include "icgp/io/yaml_reader.h"
-#include "icgp/servo/scenario_profile.h"
 #include "icgp/modality/cue_kind.h"
+#include "icgp/servo/scenario_profile.h"
 #include "icgp/tracker/cue_registry.h"
 
 namespace icgp::servo {
@@ -395,37 +395,52 @@ const std::vector<std::pair<std::string, TrackerKind>>& tracker_names() {
 
 namespace {
 
+/// The keys of a dotted key path ("camera.jitter.ms").
+std::vector<std::string> keys_of(const std::string& field) {
+  std::vector<std::string> keys;
+  std::string::size_type begin = 0;
+  for (std::string::size_type dot; (dot = field.find('.', begin)) != std::string::npos; begin = dot + 1)
+    keys.push_back(field.substr(begin, dot - begin));
+  keys.push_back(field.substr(begin));
+  return keys;
+}
+
 /// The node at the dotted key path `field` of `document`, and where it is, creating the
-/// sections on the way when `create`; refuses a path through a value that is not a section.
-/// Without `create`, an undefined node when the path does not exist.
-std::pair<YAML::Node, Location> field_node(const Value& document, const std::string& field, bool create) {
+/// sections on the way; refuses a path through a value that is not a section.
+std::pair<YAML::Node, Location> field_node(const Value& document, const std::string& field) {
   YAML::Node node = document.node;
   Location at = document.at;
-  std::string::size_type begin = 0;
-  while (true) {
-    const std::string::size_type dot = field.find('.', begin);
-    const std::string key = field.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin);
-    if (key.empty()) at.fail("'" + field + "' is not a field (an empty key)");
+  const std::vector<std::string> keys = keys_of(field);
+  for (std::size_t i = 0;; ++i) {
+    if (keys[i].empty()) at.fail("'" + field + "' is not a field (an empty key)");
     if (!node.IsMap() && !node.IsNull()) at.fail("is not a section, so '" + field + "' is not a field");
-    at = at.child(key);
-    if (!create && !node[key].IsDefined()) return {YAML::Node(YAML::NodeType::Undefined), at};
-    YAML::Node child = node[key];
-    if (dot == std::string::npos) return {child, at};
+    at = at.child(keys[i]);
+    YAML::Node child = node[keys[i]];
+    if (i + 1 == keys.size()) return {child, at};
     if (!child.IsDefined() || child.IsNull()) child = YAML::Node(YAML::NodeType::Map);
     node.reset(child);
-    begin = dot + 1;
   }
 }
 
-bool file_sets(const Value& document, const std::string& field) {
-  const YAML::Node node = field_node(document, field, false).first;
-  return node.IsDefined() && !node.IsNull();
+/// What the file holds at `field`: set (a value), absent (nothing there yet), or blocked (a
+/// section on the way holds something else, which the reader will refuse in its own words).
+enum class FieldState { kSet, kAbsent, kBlocked };
+FieldState field_state(const YAML::Node& document, const std::string& field) {
+  YAML::Node node = document;
+  for (const std::string& key : keys_of(field)) {
+    if (node.IsNull()) return FieldState::kAbsent;
+    if (!node.IsMap()) return FieldState::kBlocked;
+    const YAML::Node child = node[key];
+    if (!child.IsDefined()) return FieldState::kAbsent;
+    node.reset(child);
+  }
+  return node.IsNull() ? FieldState::kAbsent : FieldState::kSet;
 }
 
 /// Writes `override.value` at its dotted key path in `document`; refuses a field that holds
 /// something other than a number.
 void write_field(const Value& document, const FieldValue& override) {
-  auto [node, at] = field_node(document, override.field, true);
+  auto [node, at] = field_node(document, override.field);
   if (node.IsDefined() && !node.IsNull() && !(node.IsScalar() && convert<double>(node)))
     at.fail("holds " + yaml::describe(node) + ", not a number: only a numeric field can be set to " +
             yaml::plain_number(override.value));
@@ -446,12 +461,12 @@ Profile apply_profile(const Value& document) {
   std::vector<ProfileField> missing;
   for (const ProfileField& given : profile_fields(profile, robot)) {
     // Not into a missing object: the reader's error says the file lacks the whole section.
-    if (given.field.rfind("object.", 0) == 0 && !file_sets(document, "object")) continue;
-    if (file_sets(document, given.field)) continue;
-    if (!given.unless_set.empty() && file_sets(document, given.unless_set)) continue;
+    if (given.field.rfind("object.", 0) == 0 && field_state(document.node, "object") != FieldState::kSet) continue;
+    if (field_state(document.node, given.field) != FieldState::kAbsent) continue;
+    if (!given.unless_set.empty() && field_state(document.node, given.unless_set) == FieldState::kSet) continue;
     missing.push_back(given);
   }
-  for (const ProfileField& given : missing) field_node(document, given.field, true).first = YAML::Load(given.value);
+  for (const ProfileField& given : missing) field_node(document, given.field).first = YAML::Load(given.value);
   return profile;
 }
 
@@ -466,9 +481,9 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir,
   const Value document = yaml::load_file(path, {"scenario file"});
   for (const FieldValue& override : overrides) write_field(document, override);
   const Profile profile = apply_profile(document);
-  const Map s(document, {"name", "description", "profile", "robot", "arm", "gripper", "object", "occluder", "background", "lighting",
-                         "camera", "start", "desired", "start_gMo", "desired_gMo", "tracker", "control", "stop", "trials",
-                         "seed", "robot_response", "calibration_error"});
+  const Map s(document, {"name", "description", "profile", "robot", "arm", "gripper", "object", "occluder",
+                         "background", "lighting", "camera", "start", "desired", "start_gMo", "desired_gMo", "tracker",
+                         "control", "stop", "trials", "seed", "robot_response", "calibration_error"});
   const fs::path folder = fs::path(path).parent_path();
   Scenario scenario;
   scenario.file = path;

@@ -261,8 +261,10 @@ TEST_CASE("a scenario without a profile is a realistic cell, each of whose field
   CHECK(own.stop.converged_translation == Approx(0.002));
   CHECK(own.stop.converged_rotation == Approx(kDegree));  // the profile's, beside the file's translation
 
-  CHECK_THAT(error_of(dir, "profile: exact\n" + kMinimal),
-             Contains((dir.path() / "bad.yaml").string() + ": profile: expected one of realistic, ideal"));
+  const std::string bad = (dir.path() / "bad.yaml").string();
+  CHECK_THAT(error_of(dir, "profile: exact\n" + kMinimal), Contains(bad + ": profile: expected one of realistic, ideal"));
+  // A section that is no section is the reader's error, not the profile's.
+  CHECK_THAT(error_of(dir, kMinimal + "camera: 5\n"), Contains(bad + ": camera: expected"));
 }
 
 TEST_CASE("a scenario sets how the tracker starts and when the object is taken away") {
