@@ -181,6 +181,37 @@ TEST_CASE("servo: a tracking loss stops the robot within the step, and the run r
   CHECK(result.converged);
 }
 
+TEST_CASE("servo: in a cell with latency and a lagging robot, a loss stops the robot once its zero command arrives") {
+  Scenario scenario = small_scenario("pbvs", "oracle");
+  scenario.camera.latency = 0.067;  // the realistic profile's, without its jitter
+  scenario.tracker.real_timing = true;
+  scenario.tracker.compute_time = 0.010;
+  scenario.robot_response.lag = 0.030;
+  ServoRunOptions options = quiet();
+  static constexpr int kFirstLost = 10, kLostSteps = 6;
+  options.make_estimator = [](const RgbdSimulator&) -> std::unique_ptr<PoseEstimator> {
+    return std::make_unique<FailingTracker>(kFirstLost, kLostSteps);
+  };
+  const ServoResult result = run_servo(scenario, options);
+  REQUIRE(result.steps.size() > kFirstLost + kLostSteps);
+  const double dt = 1.0 / scenario.camera.rate_hz;
+  const double arrival = kFirstLost * dt + 0.077;  // the first zero command: 0.410 s
+  for (int k = kFirstLost; k < kFirstLost + kLostSteps; ++k) {
+    INFO("step " << k << ", t " << result.steps[k].time << " s");
+    CHECK(result.steps[k].safety_stop);  // zero sent from every frame the tracker lost
+    CHECK(result.steps[k].command_delay == Approx(0.077));
+    const double speed = result.steps[k].velocity.frobeniusNorm();
+    if ((k + 1) * dt <= arrival) {
+      CHECK(speed > 1e-3);  // the commands in flight still move it
+    } else if (k * dt >= arrival) {
+      // No command but zero since the step began: the lag's decay over one period, exactly.
+      CHECK(speed == Approx(result.steps[k - 1].velocity.frobeniusNorm() * std::exp(-dt / 0.030)).epsilon(1e-9));
+    }
+  }
+  CHECK(result.safety_stops == 1);
+  CHECK(result.converged);
+}
+
 TEST_CASE("servo: a run that ends lost says the tracker's reason") {
   ServoRunOptions options = quiet();
   options.make_estimator = [](const RgbdSimulator&) -> std::unique_ptr<PoseEstimator> {
