@@ -224,7 +224,6 @@ JsonObject summary_json(const TrialsSummary& s) {
       .add("interrupted", s.interrupted);
 }
 
-
 bool succeeded(const ServoResult& result, const StopSpec& stop) {
   return result.converged && result.final_t <= stop.converged_translation &&
          result.final_r <= stop.converged_rotation;

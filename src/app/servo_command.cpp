@@ -57,10 +57,17 @@ struct ServoOptions {
   std::string sweep;      ///< FIELD=V1,V2,...: the trials at each value of a scenario field
 };
 
+/// The names scenario files give trackers (servo::tracker_names), which --tracker takes.
+std::vector<std::string> tracker_choices() {
+  std::vector<std::string> names;
+  for (const auto& [name, kind] : servo::tracker_names()) names.push_back(name);
+  return names;
+}
+
 TrackerKind tracker_kind(const std::string& name) {
   for (const auto& [known, kind] : servo::tracker_names())
     if (known == name) return kind;
-  throw std::invalid_argument("--tracker: expected icgp, visp, oracle or image_oracle, got '" + name + "'");
+  throw std::invalid_argument("--tracker: expected one of " + yaml::join(tracker_choices()) + ", got '" + name + "'");
 }
 
 /// Writes the overlay video and shows the live window of a single run.
@@ -326,9 +333,8 @@ void register_servo_command(CLI::App& app) {
       "servo", "Close the loop: simulated RGB-D camera -> tracker -> ViSP control law -> simulated robot, for a scenario");
   o->scenario = default_scenario_path();
   cmd->add_option("scenario", o->scenario, "Scenario file (YAML, see scenarios/)")->check(CLI::ExistingFile)->capture_default_str();
-  cmd->add_option("--tracker", o->tracker,
-                  "Tracker in the loop instead of the scenario's: icgp, visp, oracle or image_oracle")
-      ->check(CLI::IsMember({"icgp", "visp", "oracle", "image_oracle"}));
+  cmd->add_option("--tracker", o->tracker, "Tracker in the loop instead of the scenario's: " + yaml::join(tracker_choices()))
+      ->check(CLI::IsMember(tracker_choices()));
   cmd->add_option("--trials", o->trials,
                   "Batch: runs from random starts within the scenario's trial ranges (Ctrl-C stops it and writes "
                   "the trials done)")

@@ -107,7 +107,7 @@ constexpr double kMinAppearance = 0.65;
 /// pixels each way: a calibrated RGB-D sensor registers its colour to its depth within a few
 /// pixels (each camera's principal point within 1-2 px, the extrinsics within a millimetre
 /// and a few tenths of a degree), and a pose fitted to depth and contour leaves the texture
-/// that far off. Without it, a right pose of the textured box scored 0.55 (0.89 three pixels
+/// that far off. Without it, a right pose of the textured box scored 0.55 (0.93 four pixels
 /// down) in 1 of 10 servo trials with such errors (the realistic profile, docs/servo.md).
 constexpr int kAppearanceShiftPx = 6;
 /// A turned pose is refined only when it looks this much more like the image (NCC).

@@ -12,7 +12,9 @@ std::optional<servo::TrackerKind> tracker_kind(const py::handle& tracker) {
     for (const auto& [known, kind] : servo::tracker_names())
       if (known == name) return kind;
   }
-  throw py::value_error("tracker: expected 'icgp', 'visp', 'oracle', 'image_oracle' or None (the scenario's), got " +
+  std::string names;
+  for (const auto& [known, kind] : servo::tracker_names()) names += "'" + known + "', ";
+  throw py::value_error("tracker: expected " + names.substr(0, names.size() - 2) + " or None (the scenario's), got " +
                         py::repr(tracker).cast<std::string>());
 }
 
