@@ -462,24 +462,24 @@ void RegionModality::update_quality() {
   const float centre = (n_dist - 1) / 2.f;
   // Per line: its mass up to each segment (for any window in constant time), where the
   // contour projects, and how a shift of the image moves that (segments per pixel).
-  std::vector<float> cumulative(lines_.size() * (n_dist + 1));
-  std::vector<float> positions(lines_.size());
-  std::vector<Eigen::Vector2f> per_pixel(lines_.size());
+  cumulative_mass_.resize(lines_.size() * (n_dist + 1));
+  contour_positions_.resize(lines_.size());
+  segments_per_pixel_.resize(lines_.size());
   for (std::size_t l = 0; l < lines_.size(); ++l) {
     const float* distribution = distributions_.data() + l * n_dist;
-    float* sum = cumulative.data() + l * (n_dist + 1);
+    float* sum = cumulative_mass_.data() + l * (n_dist + 1);
     sum[0] = 0.f;
     for (int d = 0; d < n_dist; ++d) sum[d + 1] = sum[d] + distribution[d];
-    positions[l] = centre + line_position(lines_[l], pose, intrinsics_);
-    per_pixel[l] = lines_[l].normal_factor * lines_[l].normal;
+    contour_positions_[l] = centre + line_position(lines_[l], pose, intrinsics_);
+    segments_per_pixel_[l] = lines_[l].normal_factor * lines_[l].normal;
   }
   const auto agreement_at = [&](const Eigen::Vector2f& shift) {
     double agreement = 0.0;
     for (std::size_t l = 0; l < lines_.size(); ++l) {
-      const float position = positions[l] + per_pixel[l].dot(shift);
+      const float position = contour_positions_[l] + segments_per_pixel_[l].dot(shift);
       const int first = std::clamp(static_cast<int>(std::ceil(position - kAgreementSegments)), 0, n_dist);
       const int last = std::clamp(static_cast<int>(std::floor(position + kAgreementSegments)) + 1, first, n_dist);
-      const float* sum = cumulative.data() + l * (n_dist + 1);
+      const float* sum = cumulative_mass_.data() + l * (n_dist + 1);
       agreement += sum[last] - sum[first];
     }
     return agreement;

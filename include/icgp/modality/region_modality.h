@@ -141,6 +141,11 @@ class RegionModality : public Modality {
   ViewOcclusions ruled_out_;   ///< by the scene's render (ruled_out_by_scene)
   std::vector<float> distributions_;      ///< distribution_length per line
   std::vector<float> log_distributions_;  ///< their logs, after the global iterations
+  // update_quality's per-line buffers, kept to spare an allocation each frame: the mass up
+  // to each segment, where the contour projects, and its move per pixel of image shift.
+  std::vector<float> cumulative_mass_;
+  std::vector<float> contour_positions_;
+  std::vector<Eigen::Vector2f> segments_per_pixel_;
   std::vector<float> segment_f_;          ///< scratch: segment foreground posteriors
   int n_considered_ = 0;
   /// Of those, the lines the model's geometry allows at the current pose (projected in
