@@ -57,16 +57,11 @@ struct ServoOptions {
   std::string sweep;      ///< FIELD=V1,V2,...: the trials at each value of a scenario field
 };
 
-/// The names scenario files give trackers (servo::tracker_names), which --tracker takes.
-std::vector<std::string> tracker_choices() {
-  std::vector<std::string> names;
-  for (const auto& [name, kind] : servo::tracker_names()) names.push_back(name);
-  return names;
-}
+/// The names scenario files give trackers, which --tracker takes.
+std::vector<std::string> tracker_choices() { return servo::names_in(servo::tracker_names()); }
 
 TrackerKind tracker_kind(const std::string& name) {
-  for (const auto& [known, kind] : servo::tracker_names())
-    if (known == name) return kind;
+  if (const std::optional<TrackerKind> kind = servo::kind_named(name, servo::tracker_names())) return *kind;
   throw std::invalid_argument("--tracker: expected one of " + yaml::join(tracker_choices()) + ", got '" + name + "'");
 }
 

@@ -71,6 +71,20 @@ std::string name_of(Kind kind, const std::vector<std::pair<std::string, Kind>>& 
     if (k == kind) return name;
   return "?";
 }
+/// The kind named `name` in its list above, if any.
+template <typename Kind>
+std::optional<Kind> kind_named(const std::string& name, const std::vector<std::pair<std::string, Kind>>& names) {
+  for (const auto& [known, kind] : names)
+    if (known == name) return kind;
+  return std::nullopt;
+}
+/// The names of a list above, in its order.
+template <typename Kind>
+std::vector<std::string> names_in(const std::vector<std::pair<std::string, Kind>>& names) {
+  std::vector<std::string> list;
+  for (const auto& [name, kind] : names) list.push_back(name);
+  return list;
+}
 
 /// The tracked object. Its world placement follows from the robot's start and the initial
 /// camera-object pose (Scenario::initial_cMo), so scenarios state what the camera sees.
