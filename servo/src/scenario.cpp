@@ -447,13 +447,44 @@ void write_field(const Value& document, const FieldValue& override) {
   node = override.value;
 }
 
-/// The file's profile (realistic unless it says ideal) and its fields under the file's own:
-/// the document then reads as if the file gave them.
-Profile apply_profile(const Value& document) {
-  Profile profile = Profile::kRealistic;
-  if (!document.node.IsMap()) return profile;  // the reader's error names what the file holds
-  if (document.node["profile"].IsDefined())
-    profile = Value{document.node["profile"], document.at.child("profile")}.choice<Profile>(profile_names());
+/// The profile the file names (`profile`), realistic unless it says ideal.
+Profile profile_of(const Value& document) {
+  if (!document.node.IsMap() || !document.node["profile"].IsDefined()) return Profile::kRealistic;
+  return Value{document.node["profile"], document.at.child("profile")}.choice<Profile>(profile_names());
+}
+
+/// Writes every value under `section` into `document` at the same key path below `prefix`.
+void merge_fields(const Value& document, const Value& section, const std::string& prefix) {
+  if (!section.node.IsMap()) {
+    field_node(document, prefix).first = YAML::Clone(section.node);
+    return;
+  }
+  for_each_entry(section, [&](const std::string& key, const Value& value) {
+    merge_fields(document, value, prefix.empty() ? key : prefix + "." + key);
+  });
+}
+
+/// The file's own values for one profile (`profiles: {ideal: {stop: …}}`: what the cell
+/// decides, such as how closely a run can be judged) over its other fields, for the profile
+/// in use; the sections of the other profiles are only checked to name a profile.
+void merge_profile_section(const Value& document, Profile profile) {
+  if (!document.node.IsMap() || !document.node["profiles"].IsDefined()) return;
+  const Value profiles{document.node["profiles"], document.at.child("profiles")};
+  std::vector<std::string> names;
+  for (const auto& [name, option] : profile_names()) names.push_back(name);
+  const Map sections(profiles, names);
+  for (const auto& [name, option] : profile_names()) {
+    const std::optional<Value> section = sections.get(name);
+    if (!section) continue;
+    if (!section->node.IsMap() && !section->node.IsNull()) section->expected("a section of scenario fields");
+    if (option == profile) merge_fields(document, *section, "");
+  }
+}
+
+/// The profile's fields where the file (with its section for the profile and the command
+/// line's values) gives none: the document then reads as if the file gave them.
+void fill_profile_fields(const Value& document, Profile profile) {
+  if (!document.node.IsMap()) return;  // the reader's error names what the file holds
   RobotKind robot = RobotKind::kFreeFlyingCamera;
   if (document.node["robot"].IsDefined())
     robot = Value{document.node["robot"], document.at.child("robot")}.choice<RobotKind>(robot_names());
@@ -467,7 +498,6 @@ Profile apply_profile(const Value& document) {
     missing.push_back(given);
   }
   for (const ProfileField& given : missing) field_node(document, given.field).first = YAML::Load(given.value);
-  return profile;
 }
 
 }  // namespace
@@ -479,9 +509,11 @@ Scenario load_scenario(const std::string& path, const std::string& models_dir) {
 Scenario load_scenario(const std::string& path, const std::string& models_dir,
                        const std::vector<FieldValue>& overrides) try {
   const Value document = yaml::load_file(path, {"scenario file"});
+  const Profile profile = profile_of(document);
+  merge_profile_section(document, profile);
   for (const FieldValue& override : overrides) write_field(document, override);
-  const Profile profile = apply_profile(document);
-  const Map s(document, {"name", "description", "profile", "robot", "arm", "gripper", "object", "occluder",
+  fill_profile_fields(document, profile);
+  const Map s(document, {"name", "description", "profile", "profiles", "robot", "arm", "gripper", "object", "occluder",
                          "background", "lighting", "camera", "start", "desired", "start_gMo", "desired_gMo", "tracker",
                          "control", "stop", "trials", "seed", "robot_response", "calibration_error"});
   const fs::path folder = fs::path(path).parent_path();

@@ -136,6 +136,10 @@ void for_each_entry(const Value& value, const std::vector<std::string>& keys,
   visit_entries(value, &keys, read);
 }
 
+void for_each_entry(const Value& value, const std::function<void(const std::string& key, const Value& value)>& read) {
+  visit_entries(value, nullptr, read);
+}
+
 Map::Map(const Value& value) : at_(value.at) {
   visit_entries(value, nullptr, [this](const std::string& key, const Value& v) { entries_.emplace_back(key, v); });
 }

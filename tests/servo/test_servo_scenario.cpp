@@ -267,6 +267,40 @@ TEST_CASE("a scenario without a profile is a realistic cell, each of whose field
   CHECK_THAT(error_of(dir, kMinimal + "camera: 5\n"), Contains(bad + ": camera: expected"));
 }
 
+TEST_CASE("a scenario's section for one profile applies in that profile only, over the file's other fields") {
+  TempDir dir("icgp-scenario");
+  // noisy_depth.yaml's case: its sensor is judged more loosely than the exact world's 1 mm and
+  // 0.1 deg, and by the realistic cell's own thresholds there.
+  const std::string sections = "stop: {settle_time: 0.3}\n"
+                               "profiles:\n"
+                               "  ideal: {stop: {translation_mm: 2, rotation_deg: 1}, camera: {latency_ms: 10}}\n"
+                               "  realistic: {stop: {settle_time: 0.5}}\n";
+  const Scenario ideal = load_scenario(dir.write("ideal.yaml", "profile: ideal\n" + kMinimal + sections), ICGP_MODELS_DIR);
+  CHECK((ideal.stop.converged_translation == Approx(0.002) && ideal.stop.converged_rotation == Approx(kDegree)));
+  CHECK(ideal.camera.latency == Approx(0.010));
+  CHECK(ideal.stop.settle_time == Approx(0.3));  // the file's, the realistic section aside
+
+  const Scenario realistic = load_scenario(dir.write("realistic.yaml", kMinimal + sections), ICGP_MODELS_DIR);
+  CHECK((realistic.stop.converged_translation == Approx(0.005) && realistic.stop.converged_rotation == Approx(kDegree)));
+  CHECK(realistic.camera.latency == Approx(0.067));
+  CHECK(realistic.stop.settle_time == Approx(0.5));  // the section's, over the file's
+
+  // The command line's values win over the section's.
+  const Scenario swept = load_scenario(dir.write("swept.yaml", "profile: ideal\n" + kMinimal + sections),
+                                       ICGP_MODELS_DIR, {{"camera.latency_ms", 20.0}});
+  CHECK(swept.camera.latency == Approx(0.020));
+
+  const std::string bad = (dir.path() / "bad.yaml").string();
+  CHECK_THAT(error_of(dir, kMinimal + "profiles: {exact: {stop: {translation_mm: 2}}}\n"),
+             Contains(bad + ": profiles.exact: unknown key (expected one of realistic, ideal)"));
+  CHECK_THAT(error_of(dir, kMinimal + "profiles: {ideal: 5}\n"),
+             Contains(bad + ": profiles.ideal: expected a section of scenario fields, got 5"));
+  CHECK_THAT(error_of(dir, kMinimal + "profiles: 5\n"), Contains(bad + ": profiles: expected a map"));
+  // A field a section names is checked as the file's own would be.
+  CHECK_THAT(error_of(dir, kMinimal + "profiles: {realistic: {stop: {translation_mm: -1}}}\n"),
+             Contains(bad + ": stop.translation_mm: expected"));
+}
+
 TEST_CASE("a scenario sets how the tracker starts and when the object is taken away") {
   TempDir dir("icgp-scenario");
   const Scenario s = load_scenario(

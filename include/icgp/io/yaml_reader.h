@@ -168,6 +168,8 @@ std::vector<std::pair<std::string, E>> named(const std::array<E, N>& values) {
 /// every key first; this reads a file's values and keys in the order they come.)
 void for_each_entry(const Value& value, const std::vector<std::string>& keys,
                     const std::function<void(const std::string& key, const Value& value)>& read);
+/// for_each_entry of a map of any keys.
+void for_each_entry(const Value& value, const std::function<void(const std::string& key, const Value& value)>& read);
 
 /// The entries of a map in the file's order, checked on construction: no key twice and,
 /// when the map is given its keys, no other key. `key:` alone is an empty map.
