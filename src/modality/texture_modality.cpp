@@ -205,6 +205,7 @@ void TextureModality::start(const Frame& frame, const Renders& renders) {
   make_keyframe(frame, renders);
   matches_.clear();
   noise_.reset();
+  others_step_.setZero();
   quality_ = {};
   frames_since_start_ = 0;
 }
@@ -244,7 +245,8 @@ void TextureModality::correspondences(const Frame& frame, const Renders& renders
 }
 
 void TextureModality::estimate_noise() {
-  estimate_reprojection_noise(noise_, matches_, camera_T_body().cast<float>(), intrinsics_);
+  estimate_reprojection_noise(noise_, matches_, camera_T_body().updated_in_body_frame(others_step_).cast<float>(),
+                              intrinsics_);
 }
 
 double TextureModality::sigma(int corr_iter) const {

@@ -41,7 +41,14 @@ void Optimizer::step(Body& body, const std::vector<Modality*>& cues, CueTermSum&
   A.diagonal() += regularisation_;
   const Vec6 theta = A.ldlt().solve(terms.total().gradient);
   // A singular system (no data and no regularisation) must not corrupt the pose.
-  if (theta.allFinite()) body.reference_T_body = body.reference_T_body.updated_in_body_frame(theta);
+  if (!theta.allFinite()) return;
+  body.reference_T_body = body.reference_T_body.updated_in_body_frame(theta);
+  for (std::size_t i = 0; i < cues.size(); ++i) {
+    if (!cues[i]->weighs_against_others()) continue;
+    const CueTerms& own = terms.per_cue()[i];
+    const Vec6 others = (A + own.hessian).ldlt().solve(terms.total().gradient - own.gradient);
+    if (others.allFinite()) cues[i]->others_step(others - theta);
+  }
 }
 
 }  // namespace icgp

@@ -690,3 +690,44 @@ TEST_CASE("tracker: started beside the object, ICG+ reports lost from the first 
     if (t_mm > 10.0) CHECK_FALSE(results[0].tracked);
   }
 }
+
+TEST_CASE("tracker: a texture keyframe lifted at a guessed pose does not hold ICG+'s rotation there") {
+  // A restart at a guessed pose (in the servo loop, the last trusted one) lifts the texture
+  // cue's keyframe there. The next frames match that keyframe almost exactly, so the scatter
+  // of its residuals is tiny however wrong the guess: estimated about the fused pose, its σ
+  // fell to the floor and held the pose at the guess (1.16 mm, 0.50° after 10 frames here).
+  // Measured at the pose region and depth give, the residuals show the keyframe's error.
+  Fixture& f = Fixture::instance();
+  test::SceneRenderer scene(f.mesh, f.color_k, f.depth_k, f.depth_T_color);
+  const Frame frame = scene.render(f.truth);
+  Tracker tracker;
+  Body& body = tracker.add_body({"box", f.mesh, f.truth});
+  tracker.add_modality(std::make_unique<RegionModality>(body, f.region_model, RegionParams{}));
+  tracker.add_modality(std::make_unique<DepthModality>(body, f.depth_model, DepthParams{}));
+  auto texture_cue = std::make_unique<TextureModality>(body, TextureParams{});
+  TextureModality& texture = *texture_cue;
+  tracker.add_modality(std::move(texture_cue));
+  tracker.start(frame);  // region's colours at the true pose
+  // The texture cue alone restarted 2 mm and 0.5° off, turned about the box's centre.
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.8, 0.5).normalized();
+  const Eigen::Vector3d direction = Eigen::Vector3d(-0.6, 0.2, 0.77).normalized();
+  body.reference_T_body =
+      Pose(f.truth.rotation() * exp_so3<double>(axis * 0.5 * M_PI / 180.0), f.truth.translation() + direction * 2e-3);
+  icgp::SceneRenderer renderer;
+  Renders renders;
+  renderer.render({&body}, texture.render_requests(frame, {Stage::kStart}), renders);
+  texture.start(frame, renders);
+  std::vector<BodyResult> results;
+  for (int i = 0; i < 10; ++i) results = tracker.track(frame);
+  const double t_mm = 1e3 * (body.reference_T_body.translation() - f.truth.translation()).norm();
+  const double r_deg = rotation_angle_between(body.reference_T_body.rotation(), f.truth.rotation()) * 180 / M_PI;
+  INFO("after 10 frames: " << t_mm << " mm, " << r_deg << " deg from the truth; " << texture.matches().size()
+                           << " texture matches");
+  REQUIRE(texture.matches().size() > 20);  // the keyframe is in use
+  CHECK(r_deg < 0.05);  // 0.004° measured
+  // Translation is only partly recovered (0.93 mm measured): at σ ≈ 3 px, its distance from
+  // the other cues' pose, the keyframe still outweighs the region cue across the image.
+  // With the papers' fixed σ (5 px) it would end 0.003 mm off; docs/accuracy.md.
+  CHECK(t_mm < 1.1);
+  CHECK(results[0].tracked);
+}

@@ -119,6 +119,62 @@ TEST_CASE("optimizer: keeps each cue's part and sums them; the step is the regul
   CHECK_THROWS_WITH(Optimizer({-1.0, 0.0}), Catch::Contains("non-negative"));
 }
 
+namespace {
+
+/// A position cue that asks where the other cues would take the body (as the texture cue
+/// does, Modality::weighs_against_others) and keeps what it is told.
+class AskingCue final : public Modality {
+ public:
+  AskingCue(Body& body, const Eigen::Vector3d& measured, double sigma) : Modality(body), cue_(body, measured, sigma) {}
+  std::string name() const override { return "asking position"; }
+  const std::string& camera() const override { return cue_.camera(); }
+  void start(const Frame& frame, const Renders& renders) override { cue_.start(frame, renders); }
+  void correspondences(const Frame& frame, const Renders& renders, int c) override {
+    cue_.correspondences(frame, renders, c);
+  }
+  CueTerms gradient_hessian(int c, int u) override { return cue_.gradient_hessian(c, u); }
+  double log_likelihood(int c) const override { return cue_.log_likelihood(c); }
+  void finish(const Frame& frame, const Renders& renders) override { cue_.finish(frame, renders); }
+  ModalityQuality quality() const override { return cue_.quality(); }
+  void append_residuals(std::vector<double>& r, std::vector<double>& w) const override { cue_.append_residuals(r, w); }
+  bool weighs_against_others() const override { return true; }
+  void others_step(const Vec6& theta) override { told.push_back(theta); }
+
+  std::vector<Vec6> told;
+
+ private:
+  example::PositionCue cue_;
+};
+
+}  // namespace
+
+TEST_CASE("optimizer: a cue that asks is told the step from the updated pose to the other cues' own step") {
+  Body body{"object", Mesh{}, some_pose()};
+  AskingCue a(body, Eigen::Vector3d(0.05, 0.03, 0.55), 0.002);
+  example::PositionCue b(body, Eigen::Vector3d(0.01, -0.02, 0.62), 0.004);
+  const CueTerms ta = a.gradient_hessian(0, 0), tb = b.gradient_hessian(0, 0);
+  const Optimizer optimizer({1000.0, 30000.0});
+  CueTermSum terms;
+  optimizer.step(body, {&a, &b}, terms, 0, 0);
+  REQUIRE(a.told.size() == 1);
+  // Both steps are translations of the body frame: the sum's (1/σa² + 1/σb² + λ_t)⁻¹ Σ g_t,
+  // and b's alone (1/σb² + λ_t)⁻¹ g_b,t.
+  const Eigen::Vector3d both = (ta.gradient + tb.gradient).tail<3>() / (1 / 4e-6 + 1 / 16e-6 + 30000.0);
+  const Eigen::Vector3d b_alone = tb.gradient.tail<3>() / (1 / 16e-6 + 30000.0);
+  INFO("told " << a.told.front().transpose());
+  CHECK(a.told.front().head<3>().norm() < 1e-12);
+  CHECK((a.told.front().tail<3>() - (b_alone - both)).norm() < 1e-9);
+  // It points away from a's measurement, towards b's: the cues disagree by several mm.
+  CHECK(a.told.front().tail<3>().norm() > 1e-3);
+  // Alone on its body, a cue is told to step back to where it was: without it, nothing
+  // would have moved the body.
+  AskingCue alone(body, Eigen::Vector3d(0.05, 0.03, 0.55), 0.002);
+  optimizer.step(body, {&alone}, terms, 0, 0);
+  REQUIRE(alone.told.size() == 1);
+  const Eigen::Vector3d own_step = terms.total().gradient.tail<3>() / (1 / 4e-6 + 30000.0);
+  CHECK((alone.told.front().tail<3>() + own_step).norm() < 1e-9);
+}
+
 TEST_CASE("render step: each correspondence iteration renders every body once for the cues that ask") {
   const Intrinsics k{300.0, 300.0, 99.5, 99.5, 200, 200};
   Tracker tracker(TrackerParams{}, std::make_shared<icgp::SceneRenderer>());

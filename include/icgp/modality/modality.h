@@ -113,6 +113,13 @@ class Modality {
   /// Appends the image measurements of the last correspondences in camera(); cues that
   /// measure depth rather than image positions append nothing.
   virtual void append_image_features(std::vector<ImageFeature>&) const {}
+  /// True for a cue whose residuals cannot show its own bias, so that it measures its noise
+  /// at the pose the body's other cues give (texture: a keyframe lifted at an estimated pose
+  /// matches itself however wrong that pose was).
+  virtual bool weighs_against_others() const { return false; }
+  /// After each update, to such a cue: the step θ = [θ_r; θ_t], in the body frame, from the
+  /// updated pose to where the body's other cues alone would have taken it.
+  virtual void others_step(const Vec6&) {}
 
   Body& body() const { return *body_; }
 

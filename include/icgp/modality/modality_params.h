@@ -27,6 +27,7 @@ inline constexpr NoiseParams kRegionNoise{false, true, 0.5};
 inline constexpr NoiseParams kDepthNoise{true, true, 1e-4};
 /// Texture: floor 0.5 px, about the keypoint localisation of the 200 px detection crop.
 /// Its robust weights are the papers' Tukey norm (TextureParams::tukey_norm_constant).
+/// Estimated at the pose the other cues give (TextureModality::weighs_against_others).
 inline constexpr NoiseParams kTextureNoise{true, false, 0.5};
 /// Flow: floor 0.1 px, about what pyramidal Lucas–Kanade resolves on a corner. Tukey weights
 /// on the estimated scale drop points the flow lost (a jump to a look-alike, a highlight

@@ -102,6 +102,11 @@ class TextureModality : public Modality {
   void append_image_features(std::vector<ImageFeature>& features) const override;
   void finish(const Frame& frame, const Renders& renders) override;
   ModalityQuality quality() const override { return quality_; }
+  /// Its keyframes are lifted at estimated poses, and a keyframe lifted at a wrong pose
+  /// matches itself: the scatter of its residuals cannot show that error, their distance
+  /// from where the other cues put the body can.
+  bool weighs_against_others() const override { return params_.noise.estimate; }
+  void others_step(const Vec6& theta) override { others_step_ = theta; }
 
   const TextureParams& params() const { return params_; }
   const Keyframe& keyframe() const { return keyframe_; }
@@ -134,6 +139,7 @@ class TextureModality : public Modality {
   RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)
   Intrinsics intrinsics_;
   Pose camera_T_reference_;
+  Vec6 others_step_ = Vec6::Zero();  ///< from the pose to the other cues' (others_step)
   std::vector<cv::Point2f> points_;  ///< current frame's keypoints, full image
   cv::Mat descriptors_;
   std::vector<std::vector<cv::DMatch>> knn_;  ///< cv::BFMatcher's answer (L2 descriptors)
