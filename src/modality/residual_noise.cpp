@@ -17,6 +17,14 @@ void ResidualNoise::estimate_from_residuals() {
   if (std::isfinite(*middle)) estimate_ = 1.4826 * static_cast<double>(*middle);
 }
 
+void ResidualNoise::discount(double known_variance, double own_fit) {
+  if (estimate_ < 0.0) return;
+  estimate_ = std::sqrt(std::max(estimate_ * estimate_ - known_variance, 0.0));
+  if (own_fit < 0.0) return;
+  const double standard_error = 1.166 * own_fit / std::sqrt(static_cast<double>(residuals_.size()));
+  if (estimate_ <= own_fit + 2.0 * standard_error) estimate_ = own_fit;
+}
+
 double ResidualNoise::sigma(double scheduled) const { return params_.estimate ? scale(scheduled) : scheduled; }
 
 double ResidualNoise::scale(double scheduled) const {

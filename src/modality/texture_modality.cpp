@@ -206,6 +206,7 @@ void TextureModality::start(const Frame& frame, const Renders& renders) {
   matches_.clear();
   noise_.reset();
   others_step_.setZero();
+  others_covariance_.setZero();
   quality_ = {};
   frames_since_start_ = 0;
 }
@@ -245,8 +246,14 @@ void TextureModality::correspondences(const Frame& frame, const Renders& renders
 }
 
 void TextureModality::estimate_noise() {
-  estimate_reprojection_noise(noise_, matches_, camera_T_body().updated_in_body_frame(others_step_).cast<float>(),
-                              intrinsics_);
+  const Pose camera_T_body = this->camera_T_body();
+  estimate_reprojection_noise(noise_, matches_, camera_T_body.cast<float>(), intrinsics_);
+  const double own_fit = noise_.estimated();
+  const Posef at_others = camera_T_body.updated_in_body_frame(others_step_).cast<float>();
+  estimate_reprojection_noise(noise_, matches_, at_others, intrinsics_);
+  // The others' pose is uncertain too: that spread of the residuals there is not this cue's
+  // noise, and only a significant excess over its own fit shows a bias.
+  noise_.discount(reprojection_spread(matches_, at_others, intrinsics_, others_covariance_.cast<float>()), own_fit);
 }
 
 double TextureModality::sigma(int corr_iter) const {

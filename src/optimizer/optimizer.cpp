@@ -43,11 +43,15 @@ void Optimizer::step(Body& body, const std::vector<Modality*>& cues, CueTermSum&
   // A singular system (no data and no regularisation) must not corrupt the pose.
   if (!theta.allFinite()) return;
   body.reference_T_body = body.reference_T_body.updated_in_body_frame(theta);
+  // A cue that cannot see its own bias in its residuals measures its noise where the other
+  // cues alone would go, and how sure they are there: the same system without its terms.
   for (std::size_t i = 0; i < cues.size(); ++i) {
     if (!cues[i]->weighs_against_others()) continue;
     const CueTerms& own = terms.per_cue()[i];
-    const Vec6 others = (A + own.hessian).ldlt().solve(terms.total().gradient - own.gradient);
-    if (others.allFinite()) cues[i]->others_step(others - theta);
+    const Eigen::LDLT<Mat66> others(A + own.hessian);
+    const Vec6 others_theta = others.solve(terms.total().gradient - own.gradient);
+    const Mat66 covariance = others.solve(Mat66::Identity());
+    if (others_theta.allFinite() && covariance.allFinite()) cues[i]->others_estimate(others_theta - theta, covariance);
   }
 }
 

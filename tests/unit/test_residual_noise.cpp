@@ -57,6 +57,41 @@ TEST_CASE("residual noise: a tenth of wild residuals moves the scale little, a c
   CHECK(noise.estimated() == Approx(1.4826 * 2.0).epsilon(0.02));
 }
 
+TEST_CASE("residual noise: a known variance taken out of the scale leaves the rest, kept where it exceeds the own fit") {
+  // Residuals of σ = 0.6 spread further by an independent error of σ = 1.5: their scale is
+  // √(0.6² + 1.5²); the known 1.5² taken out leaves 0.6.
+  ResidualNoise noise;
+  std::vector<float> r = gaussian(8000, 0.6, 5), spread = gaussian(8000, 1.5, 6);
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] += spread[i];
+  estimate(noise, r);
+  CHECK(noise.estimated() == Approx(std::hypot(0.6, 1.5)).epsilon(0.04));
+  noise.discount(1.5 * 1.5, 0.1);
+  CHECK(noise.estimated() == Approx(0.6).epsilon(0.12));
+  // More known variance than the residuals show: the own fit, or zero without one.
+  estimate(noise, r);
+  noise.discount(9.0, 0.3);
+  CHECK(noise.estimated() == Approx(0.3));
+  estimate(noise, r);
+  noise.discount(9.0, -1.0);
+  CHECK(noise.estimated() == 0.0);
+  // 100 residuals of scale exactly 1: the own fit's standard error is 11.66 % of it. Above
+  // an own fit of 0.9 by less than twice that, 1 is within sampling error; above 0.8 it is not.
+  std::vector<float> unit(100);
+  for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = (i % 2 ? 1.f : -1.f) / 1.4826f;
+  estimate(noise, unit);
+  REQUIRE(noise.estimated() == Approx(1.0));
+  noise.discount(0.0, 0.9);
+  CHECK(noise.estimated() == Approx(0.9));
+  estimate(noise, unit);
+  noise.discount(0.0, 0.8);
+  CHECK(noise.estimated() == Approx(1.0));
+  // Without an estimate there is nothing to discount: the schedule stays in force.
+  estimate(noise, gaussian(5, 1.0, 7));
+  noise.discount(1.0, 0.5);
+  CHECK(noise.estimated() < 0.0);
+  CHECK(noise.sigma(3.0) == 3.0);
+}
+
 TEST_CASE("residual noise: the standard deviation used is the estimate within [floor, schedule]") {
   NoiseParams params;
   params.floor = 0.3;

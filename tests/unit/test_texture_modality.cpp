@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "icgp/io/mesh_loader.h"
+#include "icgp/modality/reprojection_terms.h"
 #include "icgp/modality/texture_modality.h"
 #include "icgp/tracker/tracker.h"
 #include "icgp/tracker/tracker_builder.h"
@@ -104,6 +105,28 @@ TEST_CASE("texture modality: matches recover a known image-plane shift") {
     CHECK(n_agree >= 0.6 * texture.matches().size());
     CHECK((mean - shift_px).norm() < 0.25);
   }
+}
+
+TEST_CASE("texture modality: a pose uncertainty's spread of the reprojection errors, in closed form") {
+  // Identity rotation, points at depth z: a body-frame shift δt moves a point by δt, its
+  // image by (f/z)·δt in u and v. A covariance of s² in x alone spreads u by (f s / z)²,
+  // v by 0: per coordinate the mean of the two.
+  const Intrinsics k{600.0, 600.0, 320.0, 240.0, 640, 480};
+  const Posef camera_T_body = Posef::identity();
+  const float z = 0.5f, s = 0.002f;
+  std::vector<TextureModality::Match> matches;
+  for (int i = 0; i < 4; ++i) matches.push_back({Eigen::Vector3f(0.f, 0.f, z), Eigen::Vector2f(320.f, 240.f), i, 1.f});
+  Eigen::Matrix<float, 6, 6> covariance = Eigen::Matrix<float, 6, 6>::Zero();
+  covariance(3, 3) = s * s;
+  const double expected = std::pow(600.0 * s / z, 2) / 2.0;
+  CHECK(reprojection_spread(matches, camera_T_body, k, covariance) == Approx(expected).epsilon(1e-5));
+  // A match weighted 0 and one behind the camera do not count; a half weight counts half.
+  matches.push_back({Eigen::Vector3f(0.f, 0.f, z), Eigen::Vector2f(0.f, 0.f), 4, 0.f});
+  matches.push_back({Eigen::Vector3f(0.f, 0.f, -z), Eigen::Vector2f(0.f, 0.f), 5, 1.f});
+  matches.push_back({Eigen::Vector3f(0.f, 0.f, 2 * z), Eigen::Vector2f(320.f, 240.f), 6, 0.5f});
+  const double with_far = (4 * expected + 0.5 * expected / 4) / 4.5;
+  CHECK(reprojection_spread(matches, camera_T_body, k, covariance) == Approx(with_far).epsilon(1e-5));
+  CHECK(reprojection_spread(std::vector<TextureModality::Match>{}, camera_T_body, k, covariance) == 0.0);
 }
 
 TEST_CASE("texture modality: gradient is the derivative of its log-likelihood") {

@@ -138,9 +138,13 @@ class AskingCue final : public Modality {
   ModalityQuality quality() const override { return cue_.quality(); }
   void append_residuals(std::vector<double>& r, std::vector<double>& w) const override { cue_.append_residuals(r, w); }
   bool weighs_against_others() const override { return true; }
-  void others_step(const Vec6& theta) override { told.push_back(theta); }
+  void others_estimate(const Vec6& step, const Mat66& covariance) override {
+    told.push_back(step);
+    covariances.push_back(covariance);
+  }
 
   std::vector<Vec6> told;
+  std::vector<Mat66> covariances;
 
  private:
   example::PositionCue cue_;
@@ -148,7 +152,7 @@ class AskingCue final : public Modality {
 
 }  // namespace
 
-TEST_CASE("optimizer: a cue that asks is told the step from the updated pose to the other cues' own step") {
+TEST_CASE("optimizer: a cue that asks is told the step from the updated pose to the other cues' own step, and its covariance") {
   Body body{"object", Mesh{}, some_pose()};
   AskingCue a(body, Eigen::Vector3d(0.05, 0.03, 0.55), 0.002);
   example::PositionCue b(body, Eigen::Vector3d(0.01, -0.02, 0.62), 0.004);
@@ -166,6 +170,11 @@ TEST_CASE("optimizer: a cue that asks is told the step from the updated pose to 
   CHECK((a.told.front().tail<3>() - (b_alone - both)).norm() < 1e-9);
   // It points away from a's measurement, towards b's: the cues disagree by several mm.
   CHECK(a.told.front().tail<3>().norm() > 1e-3);
+  // b constrains the position alone: the rotation is only as sure as the regularisation.
+  Mat66 covariance = Mat66::Zero();
+  covariance.diagonal() << Eigen::Vector3d::Constant(1 / 1000.0), Eigen::Vector3d::Constant(1 / (1 / 16e-6 + 30000.0));
+  INFO("covariance\n" << a.covariances.front());
+  CHECK((a.covariances.front() - covariance).norm() < 1e-12);
   // Alone on its body, a cue is told to step back to where it was: without it, nothing
   // would have moved the body.
   AskingCue alone(body, Eigen::Vector3d(0.05, 0.03, 0.55), 0.002);

@@ -118,8 +118,10 @@ class Modality {
   /// matches itself however wrong that pose was).
   virtual bool weighs_against_others() const { return false; }
   /// After each update, to such a cue: the step θ = [θ_r; θ_t], in the body frame, from the
-  /// updated pose to where the body's other cues alone would have taken it.
-  virtual void others_step(const Vec6&) {}
+  /// updated pose to where the body's other cues alone would have taken it, and that
+  /// estimate's covariance, the inverse of their regularised Hessian. Where the others are
+  /// unsure, their pose is no check on this cue.
+  virtual void others_estimate(const Vec6& /*step*/, const Mat66& /*covariance*/) {}
 
   Body& body() const { return *body_; }
 

@@ -67,6 +67,24 @@ void estimate_reprojection_noise(ResidualNoise& noise, const std::vector<Match>&
   });
 }
 
+/// The variance, pixels² per coordinate and averaged with the matches' weights, that a pose
+/// error of covariance `covariance` (body frame, [θ_r; θ_t]) adds to the reprojection
+/// errors at `camera_T_body`: the weighted mean of tr(J Σ Jᵀ) / 2. 0 without weighted matches.
+template <typename Match>
+double reprojection_spread(const std::vector<Match>& matches, const Posef& camera_T_body, const Intrinsics& k,
+                           const Eigen::Matrix<float, 6, 6>& covariance) {
+  double sum = 0.0, weights = 0.0;
+  for (const Match& m : matches) {
+    const Eigen::Vector3f X = camera_T_body * m.body_point;
+    if (X.z() <= 0.f || m.weight <= 0.f) continue;
+    const Eigen::Matrix<float, 2, 6> J =
+        k.projection_jacobian<float>(X) * point_jacobian_body_variation<float>(camera_T_body.rotation(), m.body_point);
+    sum += m.weight * (J * covariance * J.transpose()).trace();
+    weights += m.weight;
+  }
+  return weights > 0.0 ? sum / (2.0 * weights) : 0.0;
+}
+
 /// Appends the u and v reprojection errors of the matches in front of the camera, each with
 /// its match's weight (Modality::append_residuals).
 template <typename Match>

@@ -50,6 +50,14 @@ class ResidualNoise {
     if (params_.estimate || params_.robust) collect([this](float u) { residuals_.push_back(u); });
     estimate_from_residuals();
   }
+  /// For an estimate made at a pose other than the cue's own fit: takes out
+  /// `known_variance`, the spread that pose's own uncertainty adds to the residuals, and
+  /// keeps the rest only where it exceeds `own_fit`, the estimate at the fit, by more than
+  /// twice that estimate's standard error (1.166·σ/√n for n Gaussian residuals: the median
+  /// absolute value is 37 % as efficient as the standard deviation). A disagreement within
+  /// sampling error is no evidence that the fit hides a bias; `own_fit` is kept then.
+  /// Without an own fit (negative) the rest is kept as it is.
+  void discount(double known_variance, double own_fit);
   /// Forgets the estimate: sigma() gives the schedule's values again.
   void reset() { estimate_ = -1.0; }
 

@@ -104,9 +104,13 @@ class TextureModality : public Modality {
   ModalityQuality quality() const override { return quality_; }
   /// Its keyframes are lifted at estimated poses, and a keyframe lifted at a wrong pose
   /// matches itself: the scatter of its residuals cannot show that error, their distance
-  /// from where the other cues put the body can.
+  /// from where the other cues put the body can, less what the others' own uncertainty
+  /// spreads them there.
   bool weighs_against_others() const override { return params_.noise.estimate; }
-  void others_step(const Vec6& theta) override { others_step_ = theta; }
+  void others_estimate(const Vec6& step, const Mat66& covariance) override {
+    others_step_ = step;
+    others_covariance_ = covariance;
+  }
 
   const TextureParams& params() const { return params_; }
   const Keyframe& keyframe() const { return keyframe_; }
@@ -139,7 +143,8 @@ class TextureModality : public Modality {
   RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)
   Intrinsics intrinsics_;
   Pose camera_T_reference_;
-  Vec6 others_step_ = Vec6::Zero();  ///< from the pose to the other cues' (others_step)
+  Vec6 others_step_ = Vec6::Zero();             ///< from the pose to the other cues' (others_estimate)
+  Mat66 others_covariance_ = Mat66::Zero();      ///< of the other cues' pose (others_estimate)
   std::vector<cv::Point2f> points_;  ///< current frame's keypoints, full image
   cv::Mat descriptors_;
   std::vector<std::vector<cv::DMatch>> knn_;  ///< cv::BFMatcher's answer (L2 descriptors)
