@@ -223,6 +223,10 @@ void summarise_tracking(ServoResult& result) {
     sum_r += s.track_r;
     result.max_track_t = std::max(result.max_track_t, s.track_t);
     result.max_track_r = std::max(result.max_track_r, s.track_r);
+    if (!s.lost && !s.dropped && !s.skipped) {
+      result.max_vouched_track_t = std::max(result.max_vouched_track_t, s.track_t);
+      result.max_vouched_track_r = std::max(result.max_vouched_track_r, s.track_r);
+    }
     if (!s.dropped) ms.push_back(s.track_ms);
   }
   const double n = static_cast<double>(std::max(1, n_present));

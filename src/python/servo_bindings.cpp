@@ -109,6 +109,8 @@ py::dict summary_dict(const servo::ServoResult& r, const servo::StopSpec& stop, 
   d["max_track_t_mm"] = r.max_track_t * kMm;
   d["mean_track_r_deg"] = r.mean_track_r * kDeg;
   d["max_track_r_deg"] = r.max_track_r * kDeg;
+  d["max_vouched_track_t_mm"] = r.max_vouched_track_t * kMm;
+  d["max_vouched_track_r_deg"] = r.max_vouched_track_r * kDeg;
   d["median_track_ms"] = r.median_track_ms;
   d["steps_per_s"] = r.steps_per_s;
   d["safety_stops"] = r.safety_stops;
@@ -239,7 +241,8 @@ Returns a dict: scenario, tracker, seed (the noise seed used), trial, succeeded 
 and the true final error within the thresholds), converged, converged_step and
 converged_time (seconds; None when it did not converge), final_t_mm and final_r_deg (true
 pose to the desired one at the end), mean/max_track_t_mm and mean/max_track_r_deg (tracker
-error over the run), median_track_ms, steps_per_s, safety_stops, recovered, lost_reason
+error over the run), max_vouched_track_t_mm / max_vouched_track_r_deg (the largest on frames
+the tracker took and did not report lost), median_track_ms, steps_per_s, safety_stops, recovered, lost_reason
 (lost at the end: the tracker's last reason, such as why the object was never found;
 empty otherwise), joint_limit_stops, interrupted, and steps: one dict per step with time, cMo_true and
 cMo_estimated (4x4), servo_t_mm / servo_r_deg (true servoed pose to the desired one),

@@ -62,7 +62,9 @@ bool same_outcome(const Trial& a, const Trial& b) {
          x.tracker == y.tracker && x.seed == y.seed && x.converged == y.converged &&
          x.converged_step == y.converged_step && x.converged_time == y.converged_time && x.final_t == y.final_t &&
          x.final_r == y.final_r && x.mean_track_t == y.mean_track_t && x.max_track_t == y.max_track_t &&
-         x.mean_track_r == y.mean_track_r && x.max_track_r == y.max_track_r && x.safety_stops == y.safety_stops &&
+         x.mean_track_r == y.mean_track_r && x.max_track_r == y.max_track_r &&
+         x.max_vouched_track_t == y.max_vouched_track_t && x.max_vouched_track_r == y.max_vouched_track_r &&
+         x.safety_stops == y.safety_stops &&
          x.recovered == y.recovered && x.lost_reason == y.lost_reason && x.joint_limit_stops == y.joint_limit_stops &&
          x.interrupted == y.interrupted;
 }
@@ -89,11 +91,12 @@ py::tuple pickled(const Trial& t) {
                         r.converged_time, r.final_t, r.final_r, r.mean_track_t, r.max_track_t, r.mean_track_r,
                         r.max_track_r, r.median_track_ms, r.steps_per_s, r.safety_stops, r.recovered,
                         r.joint_limit_stops, r.interrupted, r.lost_reason, step_values(r, &ServoStep::track_t),
-                        step_values(r, &ServoStep::track_r), step_values(r, &ServoStep::track_ms));
+                        step_values(r, &ServoStep::track_r), step_values(r, &ServoStep::track_ms),
+                        r.max_vouched_track_t, r.max_vouched_track_r);
 }
 
 Trial unpickled(const py::tuple& s) {
-  if (s.size() != 24) throw py::value_error("TrialResult pickle: expected 24 values, got " + std::to_string(s.size()));
+  if (s.size() != 26) throw py::value_error("TrialResult pickle: expected 26 values, got " + std::to_string(s.size()));
   Trial t;
   ServoResult& r = t.run;
   t.trial = s[0].cast<int>();
@@ -120,6 +123,8 @@ Trial unpickled(const py::tuple& s) {
   set_step_values(r, &ServoStep::track_t, s[21].cast<py::bytes>());
   set_step_values(r, &ServoStep::track_r, s[22].cast<py::bytes>());
   set_step_values(r, &ServoStep::track_ms, s[23].cast<py::bytes>());
+  r.max_vouched_track_t = s[24].cast<double>();
+  r.max_vouched_track_r = s[25].cast<double>();
   return t;
 }
 
@@ -140,6 +145,8 @@ py::dict trial_dict(const Trial& t) {
   d["max_track_t"] = r.max_track_t;
   d["mean_track_r"] = r.mean_track_r;
   d["max_track_r"] = r.max_track_r;
+  d["max_vouched_track_t"] = r.max_vouched_track_t;
+  d["max_vouched_track_r"] = r.max_vouched_track_r;
   d["median_track_ms"] = r.median_track_ms;
   d["steps_per_s"] = r.steps_per_s;
   d["safety_stops"] = r.safety_stops;
@@ -167,6 +174,8 @@ py::dict summary_dict(const TrialsSummary& s) {
   d["max_track_t"] = s.max_track_t;
   d["mean_track_r"] = s.mean_track_r;
   d["max_track_r"] = s.max_track_r;
+  d["max_vouched_track_t"] = s.max_vouched_track_t;
+  d["max_vouched_track_r"] = s.max_vouched_track_r;
   d["median_track_ms"] = s.median_track_ms;
   d["steps_per_s"] = s.steps_per_s;
   d["safety_stops"] = s.safety_stops;

@@ -65,18 +65,25 @@ void check_converged(const ServoResult& result, double max_t, double max_r) {
 class FailingTracker : public PoseEstimator {
  public:
   static constexpr const char* kWhyLost = "the test hides the object";
-  FailingTracker(int first_lost, int count) : first_lost_(first_lost), count_(count) {}
+  /// `lost_offset`: metres along the camera's x axis that the pose it gives while lost is
+  /// off, as a lost tracker's pose may be anywhere.
+  FailingTracker(int first_lost, int count, double lost_offset = 0.0)
+      : first_lost_(first_lost), count_(count), lost_offset_(lost_offset) {}
   void start(const RgbdCapture&, const vpHomogeneousMatrix&, const std::optional<vpHomogeneousMatrix>&) override {}
   PoseEstimate track(const RgbdCapture& capture) override {
     const int step = steps_++;
     PoseEstimate estimate{capture.cMo_true, step >= first_lost_ && step < first_lost_ + count_, 0.0};
-    if (estimate.lost) estimate.why_lost = kWhyLost;
+    if (estimate.lost) {
+      estimate.why_lost = kWhyLost;
+      estimate.cMo = vpHomogeneousMatrix(lost_offset_, 0.0, 0.0, 0.0, 0.0, 0.0) * estimate.cMo;
+    }
     return estimate;
   }
   std::string name() const override { return "failing oracle"; }
 
  private:
   int first_lost_, count_, steps_ = 0;
+  double lost_offset_;
 };
 
 /// Finds the object turned by a symmetry S of its shape (half a turn about its y axis), as a
@@ -159,7 +166,7 @@ TEST_CASE("servo: a tracking loss stops the robot within the step, and the run r
   ServoRunOptions options = quiet();
   static constexpr int kFirstLost = 10, kLostSteps = 5;
   options.make_estimator = [](const RgbdSimulator&) -> std::unique_ptr<PoseEstimator> {
-    return std::make_unique<FailingTracker>(kFirstLost, kLostSteps);
+    return std::make_unique<FailingTracker>(kFirstLost, kLostSteps, 0.05);
   };
   const ServoResult result = run_servo(small_scenario("pbvs", "oracle"), options);
 
@@ -179,6 +186,11 @@ TEST_CASE("servo: a tracking loss stops the robot within the step, and the run r
   CHECK(result.recovered);
   CHECK(result.lost_reason.empty());
   CHECK(result.converged);
+  // The 5 cm off pose given while lost counts in the tracker error, not on the frames the
+  // tracker vouched for, where the oracle is exact.
+  CHECK(result.max_track_t == Approx(0.05).epsilon(1e-6));
+  CHECK(result.max_vouched_track_t < 1e-9);
+  CHECK(result.max_vouched_track_r < 1e-9);
 }
 
 TEST_CASE("servo: in a cell with latency and a lagging robot, a loss stops the robot once its zero command arrives") {

@@ -71,6 +71,8 @@ ServoResult run_a() {
   r.max_track_t = 0.003;
   r.mean_track_r = 0.02;
   r.max_track_r = 0.03;
+  r.max_vouched_track_t = 0.003;
+  r.max_vouched_track_r = 0.03;
   r.median_track_ms = 12.0;
   return r;
 }
@@ -108,6 +110,8 @@ ServoResult run_c() {
   r.safety_stops = 1;
   r.recovered = false;
   r.steps = {step(0.0, 0.001, 0.004, 0.04, 16.0), step(0.1, 0.0009, 0.001, 0.01, 11.0)};
+  r.max_vouched_track_t = 0.004;
+  r.max_vouched_track_r = 0.04;
   return r;
 }
 
@@ -168,6 +172,9 @@ TEST_CASE("summarise computes the batch statistics", "[servo][report]") {
   CHECK(s.max_track_t == Approx(0.009));
   CHECK(s.mean_track_r == Approx(sum_r / 9.0));
   CHECK(s.max_track_r == Approx(0.05));
+  // On frames vouched for: b's one step was lost; c's first step is the largest left.
+  CHECK(s.max_vouched_track_t == Approx(0.004));
+  CHECK(s.max_vouched_track_r == Approx(0.04));
   // track ms: 10 12 14 20 16 11 10 12 14 -> sorted 10 10 11 12 12 14 14 16 20: median 12.
   CHECK(s.median_track_ms == Approx(12.0));
   // steps/s: 30 20 40 10 -> median 25.
@@ -203,6 +210,7 @@ TEST_CASE("print_run and print_summaries write the numbers", "[servo][report]") 
   std::ostringstream converged_text;
   icgp::servo::print_run(converged_text, run_a(), stop);
   CHECK(converged_text.str().find("yes, at step 1 (0.10 s") != std::string::npos);
+  CHECK(converged_text.str().find("max on frames it vouched for 3.000 mm") != std::string::npos);
 
   TrialsSummary other = icgp::servo::summarise({run_a(), run_b(), run_c(), run_d()}, stop);
   other.tracker = "visp (edge + KLT + dense depth)";
@@ -257,6 +265,8 @@ TEST_CASE("write_summary_json writes the contract keys in mm and degrees", "[ser
   CHECK(json["track_t_mm"]["max"].as<double>() == Approx(9.0));
   CHECK(json["track_r_deg"]["mean"].as<double>() == Approx(s.mean_track_r / kDegree));
   CHECK(json["track_r_deg"]["max"].as<double>() == Approx(0.05 / kDegree));
+  CHECK(json["track_t_mm"]["max_vouched"].as<double>() == Approx(4.0));
+  CHECK(json["track_r_deg"]["max_vouched"].as<double>() == Approx(0.04 / kDegree));
 
   // Several summaries: an array; no converged run: null time.
   TrialsSummary failed = icgp::servo::summarise({run_b()}, stop);

@@ -25,6 +25,8 @@ struct TrialsSummary {
   double converged_time_median = -1.0;             ///< seconds, over converged runs; -1: none
   double mean_track_t = 0.0, max_track_t = 0.0;    ///< tracker error over all runs, metres
   double mean_track_r = 0.0, max_track_r = 0.0;    ///< radians
+  /// ServoResult's, the largest over all runs.
+  double max_vouched_track_t = 0.0, max_vouched_track_r = 0.0;
   double median_track_ms = 0.0;
   double steps_per_s = 0.0;  ///< median over runs
   int safety_stops = 0;      ///< over all runs

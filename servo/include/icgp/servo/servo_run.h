@@ -54,6 +54,10 @@ struct ServoResult {
   double final_t = 0.0, final_r = 0.0;  ///< true pose to the desired pose at the end
   double mean_track_t = 0.0, max_track_t = 0.0;  ///< tracker error over the run, metres
   double mean_track_r = 0.0, max_track_r = 0.0;  ///< radians
+  /// The largest tracker error on the frames the tracker took and vouched for (not lost):
+  /// a far-off pose here is one the loop would have servoed on. The overall maximum also
+  /// counts what a lost tracker holds while the object moves on.
+  double max_vouched_track_t = 0.0, max_vouched_track_r = 0.0;
   double median_track_ms = 0.0;
   double steps_per_s = 0.0;  ///< wall-clock rate of the whole loop (render + track + control)
   int safety_stops = 0;      ///< times the tracker was lost and the robot stopped
