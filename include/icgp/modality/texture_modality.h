@@ -143,8 +143,8 @@ class TextureModality : public Modality {
   RenderedScene scene_;  ///< this frame's render of the scene (empty without other bodies)
   Intrinsics intrinsics_;
   Pose camera_T_reference_;
-  Vec6 others_step_ = Vec6::Zero();             ///< from the pose to the other cues' (others_estimate)
-  Mat66 others_covariance_ = Mat66::Zero();      ///< of the other cues' pose (others_estimate)
+  Vec6 others_step_ = Vec6::Zero();         ///< from the pose to the other cues' (others_estimate)
+  Mat66 others_covariance_ = Mat66::Zero();  ///< of the other cues' pose (others_estimate)
   std::vector<cv::Point2f> points_;  ///< current frame's keypoints, full image
   cv::Mat descriptors_;
   std::vector<std::vector<cv::DMatch>> knn_;  ///< cv::BFMatcher's answer (L2 descriptors)
