@@ -315,9 +315,9 @@ void print_run(std::ostream& out, const ServoResult& r, const StopSpec& stop) {
   if (r.safety_stops > 0)
     text += format("safety stops       %d (%s)\n", r.safety_stops,
                    r.recovered ? "recovered: tracking resumed" : "not recovered: lost at the end");
-  if (!r.lost_reason.empty()) text += "lost at the end    " + r.lost_reason + "\n";
   else
     text += "safety stops       0\n";
+  if (!r.lost_reason.empty()) text += "lost at the end    " + r.lost_reason + "\n";
   text += format("joint-limit stops  %d\n", r.joint_limit_stops);
   out << text;
 }

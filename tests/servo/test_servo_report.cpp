@@ -205,12 +205,14 @@ TEST_CASE("print_run and print_summaries write the numbers", "[servo][report]") 
   CHECK(run.find("10.000 mm") != std::string::npos);
   CHECK(run.find("2.000 deg") != std::string::npos);
   CHECK(run.find("safety stops       2 (recovered") != std::string::npos);
+  CHECK(run.find("safety stops       0") == std::string::npos);  // once, with its count
   CHECK(run.find("joint-limit stops  0") != std::string::npos);
 
   std::ostringstream converged_text;
   icgp::servo::print_run(converged_text, run_a(), stop);
   CHECK(converged_text.str().find("yes, at step 1 (0.10 s") != std::string::npos);
   CHECK(converged_text.str().find("max on frames it vouched for 3.000 mm") != std::string::npos);
+  CHECK(converged_text.str().find("safety stops       0") != std::string::npos);
 
   TrialsSummary other = icgp::servo::summarise({run_a(), run_b(), run_c(), run_d()}, stop);
   other.tracker = "visp (edge + KLT + dense depth)";
