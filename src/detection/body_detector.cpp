@@ -407,6 +407,19 @@ double BodyDetector::place_in_depth(const Frame& frame, PoseCandidate& candidate
   return agreeing / static_cast<double>(view.surface.size());
 }
 
+bool BodyDetector::no_cue_refutes(const BodyResult& result) const {
+  // The body's quality is the median of its cues' scores: with two cues, their mean, so one
+  // that fits a wrong pose well carries one that refutes it. A two-colour box turned a
+  // quarter about its long axis lies on the real box's faces: depth fitted it at 0.92 and
+  // the region cue refuted it at 0.44 (0.56-0.69 at the right pose), for a mean above the
+  // detector's bar; the tracker then followed the turned box for a second and a half. A
+  // pose that a cue with evidence scores below the tracker's own loss bar is not verified.
+  const double bar = refiner_->params().quality_threshold;
+  return std::none_of(result.modalities.begin(), result.modalities.end(), [bar](const ModalityQuality& q) {
+    return !q.abstained && !q.just_started && q.score < bar;
+  });
+}
+
 BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& reference_T_body, int stages) {
   refiner_->body(body_name_).reference_T_body = reference_T_body;
   BodyResult result;
@@ -423,7 +436,8 @@ BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& re
   }
   // Where depth is measured, a verified body also stands out of its surroundings there.
   const double silhouette = silhouette_support(frame, result.reference_T_body);
-  const double quality = silhouette >= 0.0 && silhouette < kMinSilhouetteSupport ? 0.0 : result.quality;
+  const bool stands_out = silhouette < 0.0 || silhouette >= kMinSilhouetteSupport;
+  const double quality = stands_out && no_cue_refutes(result) ? result.quality : 0.0;
   return {result.reference_T_body, quality, 0.0};
 }
 
