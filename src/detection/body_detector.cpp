@@ -407,17 +407,23 @@ double BodyDetector::place_in_depth(const Frame& frame, PoseCandidate& candidate
   return agreeing / static_cast<double>(view.surface.size());
 }
 
-bool BodyDetector::no_cue_refutes(const BodyResult& result) const {
-  // The body's quality is the median of its cues' scores: with two cues, their mean, so one
-  // that fits a wrong pose well carries one that refutes it. A two-colour box turned a
-  // quarter about its long axis lies on the real box's faces: depth fitted it at 0.92 and
-  // the region cue refuted it at 0.44 (0.56-0.69 at the right pose), for a mean above the
-  // detector's bar; the tracker then followed the turned box for a second and a half. A
-  // pose that a cue with evidence scores below the tracker's own loss bar is not verified.
+bool BodyDetector::most_cues_agree(const BodyResult& result) const {
+  // The body's quality is the median of its cues' scores; of an even count, the mean of the
+  // middle two, so with two cues one that fits a wrong pose carries one that refutes it. A
+  // two-colour box turned a quarter about its long axis lies on the real box's faces: depth
+  // fitted it at 0.92 and the region cue refuted it at 0.44 (0.56-0.69 at the right pose),
+  // and it was verified at 0.68. A verified pose has a strict majority of the cues with
+  // evidence at the tracker's own loss bar or above: both of two, two of three. One cue
+  // that scores little by nature (a thin colour region of the labelled can, 0.3 at its
+  // right pose) is still outvoted.
   const double bar = refiner_->params().quality_threshold;
-  return std::none_of(result.modalities.begin(), result.modalities.end(), [bar](const ModalityQuality& q) {
-    return !q.abstained && !q.just_started && q.score < bar;
-  });
+  int with_evidence = 0, agreeing = 0;
+  for (const ModalityQuality& q : result.modalities) {
+    if (q.abstained || q.just_started) continue;
+    ++with_evidence;
+    agreeing += q.score >= bar;
+  }
+  return 2 * agreeing > with_evidence;
 }
 
 BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& reference_T_body, int stages) {
@@ -437,7 +443,7 @@ BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& re
   // Where depth is measured, a verified body also stands out of its surroundings there.
   const double silhouette = silhouette_support(frame, result.reference_T_body);
   const bool stands_out = silhouette < 0.0 || silhouette >= kMinSilhouetteSupport;
-  const double quality = stands_out && no_cue_refutes(result) ? result.quality : 0.0;
+  const double quality = stands_out && most_cues_agree(result) ? result.quality : 0.0;
   return {result.reference_T_body, quality, 0.0};
 }
 

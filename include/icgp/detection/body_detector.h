@@ -95,8 +95,9 @@ class BodyDetector {
   /// Tracker frames on `frame` from `reference_T_body`, coarse to fine, in `stages` starts
   /// (each learning the colour statistics again where the one before ended).
   Hypothesis refine(const Frame& frame, const Pose& reference_T_body, int stages);
-  /// No cue with evidence scores `result` below the tracker's loss bar.
-  bool no_cue_refutes(const BodyResult& result) const;
+  /// Whether a strict majority of the cues with evidence score `result` at the tracker's
+  /// loss bar or above.
+  bool most_cues_agree(const BodyResult& result) const;
   /// `start` refined; when its quality verifies it, with its appearance, aligned with the
   /// texture of a textured body (docs/detection.md, step 7); nothing otherwise.
   /// `from_texture`: the start is a keypoint pose, which may itself be the better one.
