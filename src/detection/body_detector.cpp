@@ -412,10 +412,10 @@ bool BodyDetector::most_cues_agree(const BodyResult& result) const {
   // middle two, so with two cues one that fits a wrong pose carries one that refutes it. A
   // two-colour box turned a quarter about its long axis lies on the real box's faces: depth
   // fitted it at 0.92 and the region cue refuted it at 0.44 (0.56-0.69 at the right pose),
-  // and it was verified at 0.68. A verified pose has a strict majority of the cues with
-  // evidence at the tracker's own loss bar or above: both of two, two of three. One cue
-  // that scores little by nature (a thin colour region of the labelled can, 0.3 at its
-  // right pose) is still outvoted.
+  // and it was verified at 0.68. The pose a detection answers has a strict majority of the
+  // cues with evidence at the tracker's own loss bar or above: both of two, two of three.
+  // One cue that scores little by nature (a thin colour region of the labelled can, 0.3 at
+  // its right pose) is still outvoted.
   const double bar = refiner_->params().quality_threshold;
   int with_evidence = 0, agreeing = 0;
   for (const ModalityQuality& q : result.modalities) {
@@ -443,8 +443,7 @@ BodyDetector::Hypothesis BodyDetector::refine(const Frame& frame, const Pose& re
   // Where depth is measured, a verified body also stands out of its surroundings there.
   const double silhouette = silhouette_support(frame, result.reference_T_body);
   const bool stands_out = silhouette < 0.0 || silhouette >= kMinSilhouetteSupport;
-  const double quality = stands_out && most_cues_agree(result) ? result.quality : 0.0;
-  return {result.reference_T_body, quality, 0.0};
+  return {result.reference_T_body, stands_out ? result.quality : 0.0, 0.0, most_cues_agree(result)};
 }
 
 double BodyDetector::appearance_agreement(const ColorImage& color, const Pose& reference_T_body) {
@@ -936,6 +935,14 @@ Detection BodyDetector::search(const Frame& frame, const SearchWindow& window, i
       if (h.quality >= params_.accept_quality) verified.push_back(h);
     }
   }
+  // Only now, so that a refinement the cues disagree on still seeds the turns above (the
+  // two-colour box's right pose was found by turning one whose region scored 0.48).
+  const std::size_t searched = verified.size();
+  verified.erase(std::remove_if(verified.begin(), verified.end(), [](const Hypothesis& h) { return !h.cues_agree; }),
+                 verified.end());
+  if (verified.empty() && searched > 0)
+    detection.why_not = "its cues disagree on every pose that fits (one of two, or two of three, score it below " +
+                        shortest(refiner_->params().quality_threshold) + ")";
   if (verified.empty()) {
     if (detection.why_not.empty())
       detection.why_not = detection.candidates == 0 ? "no template matched the image"

@@ -86,6 +86,9 @@ class BodyDetector {
     Pose reference_T_body;
     double quality = 0.0;
     double appearance = 0.0;
+    /// A strict majority of the refining cues with evidence score it at the loss bar or
+    /// above (most_cues_agree): required of the answer, not of the poses searched from.
+    bool cues_agree = false;
   };
   Detection search(const Frame& frame, const SearchWindow& window, int hypotheses, const OtherPoses& others);
   /// The template matches in `window`, best first, at most `hypotheses`: with depth placed
