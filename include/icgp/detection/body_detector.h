@@ -41,8 +41,8 @@ struct Detection {
 /// from its viewpoint models give scored pose candidates, depth (when measured) places and
 /// checks them, and the best few are refined by the body's own region and depth cues,
 /// coarse to fine, on the same frame. A pose is reported only when that refinement's
-/// quality reaches DetectionParams::accept_quality: "not found" rather than a confident
-/// wrong pose.
+/// quality reaches DetectionParams::accept_quality and a strict majority of its cues score
+/// it at the tracker's loss bar: "not found" rather than a confident wrong pose.
 class BodyDetector {
  public:
   /// The body `body_name` of `mesh` as `config` tracks it with `cameras` (the first camera
