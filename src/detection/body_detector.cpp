@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "icgp/detection/mesh_symmetries.h"
+#include "icgp/detection/usual_scores.h"
 #include "icgp/detection/verified_ranking.h"
 #include "icgp/modality/depth_modality.h"
 #include "icgp/modality/region_modality.h"
@@ -419,7 +420,7 @@ bool BodyDetector::most_cues_agree(const BodyResult& result) const {
   const double bar = refiner_->params().quality_threshold;
   int with_evidence = 0, agreeing = 0;
   for (const ModalityQuality& q : result.modalities) {
-    if (q.abstained || q.just_started) continue;
+    if (!has_evidence(q)) continue;
     ++with_evidence;
     agreeing += q.score >= bar;
   }

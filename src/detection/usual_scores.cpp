@@ -12,9 +12,9 @@ constexpr double kLearningRate = 0.1;
 /// Cues with evidence required of a pose, at most.
 constexpr int kMaxCuesRequired = 2;
 
-bool has_evidence(const ModalityQuality& q) { return !q.abstained && !q.just_started; }
-
 }  // namespace
+
+bool has_evidence(const ModalityQuality& q) { return !q.abstained && !q.just_started; }
 
 void UsualScores::learn(const BodyResult& trusted) {
   usual_.resize(trusted.modalities.size(), -1.0);

@@ -8,6 +8,10 @@
 
 namespace icgp {
 
+/// Whether a cue's score on a frame says anything about the pose: it neither abstained nor
+/// just started.
+bool has_evidence(const ModalityQuality& q);
+
 /// Each cue's usual score while its body is tracked and trusted. A cue that matches little
 /// by nature scores little on a right pose too (texture on ViSP's weakly textured castle:
 /// 0.2-0.5 beside region and depth at 0.6-0.9), so "every cue agrees with a pose" asks of
