@@ -13,30 +13,18 @@
 
 #include "icgp/base/pose.h"
 #include "icgp/render/egl_context.h"
-#include "icgp/render/renderer.h"
 #include "icgp/render/scene_props.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/visp/cao_mesh_loader.h"
+#include "icgp/servo/scene_backend.h"
 #include "icgp/servo/true_object.h"
 #include "icgp/visp/conversions.h"
 
 namespace icgp::servo {
 namespace {
 
-/// Renders averaged for motion blur.
-constexpr int kBlurSamples = 4;
 /// The passing occluder's flat grey.
 const Eigen::Vector3f kOccluderColor(0.55f, 0.5f, 0.45f);
-
-/// Pose of a camera moved back along the straight line to where it was `fraction` of a
-/// step earlier (translation interpolated, rotation along the geodesic).
-vpHomogeneousMatrix interpolate(const vpHomogeneousMatrix& from, const vpHomogeneousMatrix& to, double fraction) {
-  const vpHomogeneousMatrix delta = from.inverse() * to;
-  const vpTranslationVector t = delta.getTranslationVector();
-  const vpThetaUVector tu(delta.getRotationMatrix());
-  const vpHomogeneousMatrix partial(t * fraction, vpThetaUVector(tu[0] * fraction, tu[1] * fraction, tu[2] * fraction));
-  return from * partial;
-}
 
 /// Where each pixel of an image through a lens of radial distortion k1 (x_d = x (1 + k1 r²))
 /// looks in the pinhole image of the same intrinsics: the maps of cv::remap. The
@@ -70,8 +58,8 @@ struct RgbdSimulator::Impl {
   /// The colour lens's distortion as cv::remap maps; empty without. The image through the
   /// lens is made in `through_lens`, kept from frame to frame.
   cv::Mat lens_map_u, lens_map_v, through_lens;
-  Renderer renderer;
-  Renderer::BodyHandle object{}, occluder{}, gripper{};  ///< occluder, gripper: when the scenario has one
+  std::unique_ptr<SceneBackend> scene;
+  SceneBackend::BodyHandle object{}, occluder{}, gripper{};  ///< occluder, gripper: when the scenario has one
   vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
   SensorNoiseDraws noise;  ///< frame drops, colour and depth noise, in that order per capture
   RgbdCapture capture;
@@ -83,6 +71,7 @@ struct RgbdSimulator::Impl {
     scenario.camera.color = truth.color;
     scenario.camera.depth = truth.depth;
     scenario.camera.depth_T_color = truth.depth_T_color;
+    scene = make_scene_backend(scenario, seed);
     if (truth.color_k1 != 0.0) std::tie(lens_map_u, lens_map_v) = lens_maps(truth.color, truth.color_k1);
   }
 
@@ -104,31 +93,18 @@ struct RgbdSimulator::Impl {
     const double half_extent = 2.0 * depth * std::max(k.width / k.fu, k.height / k.fv) + 0.2;
     const vpHomogeneousMatrix c_M_plane(vpTranslationVector(cMo[0][3], cMo[1][3], depth),
                                         vpRotationMatrix(vpThetaUVector(kPi, 0, 0)));
-    const Renderer::BodyHandle plane = renderer.add_body(tiled_plane(texture, half_extent, 0.3), 2);
-    renderer.set_body_pose(plane, to_pose(world_T_camera_start * c_M_plane));
+    const SceneBackend::BodyHandle plane = scene->add_body(tiled_plane(texture, half_extent, 0.3), 2);
+    scene->set_body_pose(plane, to_pose(world_T_camera_start * c_M_plane));
   }
 
   void place_occluder(double time) {
     if (!scenario.occluder) return;
     const OccluderSpec& o = *scenario.occluder;
     const bool present = time >= o.start;
-    renderer.set_body_visible(occluder, present);
+    scene->set_body_visible(occluder, present);
     if (!present) return;
     const Eigen::Vector3d p = o.start_position_in_camera + (time - o.start) * o.velocity_in_camera;
-    renderer.set_body_pose(occluder, to_pose(world_T_camera_start * vpHomogeneousMatrix(p.x(), p.y(), p.z(), 0, 0, 0)));
-  }
-
-  /// The colour image at wMc, averaged over the last part of the camera's motion when the
-  /// sensor blurs.
-  cv::Mat render_color(const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& previous_wMc) {
-    const Intrinsics& k = scenario.camera.color;
-    const double blur = scenario.camera.noise.motion_blur;
-    if (blur <= 0.0) return renderer.render(k, to_pose(wMc.inverse()), kRenderColor).color;
-    return average_color_renders(kBlurSamples, [&](int i) {
-      const double back = blur * i / kBlurSamples;  // fraction of the step before the capture
-      const vpHomogeneousMatrix pose = interpolate(wMc, previous_wMc, back);
-      return renderer.render(k, to_pose(pose.inverse()), kRenderColor).color;
-    });
+    scene->set_body_pose(occluder, to_pose(world_T_camera_start * vpHomogeneousMatrix(p.x(), p.y(), p.z(), 0, 0, 0)));
   }
 
   /// Depth as a real sensor gives it: missing at grazing angles, at discontinuities and at
@@ -137,7 +113,7 @@ struct RgbdSimulator::Impl {
     const NoiseSpec& n = scenario.camera.noise;
     const Intrinsics& k = scenario.camera.depth;
     const Pose depth_T_world = scenario.camera.depth_T_color * to_pose(wMc.inverse());
-    cv::Mat depth = render_sensor_depth(renderer, k, depth_T_world, n);
+    cv::Mat depth = sensor_depth(scene->render_geometry(k, depth_T_world, n.grazing_angle_deg < 90.0), k, n);
     noise.add_depth_noise(depth, n);
     return depth;
   }
@@ -165,15 +141,10 @@ RgbdSimulator::RgbdSimulator(const Scenario& scenario, const TrueCalibration& tr
     : impl_((choose_software_raster_threads(SoftwareRasterThreads::kPerCore),
              std::make_unique<Impl>(scenario, truth, world_T_camera, world_T_object, seed))) {
   Impl& d = *impl_;
-  Lighting lighting;
-  lighting.direction_in_camera = scenario.lighting.direction_in_camera.normalized().cast<float>();
-  lighting.ambient = static_cast<float>(scenario.lighting.ambient);
-  lighting.diffuse = static_cast<float>(scenario.lighting.diffuse);
-  d.renderer.set_lighting(lighting);
-  d.object = d.renderer.add_body(true_object_mesh(scenario.object, seed), 1);
+  d.object = d.scene->add_body(true_object_mesh(scenario.object, seed), 1);
   d.add_background(seed);
-  if (scenario.occluder) d.occluder = d.renderer.add_body(box_mesh(scenario.occluder->size, kOccluderColor), 3);
-  if (scenario.grasp) d.gripper = d.renderer.add_body(load_any_mesh(scenario.grasp->gripper_model), 4);
+  if (scenario.occluder) d.occluder = d.scene->add_body(box_mesh(scenario.occluder->size, kOccluderColor), 3);
+  if (scenario.grasp) d.gripper = d.scene->add_body(load_any_mesh(scenario.grasp->gripper_model), 4);
 }
 
 RgbdSimulator::~RgbdSimulator() = default;
@@ -209,10 +180,10 @@ RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc,
   c.dropped = d.has_capture && d.noise.uniform() < d.scenario.camera.noise.frame_drop;
   if (c.dropped) return c;  // the tracker gets nothing new: the images stay the last ones
 
-  d.renderer.set_body_pose(d.object, to_pose(wMo));
-  if (gripper) d.renderer.set_body_pose(d.gripper, to_pose(*gripper));
+  d.scene->set_body_pose(d.object, to_pose(wMo));
+  if (gripper) d.scene->set_body_pose(d.gripper, to_pose(*gripper));
   d.place_occluder(time);
-  cv::Mat color = d.render_color(wMc, previous_wMc);
+  cv::Mat color = d.scene->render_color(d.scenario.camera.color, wMc, previous_wMc, d.scenario.camera.noise.motion_blur);
   if (!d.lens_map_u.empty()) {
     // The lens bends the image before the sensor's noise; what it brings in from beyond
     // the pinhole's field of view is black.

@@ -74,6 +74,10 @@ constexpr Interval kDelayMs{0.0, 86400e3};              ///< ms: latency (a run 
 constexpr Interval kSpreadMs{0.0, 1e4};                 ///< ms: jitter, lag, compute time
 constexpr Interval kLinearAcceleration{0.0, 1e6, true};  ///< m/s²
 constexpr Interval kAngularAccelerationDeg{0.0, 1e8, true};  ///< deg/s²
+constexpr long long kMaxCyclesSamples = 4096;           ///< paths per pixel
+constexpr long long kMaxLightBounces = 128;
+constexpr long long kMaxRenderThreads = 1024;
+constexpr Interval kRenderTimeoutS{0.0, 86400.0, true};  ///< s: one Blender request
 
 /// A camera-object pose: the object must be in front of the camera.
 Pose object_pose(const Value& v) {
@@ -227,8 +231,19 @@ void read_jitter(const Value& v, JitterSpec& jitter) {
   if (auto x = s.get("ms")) jitter.spread = x->number_in(kSpreadMs) * 1e-3;
 }
 
+void read_cycles(const Value& v, CyclesSpec& cycles) {
+  const Map s(v, {"samples", "light_bounces", "threads", "timeout_s"});
+  if (auto x = s.get("samples")) cycles.samples = static_cast<int>(x->integer_in(1, kMaxCyclesSamples));
+  if (auto x = s.get("light_bounces")) cycles.light_bounces = static_cast<int>(x->integer_in(0, kMaxLightBounces));
+  if (auto x = s.get("threads")) cycles.threads = static_cast<int>(x->integer_in(0, kMaxRenderThreads));
+  if (auto x = s.get("timeout_s")) cycles.timeout_s = x->number_in(kRenderTimeoutS);
+}
+
 void read_camera(const Value& v, CameraSpec& camera) {
-  const Map s(v, {"color", "depth", "depth_T_color", "rate_hz", "noise", "latency_ms", "jitter"});
+  const Map s(v, {"renderer", "cycles", "color", "depth", "depth_T_color", "rate_hz", "noise", "latency_ms", "jitter"});
+  if (auto x = s.get("renderer"))
+    camera.renderer = x->choice<RendererKind>({{"opengl", RendererKind::kOpenGl}, {"cycles", RendererKind::kCycles}});
+  if (auto x = s.get("cycles")) read_cycles(*x, camera.cycles);
   if (auto x = s.get("color")) camera.color = intrinsics(*x, camera.color);
   camera.depth = camera.color;
   if (auto x = s.get("depth")) camera.depth = intrinsics(*x, camera.color);

@@ -20,6 +20,7 @@
 #include "commands.h"
 #include "icgp/base/camera_names.h"
 #include "icgp/base/stop_request.h"
+#include "icgp/servo/blender_process.h"
 #include "icgp/servo/servo_batch.h"
 #include "icgp/servo/servo_report.h"
 #include "icgp/servo/servo_run.h"
@@ -297,10 +298,12 @@ void run_sweep(const ServoOptions& o, const fs::path& out) {
 }
 
 void run_command(const ServoOptions& o) {
+  Scenario scenario = servo::load_scenario(o.scenario, models_dir());
+  // Without Blender every trial would fail alike: say so once, before anything runs.
+  if (scenario.camera.renderer == servo::RendererKind::kCycles) servo::blender_executable();
   if (!o.scheduler.empty() || o.jobs > 0) run_on_workers(o);
   // Runs and batches can take hours: Ctrl-C stops them at the next step, writing what is done.
   install_stop_on_sigint();
-  Scenario scenario = servo::load_scenario(o.scenario, models_dir());
   if (!o.tracker.empty()) scenario.tracker.kind = tracker_kind(o.tracker);
   if (o.seed != 0) scenario.seed = o.seed;
   const fs::path out = o.out.empty() ? fs::path("out") / "servo" / scenario.name : fs::path(o.out);

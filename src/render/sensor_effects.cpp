@@ -69,13 +69,18 @@ SensorNoise SensorNoise::kinect_class() {
   return n;
 }
 
+cv::Mat sensor_depth(RenderOutput geometry, const Intrinsics& intrinsics, const SensorNoise& noise) {
+  if (noise.grazing_angle_deg < 90.0)
+    remove_grazing_depth(geometry.depth, geometry.normals, intrinsics, noise.grazing_angle_deg);
+  remove_depth_edges(geometry.depth, noise.depth_edge_holes_px);
+  return geometry.depth;
+}
+
 cv::Mat render_sensor_depth(Renderer& renderer, const Intrinsics& intrinsics, const Pose& camera_T_world,
                             const SensorNoise& noise) {
   const bool grazing_holes = noise.grazing_angle_deg < 90.0;
-  RenderOutput out = renderer.render(intrinsics, camera_T_world, kRenderDepth | (grazing_holes ? kRenderNormals : 0u));
-  if (grazing_holes) remove_grazing_depth(out.depth, out.normals, intrinsics, noise.grazing_angle_deg);
-  remove_depth_edges(out.depth, noise.depth_edge_holes_px);
-  return out.depth;
+  return sensor_depth(renderer.render(intrinsics, camera_T_world, kRenderDepth | (grazing_holes ? kRenderNormals : 0u)),
+                      intrinsics, noise);
 }
 
 cv::Mat average_color_renders(int samples, const std::function<cv::Mat(int sample)>& render) {

@@ -4,6 +4,14 @@
 # -DICGP=<program> -DSCENARIO=<yaml> -DOUT=<folder> [-DARGS=<extra arguments, ;-separated>]
 # [-DJSON_MATCH=<regular expression summary.json must match>]
 # [-DOUTPUT_MATCH=<regular expression the program's output must match>]
+# [-DREQUIRES=blender: without a `blender` program, print "skipped: no Blender" and stop]
+if(REQUIRES STREQUAL "blender")
+  find_program(BLENDER blender)
+  if(NOT BLENDER AND NOT DEFINED ENV{ICGP_BLENDER})
+    message("skipped: no Blender (scripts/setup --cycles installs it)")
+    return()
+  endif()
+endif()
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND "${ICGP}" servo "${SCENARIO}" --out "${OUT}" --summary "${OUT}/summary.json" --quiet ${ARGS}
                 RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE errors)

@@ -696,3 +696,31 @@ TEST_CASE("lighting: a light on the camera, its direction must not be zero") {
   CHECK_THROWS_WITH(load_scenario(dir.write("bright.yaml", kMinimal + "lighting: {ambient: 1.5}\n"), ICGP_MODELS_DIR),
                     Contains("lighting.ambient: expected a number in [0, 1]"));
 }
+
+TEST_CASE("a scenario's camera renders with OpenGL unless it asks for Cycles, whose settings are bounded") {
+  TempDir dir("icgp-scenario");
+  const Scenario opengl = load_scenario(dir.write("opengl.yaml", kMinimal), ICGP_MODELS_DIR);
+  CHECK(opengl.camera.renderer == icgp::servo::RendererKind::kOpenGl);
+  const Scenario cycles = load_scenario(
+      dir.write("cycles.yaml", kMinimal + "camera: {renderer: cycles, cycles: {samples: 64, light_bounces: 2, "
+                                          "threads: 1, timeout_s: 30}}\n"),
+      ICGP_MODELS_DIR);
+  CHECK(cycles.camera.renderer == icgp::servo::RendererKind::kCycles);
+  CHECK(cycles.camera.cycles.samples == 64);
+  CHECK(cycles.camera.cycles.light_bounces == 2);
+  CHECK(cycles.camera.cycles.threads == 1);
+  CHECK(cycles.camera.cycles.timeout_s == 30.0);
+
+  const std::string file = (dir.path() / "bad.yaml").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"camera: {renderer: raytracer}", "camera.renderer: expected one of opengl, cycles"},
+      {"camera: {cycles: {samples: 0}}", "camera.cycles.samples: expected an integer in [1, 4096], got 0"},
+      {"camera: {cycles: {light_bounces: -1}}", "camera.cycles.light_bounces: expected an integer in [0, 128], got -1"},
+      {"camera: {cycles: {timeout_s: 0}}", "camera.cycles.timeout_s: expected a number in (0, 86400], got 0"},
+      {"camera: {cycles: {denoise: true}}", "camera.cycles.denoise"},
+  };
+  for (const auto& [yaml, message] : cases) {
+    INFO(yaml);
+    CHECK_THAT(error_of(dir, kMinimal + yaml + "\n"), Contains(file + ": " + message));
+  }
+}

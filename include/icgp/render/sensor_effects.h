@@ -16,6 +16,7 @@
 namespace icgp {
 
 class Renderer;
+struct RenderOutput;
 
 /// Sensor imperfections added to the rendered images. Zero = exact renders.
 struct SensorNoise {
@@ -71,10 +72,13 @@ void remove_grazing_depth(cv::Mat& depth, const cv::Mat& normals, const Intrinsi
 /// nothing or "flying pixels" between the two surfaces. Nothing happens for radius 0.
 void remove_depth_edges(cv::Mat& depth, int radius_px);
 
-/// The depth image (CV_32FC1 metric Z, 0 = none) a sensor at camera_T_world measures of
-/// `renderer`'s scene before its random noise: the render without the surfaces seen more
-/// obliquely than noise.grazing_angle_deg (remove_grazing_depth) and without depth within
-/// noise.depth_edge_holes_px of a discontinuity (remove_depth_edges).
+/// The depth image (CV_32FC1 metric Z, 0 = none) a sensor measures before its random noise,
+/// from a render's depth (and normals, when noise.grazing_angle_deg < 90): the render without
+/// the surfaces seen more obliquely than noise.grazing_angle_deg (remove_grazing_depth) and
+/// without depth within noise.depth_edge_holes_px of a discontinuity (remove_depth_edges).
+cv::Mat sensor_depth(RenderOutput geometry, const Intrinsics& intrinsics, const SensorNoise& noise);
+
+/// sensor_depth of `renderer`'s scene seen from camera_T_world.
 cv::Mat render_sensor_depth(Renderer& renderer, const Intrinsics& intrinsics, const Pose& camera_T_world,
                             const SensorNoise& noise);
 

@@ -27,10 +27,12 @@ struct RgbdCapture {
   std::optional<vpHomogeneousMatrix> cMg_true;  ///< grasp: ground truth, colour camera -> gripper
 };
 
-/// Renders the scenario's scene (object, gripper, background plane, occluder) with the EGL renderer
-/// for the colour and depth cameras, and adds the sensor's imperfections (NoiseSpec) from
-/// its own seeded generator: the same scenario, seed and camera path give the same images.
-/// Needs a headless OpenGL context (throws icgp::RenderError without one).
+/// Renders the scenario's scene (object, gripper, background plane, occluder) for the colour
+/// and depth cameras with the backend the scenario names (OpenGL, or Blender's Cycles:
+/// SceneBackend), and adds the sensor's imperfections (NoiseSpec, lens distortion) from its
+/// own seeded generator: the same scenario, seed and camera path give the same images.
+/// Throws when the backend cannot start (icgp::RenderError without an OpenGL context,
+/// std::runtime_error without Blender).
 class RgbdSimulator {
  public:
   /// `world_T_camera`: where the colour camera starts (the background plane faces it);

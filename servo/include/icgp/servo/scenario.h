@@ -160,8 +160,27 @@ struct JitterSpec {
   double spread = 0.0;
 };
 
+/// What renders the camera's images (YAML camera.renderer).
+enum class RendererKind {
+  kOpenGl,  ///< "opengl": icgp's rasteriser, fast: a run at tens of steps per second
+  kCycles,  ///< "cycles": Blender's Cycles path tracer, slow: about a second a frame (docs/servo.md)
+};
+
+/// The Cycles backend's settings (YAML camera.cycles).
+struct CyclesSpec {
+  /// Paths per pixel. Debian's Blender has no denoiser: what noise is left stays in the
+  /// image, as a sensor's would.
+  int samples = 16;
+  int light_bounces = 4;  ///< the longest light path, in bounces
+  int threads = 0;        ///< Cycles' threads; 0: one per core
+  /// Seconds Blender may take for one request before the trial fails with its last messages.
+  double timeout_s = 300.0;
+};
+
 /// The RGB-D sensor.
 struct CameraSpec {
+  RendererKind renderer = RendererKind::kOpenGl;
+  CyclesSpec cycles;
   Intrinsics color = Intrinsics::centred(640, 480, 600.0);
   Intrinsics depth = Intrinsics::centred(640, 480, 600.0);
   Pose depth_T_color;  ///< colour camera -> depth camera (ViSP's depth_M_color)
