@@ -268,11 +268,28 @@ def write_obj(path, mesh, mtllib, description):
         f.writelines(lines)
 
 
+# How each surface reflects (models/README.md, "Materials"): the specular colour's level
+# (Ks, 0.5 = a dielectric's 4 %), the PBR roughness (Pr) and metalness (Pm) of the .mtl
+# extension that assimp and Blender read. Ns repeats the roughness as Blender's OBJ exporter
+# writes it, (1 - Pr)^2 x 1000, for readers without Pr.
+FINISHES = {
+    "laminated print": (0.5, 0.3, 0.0),   # a printed, varnished box: sharp highlights
+    "glazed ceramic": (0.5, 0.15, 0.0),
+    "paper": (0.5, 0.8, 0.0),             # a matte label: a faint, broad sheen
+    "satin paint": (0.5, 0.45, 0.0),      # painted card or metal
+    "moulded plastic": (0.5, 0.45, 0.0),
+    "bare metal": (0.5, 0.35, 1.0),       # brushed aluminium-like, its colour in its reflection
+}
+
+
 def write_mtl(path, materials):
-    """materials: [(name, (r, g, b) diffuse, texture file name or None)]."""
+    """materials: [(name, (r, g, b) diffuse, texture file name or None, finish: a key of FINISHES)]."""
     lines = [HEADER]
-    for name, rgb, texture in materials:
-        lines.append("\nnewmtl %s\nKa 0 0 0\nKd %s\nKs 0 0 0\nd 1\nillum 1\n" % (name, " ".join(fmt(c) for c in rgb)))
+    for name, rgb, texture, finish in materials:
+        ks, pr, pm = FINISHES[finish]
+        lines.append("\nnewmtl %s\n# %s\nKa 0 0 0\nKd %s\nKs %s %s %s\nNs %s\nPr %s\nPm %s\nd 1\nillum 2\n"
+                     % (name, finish, " ".join(fmt(c) for c in rgb), fmt(ks), fmt(ks), fmt(ks),
+                        fmt((1.0 - pr) ** 2 * 1000.0), fmt(pr), fmt(pm)))
         if texture:
             lines.append("map_Kd %s\n" % texture)
     with open(path, "w", newline="\n") as f:
@@ -444,7 +461,7 @@ def textured_box(folder):
         canvas.bleed(*rect, GUTTER // 2)
         add_box_face(mesh, triangles, size, face, [0.0, 1.0], uv_in_rect(canvas, *rect))
     write_png(os.path.join(folder, "textured_box.png"), canvas)
-    write_mtl(os.path.join(folder, "textured_box.mtl"), [("label", (1.0, 1.0, 1.0), "textured_box.png")])
+    write_mtl(os.path.join(folder, "textured_box.mtl"), [("label", (1.0, 1.0, 1.0), "textured_box.png", "laminated print")])
     write_obj(os.path.join(folder, "textured_box.obj"), mesh, "textured_box.mtl",
               "textured box 0.08 x 0.16 x 0.06 m (x, y, z), a printed label on every face")
     return mesh
@@ -462,7 +479,7 @@ def textureless_mug(folder):
     add_cylinder_cap(mesh, triangles, CYLINDER_RADIUS, -h, CYLINDER_SEGMENTS, facing_up=False)
     add_handle(mesh, triangles, CYLINDER_RADIUS, bend_radius=0.03, tube_radius=0.006, arc_steps=24,
                tube_segments=12)
-    write_mtl(os.path.join(folder, "textureless_mug.mtl"), [("glaze", (0.70, 0.12, 0.10), None)])
+    write_mtl(os.path.join(folder, "textureless_mug.mtl"), [("glaze", (0.70, 0.12, 0.10), None, "glazed ceramic")])
     write_obj(os.path.join(folder, "textureless_mug.obj"), mesh, "textureless_mug.mtl",
               "plain red mug: cylinder r 0.04 m, h 0.10 m, axis y, handle on +x")
     return mesh
@@ -488,7 +505,7 @@ def labelled_cylinder(folder):
     add_cylinder_cap(mesh, triangles, CYLINDER_RADIUS, -h, CYLINDER_SEGMENTS, False,
                      uv_in_disc(canvas, 3 * GUTTER + 3 * cap_r, cap_y, cap_r, CYLINDER_RADIUS, z_up=True))
     write_png(os.path.join(folder, "labelled_cylinder.png"), canvas)
-    write_mtl(os.path.join(folder, "labelled_cylinder.mtl"), [("label", (1.0, 1.0, 1.0), "labelled_cylinder.png")])
+    write_mtl(os.path.join(folder, "labelled_cylinder.mtl"), [("label", (1.0, 1.0, 1.0), "labelled_cylinder.png", "paper")])
     write_obj(os.path.join(folder, "labelled_cylinder.obj"), mesh, "labelled_cylinder.mtl",
               "cylinder r 0.04 m, h 0.10 m, axis y, printed label around it")
     return mesh
@@ -517,7 +534,7 @@ def labelled_can(folder):
     label(canvas, random.Random(3000), 0, 0, label_w, label_h)
     write_png(os.path.join(folder, "labelled_can.png"), canvas)
     write_mtl(os.path.join(folder, "labelled_can.mtl"),
-              [("label", (1.0, 1.0, 1.0), "labelled_can.png"), ("caps", CAN_CAP_COLOUR, None)])
+              [("label", (1.0, 1.0, 1.0), "labelled_can.png", "paper"), ("caps", CAN_CAP_COLOUR, None, "satin paint")])
     union = ObjMesh()
     for region in ("label", "caps"):
         part = ObjMesh()
@@ -532,7 +549,7 @@ def labelled_can(folder):
 
 TWO_REGION_SIZE = (0.10, 0.08, 0.06)
 LID_HEIGHT = 0.025
-TWO_REGION_MATERIALS = [("body", (0.10, 0.30, 0.75), None), ("lid", (0.95, 0.60, 0.10), None)]
+TWO_REGION_MATERIALS = [("body", (0.10, 0.30, 0.75), None, "satin paint"), ("lid", (0.95, 0.60, 0.10), None, "satin paint")]
 
 
 def two_region_part(mesh, region):
@@ -564,8 +581,8 @@ def two_region(folder):
 
 HINGED_BOX_BASE = (0.12, 0.06, 0.08)
 HINGED_BOX_LID = (0.12, 0.01, 0.08)
-HINGED_BOX_MATERIALS = [("base", (0.10, 0.35, 0.80), None), ("inside", (0.92, 0.88, 0.75), None),
-                        ("lid", (0.95, 0.55, 0.10), None)]
+HINGED_BOX_MATERIALS = [("base", (0.10, 0.35, 0.80), None, "satin paint"), ("inside", (0.92, 0.88, 0.75), None, "paper"),
+                        ("lid", (0.95, 0.55, 0.10), None, "satin paint")]
 
 
 def add_box(mesh, size, centre, material_of):
@@ -621,7 +638,7 @@ def gripper(folder):
         size = tuple(u - l for l, u in zip(lower, upper))
         centre = tuple(0.5 * (l + u) for l, u in zip(lower, upper))
         add_box(mesh, size, centre, lambda face: "gripper")
-    write_mtl(os.path.join(folder, "gripper.mtl"), [("gripper", GRIPPER_COLOUR, None)])
+    write_mtl(os.path.join(folder, "gripper.mtl"), [("gripper", GRIPPER_COLOUR, None, "bare metal")])
     write_obj(os.path.join(folder, "gripper.obj"), mesh, "gripper.mtl",
               "two-finger parallel gripper: mount, palm 0.05 x 0.14 x 0.03 m, fingers 0.08 m long "
               "0.10 m apart; origin on the flange, z the approach direction, fingers open along y")
@@ -718,7 +735,7 @@ def figurine(folder):
     for a, b, c in faces:
         triangles.append((corners[a], corners[b], corners[c]))
     size = " x ".join(fmt(hi - lo) for lo, hi in zip(lower, upper))
-    write_mtl(os.path.join(folder, "figurine.mtl"), [("plastic", FIGURINE_COLOUR, None)])
+    write_mtl(os.path.join(folder, "figurine.mtl"), [("plastic", FIGURINE_COLOUR, None, "moulded plastic")])
     write_obj(os.path.join(folder, "figurine.obj"), mesh, "figurine.mtl",
               "plain yellow figurine " + size + " m (x, y, z): torso, head, arms, feet, ears and a tail, "
               "non-convex, without texture")

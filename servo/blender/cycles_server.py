@@ -164,6 +164,7 @@ class Server:
         bsdf = nodes['Principled BSDF']
         bsdf.inputs['Roughness'].default_value = float(part['roughness'])
         bsdf.inputs['Specular'].default_value = float(part['specular'])
+        bsdf.inputs['Metallic'].default_value = float(part['metallic'])
         if part.get('texture'):
             texture = nodes.new('ShaderNodeTexImage')
             texture.image = bpy.data.images.load(part['texture'])

@@ -113,7 +113,9 @@ class CyclesSceneBackend final : public SceneBackend {
       parts += std::string(parts.empty() ? "" : ", ") + "{\"vertices\": " + json_string(stem + ".vertices") +
                ", \"triangles\": " + json_string(stem + ".triangles") + ", \"texcoords\": " + texcoords +
                ", \"texture\": " + texture + ", \"diffuse\": " + json_list(part.material.diffuse_rgb) +
-               ", \"roughness\": " + json_number(kRoughness) + ", \"specular\": " + json_number(kSpecular) + "}";
+               ", \"roughness\": " + json_number(part.material.roughness) +
+               ", \"metallic\": " + json_number(part.material.metallic) +
+               ", \"specular\": " + json_number(part.material.specular) + "}";
     }
     blender_.request("{\"op\": \"body\", \"handle\": " + std::to_string(handle) + ", \"parts\": [" + parts + "]}");
     bodies_.push_back({});
@@ -160,9 +162,6 @@ class CyclesSceneBackend final : public SceneBackend {
  private:
   /// A light of this angular size (degrees) casts soft-edged shadows, as a lamp does.
   static constexpr double kLightAngleDeg = 2.0;
-  /// Principled BSDF's defaults: a dielectric of medium gloss, such as printed card or plastic.
-  static constexpr double kRoughness = 0.5;
-  static constexpr double kSpecular = 0.5;
 
   struct BodyState {
     Pose world_T_body;

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include <assimp/Importer.hpp>
@@ -160,12 +162,52 @@ cv::Mat diffuse_texture_of(const aiMaterial& material, const aiScene& scene, con
   return texture_file(name, path);
 }
 
+/// A material's value for `key`, when it has one; refused outside [min, max], naming the
+/// file, the material and the key as the file spells it.
+std::optional<float> material_number(const aiMaterial& material, const char* key, unsigned type, unsigned index,
+                                     const std::string& name, double min, double max, const std::string& path) {
+  float value = 0.f;
+  if (material.Get(key, type, index, value) != AI_SUCCESS) return std::nullopt;
+  if (!(value >= min && value <= max)) {
+    char text[128];
+    std::snprintf(text, sizeof text, " is %g; expected a number in [%g, %g]", value, min, max);
+    fail(path, "material '" + std::string(material.GetName().C_Str()) + "': " + name + text);
+  }
+  return value;
+}
+
+/// How the surface reflects, read as Blender reads a file (so that both renderers see one
+/// material): roughness from the PBR roughness (.mtl Pr, glTF roughnessFactor), else from
+/// the Phong exponent (Ns in [0, 1000]: 1 - sqrt(Ns / 1000)); metallic from .mtl Pm or glTF
+/// metallicFactor; specular from the specular colour's mean (.mtl Ks).
+void read_reflectance(const aiMaterial& source, Material& material, const std::string& path) {
+  if (auto ns = material_number(source, AI_MATKEY_SHININESS, "Ns (shininess)", 0.0, 1000.0, path))
+    material.roughness = 1.0f - std::sqrt(*ns / 1000.0f);
+  if (auto r = material_number(source, AI_MATKEY_ROUGHNESS_FACTOR, "Pr (roughness)", 0.0, 1.0, path))
+    material.roughness = *r;
+  if (auto m = material_number(source, AI_MATKEY_METALLIC_FACTOR, "Pm (metallic)", 0.0, 1.0, path))
+    material.metallic = *m;
+  aiColor3D ks;
+  if (source.Get(AI_MATKEY_COLOR_SPECULAR, ks) == AI_SUCCESS) {
+    for (float c : {ks.r, ks.g, ks.b})
+      if (!(c >= 0.f && c <= 1.f)) {
+        char text[96];
+        std::snprintf(text, sizeof text, "': Ks (specular colour) has %g; expected three numbers in [0, 1]", c);
+        fail(path, "material '" + std::string(source.GetName().C_Str()) + text);
+      }
+    material.specular = (ks.r + ks.g + ks.b) / 3.0f;
+  }
+}
+
 Material material_of(const aiMesh& mesh, const aiScene& scene, const std::string& path) {
   Material material;
   if (mesh.mMaterialIndex >= scene.mNumMaterials) return material;
   const aiMaterial& source = *scene.mMaterials[mesh.mMaterialIndex];
   material.diffuse_rgb = diffuse_colour_of(source, material.diffuse_rgb);
   material.texture_bgr = diffuse_texture_of(source, scene, path);
+  // A mesh without materials gets assimp's default one, whose zero Ns and Ks say nothing:
+  // it keeps Material's defaults, as a mesh Blender imports without materials does.
+  if (std::string(source.GetName().C_Str()) != AI_DEFAULT_MATERIAL_NAME) read_reflectance(source, material, path);
   return material;
 }
 

@@ -380,6 +380,47 @@ TEST_CASE("a missing texture file is an error naming the model and the texture")
   CHECK_THAT(message_of<std::runtime_error>([&] { load_mesh(path); }), Contains(path) && Contains("missing.png"));
 }
 
+TEST_CASE("MTL reflectance: Pr and Pm as given, roughness from Ns as Blender reads it, specular from Ks") {
+  TempDir dir("icgp_mesh_loader");
+  dir.write("shiny.mtl",
+            "newmtl metal\nKd 0.5 0.5 0.5\nKs 0.3 0.4 0.5\nNs 250\nPr 0.2\nPm 1\n"
+            "newmtl phong\nKd 0.5 0.5 0.5\nKs 0 0 0\nNs 360\n");
+  const std::string path = dir.write("shiny.obj",
+                                     "mtllib shiny.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                                     "usemtl metal\nf 1 2 3\nusemtl phong\nf 2 4 3\n");
+  const Mesh mesh = load_mesh(path);
+  REQUIRE(mesh.parts.size() == 2);
+  const icgp::Material& metal = mesh.parts[0].material.roughness == Approx(0.2f) ? mesh.parts[0].material
+                                                                                  : mesh.parts[1].material;
+  const icgp::Material& phong = &metal == &mesh.parts[0].material ? mesh.parts[1].material : mesh.parts[0].material;
+  CHECK(metal.roughness == Approx(0.2f));  // Pr wins over Ns
+  CHECK(metal.metallic == 1.0f);
+  CHECK(metal.specular == Approx(0.4f));
+  CHECK(phong.roughness == Approx(0.4f));  // 1 - sqrt(360 / 1000)
+  CHECK(phong.metallic == 0.0f);
+  CHECK(phong.specular == 0.0f);
+  // A mesh without materials keeps the defaults: a dielectric of medium gloss.
+  const Mesh plain = load_mesh(dir.write("plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  CHECK(plain.parts[0].material.roughness == 0.5f);
+  CHECK(plain.parts[0].material.metallic == 0.0f);
+}
+
+TEST_CASE("a reflectance parameter out of range is an error naming the file, the material and the key") {
+  TempDir dir("icgp_mesh_loader");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"Pr 1.5", "material 'bad': Pr (roughness) is 1.5; expected a number in [0, 1]"},
+      {"Pm -0.2", "material 'bad': Pm (metallic) is -0.2; expected a number in [0, 1]"},
+      {"Ns 5000", "material 'bad': Ns (shininess) is 5000; expected a number in [0, 1000]"},
+      {"Ks 0.5 2 0.5", "material 'bad': Ks (specular colour) has 2; expected three numbers in [0, 1]"},
+  };
+  for (const auto& [line, message] : cases) {
+    INFO(line);
+    dir.write("bad.mtl", "newmtl bad\nKd 0.5 0.5 0.5\n" + line + "\n");
+    const std::string path = dir.write("bad.obj", "mtllib bad.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl bad\nf 1 2 3\n");
+    CHECK_THAT(message_of<std::runtime_error>([&] { load_mesh(path); }), Contains(path) && Contains(message));
+  }
+}
+
 TEST_CASE("a non-positive or non-finite scale is an invalid argument naming the file") {
   TempDir dir("icgp_mesh_loader");
   const std::string path = write_cube_obj(dir);

@@ -10,10 +10,16 @@
 
 namespace icgp {
 
-/// Appearance of one part of a mesh: a diffuse texture when present, else a flat colour.
+/// Appearance of one part of a mesh: a diffuse texture when present, else a flat colour,
+/// and how its surface reflects light (the metallic-roughness parameters of physically
+/// based shading, each in [0, 1]; the defaults: a dielectric of medium gloss).
 struct Material {
   Eigen::Vector3f diffuse_rgb{0.8f, 0.8f, 0.8f};  ///< linear 0..1
   cv::Mat texture_bgr;                             ///< CV_8UC3, empty when untextured
+  float roughness = 0.5f;  ///< 0: a mirror-sharp highlight, 1: none
+  float metallic = 0.0f;   ///< 1: a metal, whose reflection takes the diffuse colour
+  /// Reflectance of a dielectric at normal incidence, 0.5 = 4 % (Blender's "Specular"); 0: no highlight.
+  float specular = 0.5f;
 };
 
 /// Triangles sharing one material. Texture coordinates are empty or one per vertex, with
