@@ -65,7 +65,8 @@ class Server:
     # ---- requests --------------------------------------------------------------------------
 
     def setup(self, r):
-        """Sampling and the scene's light: a sun fixed to the camera and ambient light."""
+        """Sampling, and the scene's light: a sun fixed to the camera and ambient light, whose
+        strengths and direction each colour request gives."""
         cycles = self.scene.cycles
         cycles.samples = int(r['samples'])
         cycles.max_bounces = int(r['light_bounces'])
@@ -78,15 +79,21 @@ class Server:
             self.scene.render.threads_mode = 'FIXED'
             self.scene.render.threads = int(r['threads'])
         self.samples = cycles.samples
+        self.light.data.angle = math.radians(float(r['light_angle_deg']))
+        self.set_world()
+        self.set_geometry_output(r['geometry_folder'])
+
+    def set_light(self, r, world_T_blender_camera):
         # A white Lambertian surface facing the sun at irradiance E has radiance E / pi: the sun's
         # strength is pi * diffuse for that surface to read `diffuse`, as in the OpenGL renderer.
         self.light.data.energy = math.pi * float(r['diffuse'])
-        self.light.data.angle = math.radians(float(r['light_angle_deg']))
-        self.light_direction_in_camera = Vector(r['light_direction_in_camera']).normalized()
-        self.set_world(float(r['ambient']))
-        self.set_geometry_output(r['geometry_folder'])
+        ambient = float(r['ambient'])
+        self.ambient.inputs['Color'].default_value = (ambient, ambient, ambient, 1.0)
+        in_camera = Vector(r['light_direction_in_camera']).normalized()
+        direction = world_T_blender_camera.to_3x3() @ (ICGP_TO_BLENDER_CAMERA.to_3x3() @ in_camera)
+        self.light.rotation_quaternion = direction.to_track_quat('-Z', 'Y')
 
-    def set_world(self, ambient):
+    def set_world(self):
         """Uniform ambient light that lights the scene but is not seen: the camera sees black
         where nothing is, as with the OpenGL renderer."""
         world = bpy.data.worlds.new('world')
@@ -94,7 +101,7 @@ class Server:
         world.use_nodes = True
         nodes, links = world.node_tree.nodes, world.node_tree.links
         lit = nodes['Background']
-        lit.inputs['Color'].default_value = (ambient, ambient, ambient, 1.0)
+        self.ambient = lit
         dark = nodes.new('ShaderNodeBackground')
         dark.inputs['Color'].default_value = (0.0, 0.0, 0.0, 1.0)
         path = nodes.new('ShaderNodeLightPath')
@@ -224,8 +231,7 @@ class Server:
 
     def color(self, r):
         end = self.place(r)
-        direction = end.to_3x3() @ (ICGP_TO_BLENDER_CAMERA.to_3x3() @ self.light_direction_in_camera)
-        self.light.rotation_quaternion = direction.to_track_quat('-Z', 'Y')
+        self.set_light(r, end)
         self.scene.cycles.samples = self.samples
         self.scene.cycles.seed = int(r['seed']) % 2147483647
         self.scene.cycles.pixel_filter_type = 'BLACKMAN_HARRIS'

@@ -81,15 +81,17 @@ void write_array(const fs::path& file, const T* data, std::size_t count) {
 class CyclesSceneBackend final : public SceneBackend {
  public:
   CyclesSceneBackend(const CyclesSpec& spec, const LightingSpec& lighting, std::uint64_t seed)
-      : blender_(write_script(), (folder_.path() / "blender.log").string(), spec.timeout_s), seed_(seed) {
+      : blender_(write_script(), (folder_.path() / "blender.log").string(), spec.timeout_s),
+        seed_(seed),
+        light_(light_at(lighting, 0.0)) {
     blender_.request("{\"op\": \"setup\", \"samples\": " + std::to_string(spec.samples) +
                      ", \"light_bounces\": " + std::to_string(spec.light_bounces) +
-                     ", \"threads\": " + std::to_string(spec.threads) + ", \"ambient\": " +
-                     json_number(lighting.ambient) + ", \"diffuse\": " + json_number(lighting.diffuse) +
-                     ", \"light_direction_in_camera\": " + json_list(lighting.direction_in_camera) +
+                     ", \"threads\": " + std::to_string(spec.threads) +
                      ", \"light_angle_deg\": " + json_number(kLightAngleDeg) +
                      ", \"geometry_folder\": " + json_string(folder_.path().string()) + "}");
   }
+
+  void set_light(const LightState& light) override { light_ = light; }
 
   BodyHandle add_body(const Mesh& mesh, std::uint8_t /*id*/) override {
     const BodyHandle handle = static_cast<BodyHandle>(bodies_.size());
@@ -129,6 +131,9 @@ class CyclesSceneBackend final : public SceneBackend {
                        double exposure) override {
     const fs::path out = folder_.path() / "color.png";
     std::string request = "{\"op\": \"color\", " + placement(k, to_pose(wMc)) +
+                          ", \"light_direction_in_camera\": " + json_list(light_.direction_in_camera) +
+                          ", \"ambient\": " + json_number(light_.ambient) +
+                          ", \"diffuse\": " + json_number(light_.diffuse) +
                           ", \"seed\": " + std::to_string((seed_ * 1000003u + renders_++) & 0x7fffffffu) +
                           ", \"out\": " + json_string(out.string());
     if (exposure > 0.0)
@@ -192,6 +197,7 @@ class CyclesSceneBackend final : public SceneBackend {
   BlenderProcess blender_;
   std::uint64_t seed_;
   std::uint64_t renders_ = 0;
+  LightState light_;
   std::vector<BodyState> bodies_;
 };
 

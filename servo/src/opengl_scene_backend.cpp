@@ -14,11 +14,13 @@ constexpr int kBlurSamples = 4;
 
 class OpenGlSceneBackend final : public SceneBackend {
  public:
-  explicit OpenGlSceneBackend(const LightingSpec& spec) {
+  explicit OpenGlSceneBackend(const LightingSpec& spec) { set_light(light_at(spec, 0.0)); }
+
+  void set_light(const LightState& light) override {
     Lighting lighting;
-    lighting.direction_in_camera = spec.direction_in_camera.normalized().cast<float>();
-    lighting.ambient = static_cast<float>(spec.ambient);
-    lighting.diffuse = static_cast<float>(spec.diffuse);
+    lighting.direction_in_camera = light.direction_in_camera.cast<float>();
+    lighting.ambient = static_cast<float>(light.ambient);
+    lighting.diffuse = static_cast<float>(light.diffuse);
     renderer_.set_lighting(lighting);
   }
 

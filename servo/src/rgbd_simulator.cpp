@@ -183,6 +183,7 @@ RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc,
   d.scene->set_body_pose(d.object, to_pose(wMo));
   if (gripper) d.scene->set_body_pose(d.gripper, to_pose(*gripper));
   d.place_occluder(time);
+  d.scene->set_light(light_at(d.scenario.lighting, time));
   cv::Mat color = d.scene->render_color(d.scenario.camera.color, wMc, previous_wMc, d.scenario.camera.noise.motion_blur);
   if (!d.lens_map_u.empty()) {
     // The lens bends the image before the sensor's noise; what it brings in from beyond

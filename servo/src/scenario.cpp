@@ -54,6 +54,8 @@ constexpr Interval kPrincipalPointPx{-kMaxImageSide, 2.0 * kMaxImageSide};  ///<
 constexpr Interval kBackgroundDistance{0.0, 100.0};    ///< m
 constexpr Interval kLightDirection{-1000.0, 1000.0};    ///< per axis; normalised, only its direction counts
 constexpr Interval kFraction{0.0, 1.0};
+constexpr Interval kLightTurnRateDeg{-3600.0, 3600.0};  ///< deg/s
+constexpr Interval kFlickerHz{0.0, 10000.0};            ///< Hz
 constexpr Interval kProbability{0.0, 1.0, false, true};  ///< [0, 1): 1 would drop every frame or pixel
 constexpr Interval kColorSigma{0.0, 255.0};             ///< 8-bit levels
 constexpr Interval kDepthSigmaAt1m{0.0, 1.0};           ///< m
@@ -201,13 +203,26 @@ void read_background(const Value& v, BackgroundSpec& background, const fs::path&
 }
 
 void read_lighting(const Value& v, LightingSpec& lighting) {
-  const Map s(v, {"direction", "ambient", "diffuse"});
+  const Map s(v, {"direction", "ambient", "diffuse", "motion", "flicker"});
   if (auto x = s.get("direction")) {
     lighting.direction_in_camera = numbers<3>(*x, kLightDirection);
     if (!(lighting.direction_in_camera.norm() > 0.0)) x->expected("a non-zero direction");
   }
   if (auto x = s.get("ambient")) lighting.ambient = x->number_in(kFraction);
   if (auto x = s.get("diffuse")) lighting.diffuse = x->number_in(kFraction);
+  if (auto x = s.get("motion")) {
+    const Map motion(*x, {"axis", "deg_per_s"});
+    if (auto y = motion.get("axis")) {
+      lighting.motion_axis = numbers<3>(*y, kLightDirection);
+      if (!(lighting.motion_axis.norm() > 0.0)) y->expected("a non-zero axis");
+    }
+    lighting.motion_rate = motion.required("deg_per_s").number_in(kLightTurnRateDeg) * kDegree;
+  }
+  if (auto x = s.get("flicker")) {
+    const Map flicker(*x, {"amplitude", "hz"});
+    lighting.flicker_amplitude = flicker.required("amplitude").number_in(kFraction);
+    lighting.flicker_hz = flicker.required("hz").number_in(kFlickerHz);
+  }
 }
 
 void read_noise(const Value& v, NoiseSpec& noise) {

@@ -121,3 +121,26 @@ TEST_CASE("cycles backend: motion blur spreads the object along the camera's pat
   CHECK(half.x == Approx((3 * sharp_end.x + sharp_start.x) / 4).margin(1.5));
   CHECK(blurred.y == Approx(sharp_end.y).margin(1.0));
 }
+
+TEST_CASE("cycles backend: each colour render takes the light last set") {
+  skip_without_blender();
+  std::unique_ptr<SceneBackend> scene = backend(RendererKind::kCycles);
+  const cv::Mat depth = backend(RendererKind::kOpenGl)->render_geometry(kCamera, Pose(), false).depth;
+  cv::Mat inside;
+  cv::erode(depth > 0, inside, cv::Mat(), cv::Point(-1, -1), 2);
+  const vpHomogeneousMatrix wMc;
+  LightState off;
+  off.ambient = off.diffuse = 0.0;
+  scene->set_light(off);
+  CHECK(cv::norm(cv::mean(scene->render_color(kCamera, wMc, wMc, 0.0), inside)) < 1.0);
+  LightState on;
+  on.direction_in_camera = Eigen::Vector3d(0.3, 0.4, 1.0).normalized();
+  scene->set_light(on);
+  const double lit = cv::mean(scene->render_color(kCamera, wMc, wMc, 0.0), inside)[2];
+  on.diffuse = 0.2;
+  scene->set_light(on);
+  const double dimmer = cv::mean(scene->render_color(kCamera, wMc, wMc, 0.0), inside)[2];
+  INFO("red channel: lit " << lit << ", dimmer " << dimmer);
+  CHECK(lit > 60.0);
+  CHECK(dimmer < 0.9 * lit);
+}

@@ -181,3 +181,31 @@ TEST_CASE("rgbd simulator: the scenario's lighting shades the object") {
   // Headlight: ambient + diffuse = 1 on the facing front; from behind: ambient 0.35 only.
   CHECK(cv::mean(dark(face))[0] == Approx(0.35 * cv::mean(lit(face))[0]).epsilon(0.05));
 }
+
+TEST_CASE("rgbd simulator: a flickering light and a moving one shade the facing face as their closed forms say") {
+  // The facing front under the headlight reads (ambient + diffuse·s·cos θ) · albedo: check
+  // the ratio of two captures against the same ratio of the closed form.
+  const cv::Rect face(150, 100, 20, 40);
+  const auto brightness = [&](const Scenario& s, double time) {
+    Rig rig(s);
+    cv::Mat grey;
+    vpImageConvert::convert(rig.capture(time).grey, grey);
+    return cv::mean(grey(face))[0];
+  };
+  // Ambient 0.2 and diffuse 0.5, so that no pixel saturates even at the flicker's peak.
+  Scenario steady = facing_box(0.4);
+  steady.lighting.ambient = 0.2;
+  steady.lighting.diffuse = 0.5;
+  Scenario flicker = steady;
+  flicker.lighting.flicker_amplitude = 0.3;
+  flicker.lighting.flicker_hz = 100.0;
+  // sin(2π 100 t) is +1 at t = 2.5 ms and -1 at t = 7.5 ms.
+  const double bright = brightness(flicker, 0.0025), dim = brightness(flicker, 0.0075);
+  CHECK(bright / dim == Approx((0.2 + 0.5 * 1.3) / (0.2 + 0.5 * 0.7)).epsilon(0.03));
+  CHECK(brightness(flicker, 0.0) == Approx(brightness(steady, 0.0)).epsilon(0.01));
+
+  Scenario moving = steady;
+  moving.lighting.motion_axis = Eigen::Vector3d(0, 1, 0);
+  moving.lighting.motion_rate = 30.0 * kDegree;  // 60° away after 2 s
+  CHECK(brightness(moving, 2.0) / brightness(moving, 0.0) == Approx((0.2 + 0.5 * 0.5) / (0.2 + 0.5)).epsilon(0.03));
+}

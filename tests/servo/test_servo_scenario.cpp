@@ -695,6 +695,27 @@ TEST_CASE("lighting: a light on the camera, its direction must not be zero") {
                     Contains("dark.yaml") && Contains("lighting.direction: expected a non-zero direction"));
   CHECK_THROWS_WITH(load_scenario(dir.write("bright.yaml", kMinimal + "lighting: {ambient: 1.5}\n"), ICGP_MODELS_DIR),
                     Contains("lighting.ambient: expected a number in [0, 1]"));
+
+  const Scenario changing = load_scenario(
+      dir.write("changing.yaml", kMinimal + "lighting: {motion: {axis: [1, 0, 0], deg_per_s: -20}, "
+                                            "flicker: {amplitude: 0.1, hz: 100}}\n"),
+      ICGP_MODELS_DIR);
+  CHECK(changing.lighting.motion_axis.isApprox(Eigen::Vector3d(1, 0, 0)));
+  CHECK(changing.lighting.motion_rate == Approx(-20 * kDegree));
+  CHECK((changing.lighting.flicker_amplitude == 0.1 && changing.lighting.flicker_hz == 100.0));
+  CHECK((defaults.lighting.motion_rate == 0.0 && defaults.lighting.flicker_amplitude == 0.0));
+  const std::string bad = (dir.path() / "bad.yaml").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"lighting: {motion: {axis: [0, 0, 0], deg_per_s: 10}}", "lighting.motion.axis: expected a non-zero axis"},
+      {"lighting: {motion: {axis: [0, 1, 0]}}", "lighting.motion.deg_per_s: required"},
+      {"lighting: {motion: {deg_per_s: 5000}}", "lighting.motion.deg_per_s: expected a number in [-3600, 3600], got 5000"},
+      {"lighting: {flicker: {amplitude: 1.5, hz: 100}}", "lighting.flicker.amplitude: expected a number in [0, 1], got 1.5"},
+      {"lighting: {flicker: {amplitude: 0.1}}", "lighting.flicker.hz: required"},
+  };
+  for (const auto& [yaml, message] : cases) {
+    INFO(yaml);
+    CHECK_THAT(error_of(dir, kMinimal + yaml + "\n"), Contains(bad + ": " + message));
+  }
 }
 
 TEST_CASE("a scenario's camera renders with OpenGL unless it asks for Cycles, whose settings are bounded") {

@@ -134,11 +134,21 @@ struct BackgroundSpec {
   double distance = 0.3;  ///< metres behind the object's origin, along the initial optical axis
 };
 
-/// How the scene is lit: a light fixed to the colour camera (Lambertian shading).
+/// How the scene is lit: a light fixed to the colour camera (Lambertian shading), which may
+/// change over time as a real cell's light does.
 struct LightingSpec {
-  Eigen::Vector3d direction_in_camera{0.0, 0.0, 1.0};  ///< direction the light travels
+  Eigen::Vector3d direction_in_camera{0.0, 0.0, 1.0};  ///< direction the light travels, at time 0
   double ambient = 0.35;
   double diffuse = 0.65;
+  /// A moving light (YAML motion: {axis, deg_per_s}): its direction turns about this
+  /// camera-frame axis at this rate (rad/s). 0: it stays.
+  Eigen::Vector3d motion_axis{0.0, 1.0, 0.0};
+  double motion_rate = 0.0;
+  /// Flicker (YAML flicker: {amplitude, hz}): the light's strength times
+  /// 1 + amplitude sin(2π hz t), as mains-powered lamps flicker at twice the mains
+  /// frequency. 0: steady.
+  double flicker_amplitude = 0.0;
+  double flicker_hz = 0.0;
 };
 
 /// The simulated sensor's imperfections: those sequences are rendered with (SensorNoise,

@@ -16,6 +16,17 @@
 
 namespace icgp::servo {
 
+/// The scene's light at one moment (LightingSpec at a time).
+struct LightState {
+  Eigen::Vector3d direction_in_camera{0.0, 0.0, 1.0};  ///< unit, the direction the light travels
+  double ambient = 0.35;
+  double diffuse = 0.65;
+};
+
+/// The light of `lighting` at `time` seconds: its direction turned about its motion axis,
+/// its strength (diffuse) flickering; ambient light stays.
+LightState light_at(const LightingSpec& lighting, double time);
+
 /// The scene's bodies, posed step by step, seen through an exact pinhole. The sensor's
 /// imperfections (noise, depth holes, lens distortion) are the simulator's, not the backend's.
 class SceneBackend {
@@ -30,6 +41,9 @@ class SceneBackend {
   virtual void set_body_pose(BodyHandle body, const Pose& world_T_body) = 0;
   /// Hidden bodies are not seen and cast nothing.
   virtual void set_body_visible(BodyHandle body, bool visible) = 0;
+
+  /// The light of the next colour renders (the backend starts with the scenario's at time 0).
+  virtual void set_light(const LightState& light) = 0;
 
   /// The colour image (CV_8UC3 BGR) of the camera now at wMc. `exposure` (0..1) is the
   /// fraction of its motion from previous_wMc, the last part, that the image integrates
