@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <fcntl.h>
@@ -26,6 +27,13 @@ namespace {
 constexpr int kQuotedLogLines = 12;
 /// How long Blender may take to finish after "quit" before it is killed.
 constexpr auto kQuitGrace = std::chrono::seconds(5);
+
+/// "1", "0.5", "300": a number as a person writes it.
+std::string plain_number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
 
 bool is_executable(const std::string& path) { return ::access(path.c_str(), X_OK) == 0; }
 
@@ -131,8 +139,9 @@ void BlenderProcess::request(const std::string& line) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s_);
   std::size_t end_of_line;
   while ((end_of_line = received_.find('\n')) == std::string::npos) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) fail("Blender did not answer within " + std::to_string(timeout_s_) + " s");
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) fail("Blender did not answer within " + plain_number(timeout_s_) + " s");
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - now);
     pollfd readable{socket_, POLLIN, 0};
     const int ready = ::poll(&readable, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
     if (ready < 0 && errno != EINTR) fail("cannot wait for Blender's answer");
@@ -155,7 +164,7 @@ void BlenderProcess::fail(const std::string& what) {
     ::waitpid(pid_, nullptr, 0);
     pid_ = -1;
   }
-  throw std::runtime_error(what + "; its last messages (" + log_file_ + "):\n" + last_messages());
+  throw std::runtime_error(what + "; its last messages:\n" + last_messages());
 }
 
 std::string BlenderProcess::last_messages() const {
@@ -166,8 +175,8 @@ std::string BlenderProcess::last_messages() const {
     if (static_cast<int>(lines.size()) > kQuotedLogLines) lines.pop_front();
   }
   std::string text;
-  for (const std::string& line : lines) text += "  " + line + "\n";
-  return text.empty() ? "  (none)\n" : text;
+  for (const std::string& line : lines) text += (text.empty() ? "  " : "\n  ") + line;
+  return text.empty() ? "  (none)" : text;
 }
 
 }  // namespace icgp::servo

@@ -150,14 +150,15 @@ std::string failure_reason(const ServoResult& r, const servo::StopSpec& stop) {
 }
 
 /// Trials (--trials, --compare): a line per run with the time left, the table and the JSON
-/// summary of the trials done, also when Ctrl-C stopped the batch.
+/// summary of the trials done, also when Ctrl-C stopped the batch. A run that throws (a
+/// renderer that crashed, say) is reported and its trial left out; the batch goes on.
 void run_batch(const ServoOptions& o, const Scenario& scenario, const std::string& summary) {
   if (!o.video.empty() || o.display) throw std::invalid_argument("--video and --display show a single run, not trials");
   const std::vector<TrackerKind> kinds =
       o.compare ? std::vector<TrackerKind>{TrackerKind::kOracle, TrackerKind::kVisp, TrackerKind::kIcgp}
                 : std::vector<TrackerKind>{scenario.tracker.kind};
   BatchProgress progress(o.trials * static_cast<int>(kinds.size()));
-  const servo::TrialBatch batch = servo::run_trials(scenario, kinds, o.trials, [&](int trial, const ServoResult& r) {
+  const auto run_done = [&](int trial, const ServoResult& r) {
     std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s%s %s\n", trial + 1,
                  o.trials, r.tracker.c_str(),
                  servo::succeeded(r, scenario.stop) ? "success" : r.converged ? "settled off target" : "not converged",
@@ -165,7 +166,20 @@ void run_batch(const ServoOptions& o, const Scenario& scenario, const std::strin
                  r.safety_stops > 0 ? (", " + std::to_string(r.safety_stops) + " safety stop(s)").c_str() : "",
                  r.lost_reason.empty() ? "" : (", lost at the end: " + r.lost_reason).c_str(),
                  progress.trial_done().c_str());
-  });
+  };
+  std::vector<std::string> errors;
+  const auto run_failed = [&](int trial, TrackerKind tracker, const std::exception& e) {
+    const std::string what = "trial " + std::to_string(trial + 1) + " (" +
+                             servo::name_of(tracker, servo::tracker_names()) + "): " + e.what();
+    std::fprintf(stderr, "trial %d/%d failed, left out: %s %s\n", trial + 1, o.trials, what.c_str(),
+                 progress.trial_done().c_str());
+    errors.push_back(what);
+  };
+  const servo::TrialBatch batch = servo::run_trials(scenario, kinds, o.trials, run_done, {}, run_failed);
+  const std::string failed_trials = std::to_string(errors.size()) + " trial(s) failed with an error, the first: " +
+                                    (errors.empty() ? "" : errors.front());
+  if (batch.trials_done == 0 && !errors.empty())
+    throw CommandOutcome(kExitError, "servo: no trial ended; " + failed_trials);
   if (batch.trials_done == 0)
     throw CommandOutcome(kExitInterrupted, "interrupted before the first trial ended: nothing written");
   std::vector<servo::TrialsSummary> summaries;
@@ -179,6 +193,7 @@ void run_batch(const ServoOptions& o, const Scenario& scenario, const std::strin
   if (batch.interrupted)
     throw CommandOutcome(kExitInterrupted, "interrupted: " + std::to_string(batch.trials_done) + " of " +
                                                std::to_string(o.trials) + " trials done, in the table and " + summary);
+  if (!errors.empty()) throw CommandOutcome(kExitError, "servo: " + failed_trials + " (the table holds the others)");
   if (const std::string failed = failures(summaries); !failed.empty())
     throw CommandOutcome(kExitNotAchieved, "servo: runs that did not succeed: " + failed);
 }

@@ -75,9 +75,9 @@ TEST_CASE("blender process: a Blender that hangs fails the request at its timeou
   BlenderProcess blender("server.py", fake.log(), 1.0);
   const auto start = std::chrono::steady_clock::now();
   CHECK_THROWS_WITH(blender.request("{\"op\": \"color\"}"),
-                    Catch::Contains("did not answer within 1") && Catch::Contains("Rendering 1 / 16 samples"));
+                    Catch::Contains("did not answer within 1 s") && Catch::Contains("Rendering 1 / 16 samples"));
   const double waited = seconds_since(start);
-  CHECK(waited >= 1.0);
+  CHECK(waited >= 0.9);  // it waited for the timeout, and not without bound
   CHECK(waited < 5.0);
 }
 
