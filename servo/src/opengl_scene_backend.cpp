@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include <utility>
-
+// The OpenGL backend: icgp's own renderer, the one the tracker renders its model with.
 #include "icgp/render/renderer.h"
 #include "icgp/render/sensor_effects.h"
 #include "icgp/visp/conversions.h"
