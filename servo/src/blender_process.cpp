@@ -3,7 +3,6 @@
 
 #include <chrono>
 #include <csignal>
-#include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <fcntl.h>
@@ -18,6 +17,8 @@
 #include <unistd.h>
 #include <vector>
 
+#include "icgp/io/yaml_reader.h"
+
 extern char** environ;
 
 namespace icgp::servo {
@@ -27,13 +28,6 @@ namespace {
 constexpr int kQuotedLogLines = 12;
 /// How long Blender may take to finish after "quit" before it is killed.
 constexpr auto kQuitGrace = std::chrono::seconds(5);
-
-/// "1", "0.5", "300": a number as a person writes it.
-std::string plain_number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
 
 bool is_executable(const std::string& path) { return ::access(path.c_str(), X_OK) == 0; }
 
@@ -140,7 +134,7 @@ void BlenderProcess::request(const std::string& line) {
   std::size_t end_of_line;
   while ((end_of_line = received_.find('\n')) == std::string::npos) {
     const auto now = std::chrono::steady_clock::now();
-    if (now >= deadline) fail("Blender did not answer within " + plain_number(timeout_s_) + " s");
+    if (now >= deadline) fail("Blender did not answer within " + yaml::plain_number(timeout_s_) + " s");
     const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - now);
     pollfd readable{socket_, POLLIN, 0};
     const int ready = ::poll(&readable, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The Cycles backend: requests to a Blender process (servo/blender/cycles_server.py, built
 // into the program) and images back through files in a temporary folder of its own.
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "icgp/io/yaml_reader.h"
 #include "icgp/servo/blender_process.h"
 #include "icgp/servo/cycles_server_script.h"
 #include "icgp/visp/conversions.h"
@@ -40,11 +40,8 @@ class TemporaryFolder {
   fs::path path_;
 };
 
-std::string json_number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
+/// The shortest text that reads back as the same double, which JSON reads as it is.
+std::string json_number(double x) { return yaml::exact_number(x); }
 
 std::string json_string(const std::string& s) {
   std::string out = "\"";

@@ -41,6 +41,16 @@ std::string error_of(const TempDir& dir, const std::string& text, const std::str
   return "";
 }
 
+/// Each case's YAML, added to the minimal scenario and saved as bad.yaml, is refused with
+/// the case's message after the file's name.
+void check_refusals(const TempDir& dir, const std::vector<std::pair<std::string, std::string>>& cases) {
+  const std::string file = (dir.path() / "bad.yaml").string();
+  for (const auto& [yaml, message] : cases) {
+    INFO(yaml);
+    CHECK_THAT(error_of(dir, kMinimal + yaml + "\n"), Contains(file + ": " + message));
+  }
+}
+
 bool same_file(const std::string& a, const std::string& b) { return fs::equivalent(a, b); }
 
 /// The rotation angle of R (radians).
@@ -341,7 +351,6 @@ TEST_CASE("a scenario sets the loop's timing and the robot's response, each boun
   CHECK_FALSE(load_scenario(dir.write("measured.yaml", kMinimal + "tracker: {timing: real}\n"), ICGP_MODELS_DIR)
                   .tracker.compute_time);
 
-  const std::string file = (dir.path() / "bad.yaml").string();
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"camera: {latency_ms: -5}", "camera.latency_ms: expected a number in [0, 86400000], got -5"},
       {"camera: {latency_ms: 20000}", "camera.latency_ms: expected less than stop.max_time (20000 ms), got 20000"},
@@ -353,10 +362,7 @@ TEST_CASE("a scenario sets the loop's timing and the robot's response, each boun
       {"robot_response: {max_linear_acceleration: 0}",
        "robot_response.max_linear_acceleration: expected a number in (0, 1000000], got 0"},
   };
-  for (const auto& [yaml, message] : cases) {
-    INFO(yaml);
-    CHECK_THAT(error_of(dir, kMinimal + yaml + "\n"), Contains(file + ": " + message));
-  }
+  check_refusals(dir, cases);
 }
 
 TEST_CASE("a scenario gives its calibration errors (an arm's alone for hand-eye and joints) and the object's mismatch") {
@@ -704,7 +710,6 @@ TEST_CASE("lighting: a light on the camera, its direction must not be zero") {
   CHECK(changing.lighting.motion_rate == Approx(-20 * kDegree));
   CHECK((changing.lighting.flicker_amplitude == 0.1 && changing.lighting.flicker_hz == 100.0));
   CHECK((defaults.lighting.motion_rate == 0.0 && defaults.lighting.flicker_amplitude == 0.0));
-  const std::string bad = (dir.path() / "bad.yaml").string();
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"lighting: {motion: {axis: [0, 0, 0], deg_per_s: 10}}", "lighting.motion.axis: expected a non-zero axis"},
       {"lighting: {motion: {axis: [0, 1, 0]}}", "lighting.motion.deg_per_s: required"},
@@ -712,10 +717,7 @@ TEST_CASE("lighting: a light on the camera, its direction must not be zero") {
       {"lighting: {flicker: {amplitude: 1.5, hz: 100}}", "lighting.flicker.amplitude: expected a number in [0, 1], got 1.5"},
       {"lighting: {flicker: {amplitude: 0.1}}", "lighting.flicker.hz: required"},
   };
-  for (const auto& [yaml, message] : cases) {
-    INFO(yaml);
-    CHECK_THAT(error_of(dir, kMinimal + yaml + "\n"), Contains(bad + ": " + message));
-  }
+  check_refusals(dir, cases);
 }
 
 TEST_CASE("a scenario's camera renders with OpenGL unless it asks for Cycles, whose settings are bounded") {
@@ -732,7 +734,6 @@ TEST_CASE("a scenario's camera renders with OpenGL unless it asks for Cycles, wh
   CHECK(cycles.camera.cycles.threads == 1);
   CHECK(cycles.camera.cycles.timeout_s == 30.0);
 
-  const std::string file = (dir.path() / "bad.yaml").string();
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"camera: {renderer: raytracer}", "camera.renderer: expected one of opengl, cycles"},
       {"camera: {cycles: {samples: 0}}", "camera.cycles.samples: expected an integer in [1, 4096], got 0"},
@@ -740,8 +741,5 @@ TEST_CASE("a scenario's camera renders with OpenGL unless it asks for Cycles, wh
       {"camera: {cycles: {timeout_s: 0}}", "camera.cycles.timeout_s: expected a number in (0, 86400], got 0"},
       {"camera: {cycles: {denoise: true}}", "camera.cycles.denoise"},
   };
-  for (const auto& [yaml, message] : cases) {
-    INFO(yaml);
-    CHECK_THAT(error_of(dir, kMinimal + yaml + "\n"), Contains(file + ": " + message));
-  }
+  check_refusals(dir, cases);
 }
