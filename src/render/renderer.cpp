@@ -10,10 +10,12 @@
 #include <limits>
 #include <opencv2/core.hpp>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "framebuffer.h"
+#include "physical_shading.h"
 #include "icgp/render/egl_context.h"
 
 namespace icgp {
@@ -100,6 +102,9 @@ layout(location = 0) out uint out_id;
 void main() { out_id = body_id; }
 )";
 
+/// Texels per side of a lamp's shadow map: 0.1 mm on a 0.2 m object, 2 mm over a 4 m scene.
+constexpr int kShadowMapSize = 2048;
+
 enum Attachment { kDepthAttachment = 0, kNormalAttachment, kIdAttachment, kColorAttachment, kAttachmentCount };
 
 GLuint compile_shader(GLenum type, const char* source) {
@@ -137,6 +142,7 @@ struct GpuPart {
   GLuint vao = 0, vertex_buffer = 0, texcoord_buffer = 0, index_buffer = 0, texture = 0;
   GLsizei index_count = 0;
   Eigen::Vector3f diffuse_rgb;
+  float roughness = 0.5f, metallic = 0.f, specular = 0.5f;
 };
 
 struct GpuBody {
@@ -144,6 +150,7 @@ struct GpuBody {
   std::uint8_t id = 0;
   Pose world_T_body;
   bool visible = true;
+  bool casts_shadows = true;
   Eigen::Vector3d centre;  ///< of the bounding sphere, body frame
   double radius = 0.0;
   Eigen::Vector3d box_min, box_max;  ///< axis-aligned bounding box, body frame
@@ -186,6 +193,9 @@ GLuint upload_texture(const cv::Mat& bgr) {
 GpuPart upload_part(const MeshPart& part) {
   GpuPart gpu;
   gpu.diffuse_rgb = part.material.diffuse_rgb;
+  gpu.roughness = part.material.roughness;
+  gpu.metallic = part.material.metallic;
+  gpu.specular = part.material.specular;
   gpu.index_count = static_cast<GLsizei>(3 * part.triangles.size());
   glGenVertexArrays(1, &gpu.vao);
   glBindVertexArray(gpu.vao);
@@ -247,6 +257,12 @@ struct Renderer::Impl {
   int color_samples = 0;
   std::vector<GpuBody> bodies;
   Lighting lighting;
+  /// Colour renders are physically based while this is set; the program and the shadow maps
+  /// are made with the first such lighting (a tracker's renderer never needs them).
+  std::optional<PhysicalLighting> physical;
+  GLuint physical_program = 0;
+  std::unique_ptr<ShadowMaps> shadow_maps;
+  GLint lamp_has_shadow[kMaxLamps] = {};  ///< of the last shadow pass
   struct {
     GLint camera_T_body, projection, body_id, has_texture, diffuse_texture, diffuse_rgb, light_direction, ambient,
         diffuse;
@@ -254,6 +270,11 @@ struct Renderer::Impl {
   struct {
     GLint projection_T_body, body_id;
   } silhouette_uniforms{};
+  struct {
+    GLint camera_T_body, projection, has_texture, diffuse_texture, diffuse_rgb, roughness, metallic, specular, ambient,
+        lamp_count, lamp_direction, lamp_strength, lamp_has_shadow, lamp_map_T_camera, lamp_texel, lamp_spread,
+        lamp_normal_offset, lamp_shadow;
+  } physical_uniforms{};
 
   Impl() {
     program = link_program({compile_shader(GL_VERTEX_SHADER, kVertexShader),
@@ -282,9 +303,27 @@ struct Renderer::Impl {
     silhouette_framebuffers.clear();
     multisample_framebuffers.clear();
     resolve_framebuffers.clear();
+    shadow_maps.reset();
     glDeleteProgram(program);
     glDeleteProgram(silhouette_program);
+    if (physical_program) glDeleteProgram(physical_program);
   }
+
+  void make_physical_program() {
+    if (physical_program) return;
+    physical_program = link_program({compile_shader(GL_VERTEX_SHADER, kVertexShader),
+                                     compile_shader(GL_GEOMETRY_SHADER, kGeometryShader),
+                                     compile_shader(GL_FRAGMENT_SHADER, physical_fragment_shader())});
+    const auto at = [&](const char* name) { return glGetUniformLocation(physical_program, name); };
+    physical_uniforms = {at("camera_T_body"),     at("projection"),         at("has_texture"),     at("diffuse_texture"),
+                         at("diffuse_rgb"),       at("roughness"),          at("metallic"),        at("specular"),
+                         at("ambient"),           at("lamp_count"),         at("lamp_direction"),  at("lamp_strength"),
+                         at("lamp_has_shadow"),   at("lamp_map_T_camera"),  at("lamp_texel"),      at("lamp_spread"),
+                         at("lamp_normal_offset"), at("lamp_shadow")};
+    shadow_maps = std::make_unique<ShadowMaps>(kShadowMapSize);
+  }
+
+  Eigen::Vector3f background_rgb() const { return physical ? physical->background_rgb : lighting.background_rgb; }
 
   /// A framebuffer of at least width x height, sides rounded up to kFramebufferGranule: the
   /// focused renders' sizes change from frame to frame with the body's distance, and one
@@ -300,7 +339,8 @@ struct Renderer::Impl {
     return *fb;
   }
 
-  /// Draws the shaded colour with `color_samples` samples per pixel and resolves it into
+  /// Draws the shaded colour (physically based when `physical` is set, after the lamps'
+  /// shadow maps) with `color_samples` samples per pixel and resolves it into
   /// `color` (CV_8UC3, the image size): edges become coverage-weighted blends as a camera's
   /// pixel integrates them. Depth, normals and ids stay single-sampled: a blend of two ids
   /// or depths would be neither surface.
@@ -311,6 +351,7 @@ struct Renderer::Impl {
     if (!multisampled) multisampled = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_RGBA8}, color_samples);
     auto& resolved = resolve_framebuffers[{W, H}];
     if (!resolved) resolved = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_RGBA8});
+    if (physical) draw_shadow_maps(camera_T_world);
 
     glBindFramebuffer(GL_FRAMEBUFFER, multisampled->fbo);
     glViewport(0, 0, W, H);
@@ -320,7 +361,11 @@ struct Renderer::Impl {
     glDrawBuffers(kAttachmentCount, draw_buffers);
     glClearBufferfv(GL_COLOR, kColorAttachment, background.data());
     clear_depth_for_drawing();
-    draw(k, camera_T_world, near, far);
+    if (physical) {
+      draw_physical(k, camera_T_world, near, far);
+    } else {
+      draw(k, camera_T_world, near, far);
+    }
 
     glBindFramebuffer(GL_READ_FRAMEBUFFER, multisampled->fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -425,12 +470,89 @@ struct Renderer::Impl {
     glBindVertexArray(0);
   }
 
-  void draw_silhouette(const Intrinsics& k, const Pose& camera_T_world, double near, double far) {
-    glUseProgram(silhouette_program);
-    const Eigen::Matrix4d P = projection(k, near, far).cast<double>();
+  /// Each lit lamp's depth map of the shadow casters, for draw_physical.
+  void draw_shadow_maps(const Pose& camera_T_world) {
+    std::vector<ShadowCaster> casters;
+    for (const auto& b : bodies)
+      if (b.visible && b.casts_shadows) casters.push_back({camera_T_world * b.world_T_body * b.centre, b.radius});
+    const std::vector<Lamp>& lamps = physical->lamps;
+    for (std::size_t i = 0; i < lamps.size(); ++i) {
+      const int lamp = static_cast<int>(i);
+      lamp_has_shadow[i] =
+          lamps[i].strength > 0.f && shadow_maps->fit(lamp, lamps[i].direction_in_camera.cast<double>(), casters);
+      if (!lamp_has_shadow[i]) continue;
+      shadow_maps->begin_drawing(lamp);
+      if (reversed_z) glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+      draw_silhouette(shadow_maps->clip_T_camera(lamp, reversed_z).cast<double>() * camera_T_world.matrix(), true);
+    }
+  }
+
+  void draw_physical(const Intrinsics& k, const Pose& camera_T_world, double near, double far) {
+    glUseProgram(physical_program);
+    const auto& u = physical_uniforms;
+    const Eigen::Matrix4f P = projection(k, near, far);
+    glUniformMatrix4fv(u.projection, 1, GL_FALSE, P.data());
+    glUniform1f(u.ambient, physical->ambient);
+    const std::vector<Lamp>& lamps = physical->lamps;
+    const auto count = static_cast<GLsizei>(lamps.size());
+    glUniform1i(u.lamp_count, count);
+    Eigen::Matrix<float, 3, kMaxLamps> directions = Eigen::Matrix<float, 3, kMaxLamps>::Zero();
+    Eigen::Matrix<float, 16, kMaxLamps> map_T_camera = Eigen::Matrix<float, 16, kMaxLamps>::Zero();
+    float strengths[kMaxLamps] = {}, texels[kMaxLamps] = {}, spreads[kMaxLamps] = {}, offsets[kMaxLamps] = {};
+    GLint units[kMaxLamps];
+    for (int i = 0; i < kMaxLamps; ++i) {
+      units[i] = 1 + i;  // unit 0: the parts' textures
+      glActiveTexture(GL_TEXTURE1 + i);
+      glBindTexture(GL_TEXTURE_2D, shadow_maps->texture(i));
+      if (i >= count) continue;
+      directions.col(i) = lamps[i].direction_in_camera.normalized();
+      strengths[i] = lamps[i].strength;
+      if (!lamp_has_shadow[i]) continue;
+      const Eigen::Matrix4f m = shadow_maps->map_T_camera(i);
+      map_T_camera.col(i) = Eigen::Map<const Eigen::Matrix<float, 16, 1>>(m.data());
+      const float texel_metres = shadow_maps->texel_metres(i);
+      texels[i] = 1.f / static_cast<float>(shadow_maps->size());
+      // A penumbra's radius is the gap from blocker to receiver times tan(half the lamp's
+      // angle); the shader measures the gap in map depth, the radius in map widths.
+      const auto half_angle = static_cast<float>(deg_to_rad(0.5 * lamps[i].angle_deg));
+      spreads[i] = std::tan(half_angle) * shadow_maps->depth_range_metres(i) * texels[i] / texel_metres;
+      offsets[i] = 1.5f * texel_metres;  // off the surface by more than a texel's depth error
+    }
+    glUniform3fv(u.lamp_direction, count, directions.data());
+    glUniform1fv(u.lamp_strength, count, strengths);
+    glUniform1iv(u.lamp_has_shadow, count, lamp_has_shadow);
+    glUniformMatrix4fv(u.lamp_map_T_camera, count, GL_FALSE, map_T_camera.data());
+    glUniform1fv(u.lamp_texel, count, texels);
+    glUniform1fv(u.lamp_spread, count, spreads);
+    glUniform1fv(u.lamp_normal_offset, count, offsets);
+    glUniform1iv(u.lamp_shadow, kMaxLamps, units);
+    glUniform1i(u.diffuse_texture, 0);
+    glActiveTexture(GL_TEXTURE0);
     for (const auto& b : bodies) {
       if (!b.visible) continue;
-      const Eigen::Matrix4f projection_T_body = (P * (camera_T_world * b.world_T_body).matrix()).cast<float>();
+      const Eigen::Matrix4f camera_T_body = (camera_T_world * b.world_T_body).matrix().cast<float>();
+      glUniformMatrix4fv(u.camera_T_body, 1, GL_FALSE, camera_T_body.data());
+      for (const auto& part : b.parts) {
+        glUniform1i(u.has_texture, part.texture != 0);
+        glUniform3fv(u.diffuse_rgb, 1, part.diffuse_rgb.data());
+        glUniform1f(u.roughness, part.roughness);
+        glUniform1f(u.metallic, part.metallic);
+        glUniform1f(u.specular, part.specular);
+        glBindTexture(GL_TEXTURE_2D, part.texture);
+        glBindVertexArray(part.vao);
+        glDrawElements(GL_TRIANGLES, part.index_count, GL_UNSIGNED_INT, nullptr);
+      }
+    }
+    glBindVertexArray(0);
+  }
+
+  /// Ids and depth of the visible bodies (only those casting shadows when `casters_only`)
+  /// projected by clip_T_world.
+  void draw_silhouette(const Eigen::Matrix4d& clip_T_world, bool casters_only) {
+    glUseProgram(silhouette_program);
+    for (const auto& b : bodies) {
+      if (!b.visible || (casters_only && !b.casts_shadows)) continue;
+      const Eigen::Matrix4f projection_T_body = (clip_T_world * b.world_T_body.matrix()).cast<float>();
       glUniformMatrix4fv(silhouette_uniforms.projection_T_body, 1, GL_FALSE, projection_T_body.data());
       glUniform1ui(silhouette_uniforms.body_id, b.id);
       for (const auto& part : b.parts) {
@@ -513,7 +635,28 @@ Renderer::BodyHandle Renderer::add_body(const Mesh& mesh, std::uint8_t id) {
 
 void Renderer::set_body_pose(BodyHandle body, const Pose& world_T_body) { impl_->body(body).world_T_body = world_T_body; }
 void Renderer::set_body_visible(BodyHandle body, bool visible) { impl_->body(body).visible = visible; }
-void Renderer::set_lighting(const Lighting& lighting) { impl_->lighting = lighting; }
+void Renderer::set_lighting(const Lighting& lighting) {
+  impl_->lighting = lighting;
+  impl_->physical.reset();
+}
+
+void Renderer::set_physical_lighting(const PhysicalLighting& lighting) {
+  if (lighting.lamps.size() > static_cast<std::size_t>(kMaxLamps))
+    throw std::invalid_argument("renderer: physically based lighting takes at most " + std::to_string(kMaxLamps) +
+                                " lamps, got " + std::to_string(lighting.lamps.size()));
+  for (const Lamp& lamp : lighting.lamps)
+    if (!(lamp.direction_in_camera.norm() > 0.f) || !(lamp.strength >= 0.f) || !(lamp.angle_deg >= 0.f) ||
+        !(lamp.angle_deg < 90.f))
+      throw std::invalid_argument(
+          "renderer: a lamp needs a non-zero direction, a strength >= 0 and an angle in [0, 90) degrees");
+  impl_->context.make_current();
+  impl_->make_physical_program();
+  impl_->physical = lighting;
+}
+
+void Renderer::set_body_casts_shadows(BodyHandle body, bool casts_shadows) {
+  impl_->body(body).casts_shadows = casts_shadows;
+}
 
 void Renderer::set_color_antialiasing(int samples) {
   if (samples == impl_->color_samples) return;
@@ -538,16 +681,16 @@ RenderOutput Renderer::render(const Intrinsics& intrinsics, const Pose& camera_T
   if (targets & kRenderNormals) out.normals = cv::Mat::zeros(H, W, CV_32FC3);
   if (targets & kRenderIds) out.ids = cv::Mat::zeros(H, W, CV_8UC1);
   if (targets & kRenderColor) {
-    const Eigen::Vector3f bg = 255.f * impl_->lighting.background_rgb;
+    const Eigen::Vector3f bg = 255.f * impl_->background_rgb();
     out.color = cv::Mat(H, W, CV_8UC3, cv::Scalar(bg.z(), bg.y(), bg.x()));
   }
   double near = 0.0, far = 0.0;
   if (!impl_->depth_range(camera_T_world, near, far)) return out;  // nothing in front of the camera
 
   impl_->context.make_current();
-  const Eigen::Vector4f background(impl_->lighting.background_rgb.x(), impl_->lighting.background_rgb.y(),
-                                   impl_->lighting.background_rgb.z(), 1.f);
-  if ((targets & kRenderColor) && impl_->color_samples > 0) {
+  const Eigen::Vector4f background(impl_->background_rgb().x(), impl_->background_rgb().y(),
+                                   impl_->background_rgb().z(), 1.f);
+  if ((targets & kRenderColor) && (impl_->color_samples > 0 || impl_->physical)) {
     impl_->render_multisampled_color(intrinsics, camera_T_world, near, far, background, out.color);
     targets &= ~unsigned(kRenderColor);
     if (targets == 0) return out;
@@ -629,7 +772,7 @@ void Renderer::render_silhouette(const Intrinsics& intrinsics, const Pose& camer
     glClearBufferuiv(GL_COLOR, 0, zero_id);
   }
   impl_->clear_depth_for_drawing();
-  impl_->draw_silhouette(intrinsics, camera_T_world, near, far);
+  impl_->draw_silhouette(impl_->projection(intrinsics, near, far).cast<double>() * camera_T_world.matrix(), false);
   glDisable(GL_SCISSOR_TEST);
 
   // Read the footprint straight into its place in the images.

@@ -64,6 +64,26 @@ struct Lighting {
   Eigen::Vector3f background_rgb{0.f, 0.f, 0.f};
 };
 
+/// A distant lamp (a sun): parallel rays along one direction.
+struct Lamp {
+  Eigen::Vector3f direction_in_camera{0.f, 0.f, 1.f};  ///< direction the light travels
+  /// What a white Lambertian surface facing it reads (its irradiance over π).
+  float strength = 0.65f;
+  /// The lamp's apparent diameter (degrees): the softness of its shadows' edges; 0: sharp.
+  float angle_deg = 0.f;
+};
+
+/// Physically based shading for colour renders, as a path tracer's Principled BSDF gives it
+/// in linear light: the materials' roughness, metallic and specular (GGX highlights), the
+/// lamps' shadows cast by every visible body that casts shadows, a uniform ambient
+/// environment, and the sRGB encoding of a camera's 8-bit output. Textures and
+/// Material::diffuse_rgb are read as a path tracer reads them: sRGB-encoded and linear.
+struct PhysicalLighting {
+  float ambient = 0.35f;     ///< the environment's uniform radiance
+  std::vector<Lamp> lamps;   ///< at most 4
+  Eigen::Vector3f background_rgb{0.f, 0.f, 0.f};
+};
+
 /// Offscreen renderer of rigid bodies for a pinhole camera, exact to the pixel-centre
 /// convention of Intrinsics. Owns its EGL context: create and use it on one thread.
 class Renderer {
@@ -81,7 +101,14 @@ class Renderer {
   void set_body_pose(BodyHandle body, const Pose& world_T_body);
   /// Hidden bodies are not drawn (and do not occlude).
   void set_body_visible(BodyHandle body, bool visible);
+  /// Lambertian colour renders under `lighting` (the default).
   void set_lighting(const Lighting& lighting);
+  /// Physically based colour renders under `lighting`, until set_lighting is called. Throws
+  /// std::invalid_argument for more than 4 lamps.
+  void set_physical_lighting(const PhysicalLighting& lighting);
+  /// Whether the body casts shadows in physically based renders (all do at first): a
+  /// backdrop that can shade nothing need not widen the lamps' shadow maps.
+  void set_body_casts_shadows(BodyHandle body, bool casts_shadows);
   /// Multisample antialiasing of colour renders: `samples` per pixel (0 = off, the
   /// default), so edges blend as a real camera's pixels integrate them. Only the colour
   /// target is affected; depth, normals and ids stay exact per pixel. Throws
