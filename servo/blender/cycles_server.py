@@ -56,17 +56,14 @@ class Server:
         self.camera.rotation_mode = 'QUATERNION'
         self.camera.data.clip_start = 0.01
         self.camera.data.clip_end = 1000.0
-        sun = bpy.data.lights.new('light', 'SUN')
-        self.light = bpy.data.objects.new('light', sun)
-        scene.collection.objects.link(self.light)
-        self.light.rotation_mode = 'QUATERNION'
+        self.lamps = []  # sun lamps, made as the requests' lamps need them
         self.geometry_output = None
 
     # ---- requests --------------------------------------------------------------------------
 
     def setup(self, r):
-        """Sampling, and the scene's light: a sun fixed to the camera and ambient light, whose
-        strengths and direction each colour request gives."""
+        """Sampling, and the scene's light: sun lamps and ambient light, whose strengths and
+        directions each colour request gives."""
         cycles = self.scene.cycles
         cycles.samples = int(r['samples'])
         cycles.max_bounces = int(r['light_bounces'])
@@ -79,19 +76,30 @@ class Server:
             self.scene.render.threads_mode = 'FIXED'
             self.scene.render.threads = int(r['threads'])
         self.samples = cycles.samples
-        self.light.data.angle = math.radians(float(r['light_angle_deg']))
+        self.lamp_angle = math.radians(float(r['lamp_angle_deg']))
         self.set_world()
         self.set_geometry_output(r['geometry_folder'])
 
     def set_light(self, r, world_T_blender_camera):
-        # A white Lambertian surface facing the sun at irradiance E has radiance E / pi: the sun's
-        # strength is pi * diffuse for that surface to read `diffuse`, as in the OpenGL renderer.
-        self.light.data.energy = math.pi * float(r['diffuse'])
         ambient = float(r['ambient'])
         self.ambient.inputs['Color'].default_value = (ambient, ambient, ambient, 1.0)
-        in_camera = Vector(r['light_direction_in_camera']).normalized()
-        direction = world_T_blender_camera.to_3x3() @ (ICGP_TO_BLENDER_CAMERA.to_3x3() @ in_camera)
-        self.light.rotation_quaternion = direction.to_track_quat('-Z', 'Y')
+        while len(self.lamps) < len(r['lamps']):
+            lamp = bpy.data.objects.new('lamp', bpy.data.lights.new('lamp', 'SUN'))
+            lamp.data.angle = self.lamp_angle
+            lamp.rotation_mode = 'QUATERNION'
+            self.scene.collection.objects.link(lamp)
+            self.lamps.append(lamp)
+        for i, lamp in enumerate(self.lamps):
+            lamp.hide_render = i >= len(r['lamps'])
+            if lamp.hide_render:
+                continue
+            # A white Lambertian surface facing a sun of irradiance E has radiance E / pi: the
+            # sun's strength is pi * strength for that surface to read `strength`, as in the
+            # OpenGL renderer.
+            lamp.data.energy = math.pi * float(r['lamps'][i]['strength'])
+            in_camera = Vector(r['lamps'][i]['direction_in_camera']).normalized()
+            direction = world_T_blender_camera.to_3x3() @ (ICGP_TO_BLENDER_CAMERA.to_3x3() @ in_camera)
+            lamp.rotation_quaternion = direction.to_track_quat('-Z', 'Y')
 
     def set_world(self):
         """Uniform ambient light that lights the scene but is not seen: the camera sees black

@@ -77,14 +77,12 @@ void write_array(const fs::path& file, const T* data, std::size_t count) {
 
 class CyclesSceneBackend final : public SceneBackend {
  public:
-  CyclesSceneBackend(const CyclesSpec& spec, const LightingSpec& lighting, std::uint64_t seed)
-      : blender_(write_script(), (folder_.path() / "blender.log").string(), spec.timeout_s),
-        seed_(seed),
-        light_(light_at(lighting, 0.0)) {
+  CyclesSceneBackend(const CyclesSpec& spec, std::uint64_t seed)
+      : blender_(write_script(), (folder_.path() / "blender.log").string(), spec.timeout_s), seed_(seed) {
     blender_.request("{\"op\": \"setup\", \"samples\": " + std::to_string(spec.samples) +
                      ", \"light_bounces\": " + std::to_string(spec.light_bounces) +
                      ", \"threads\": " + std::to_string(spec.threads) +
-                     ", \"light_angle_deg\": " + json_number(kLightAngleDeg) +
+                     ", \"lamp_angle_deg\": " + json_number(kLampAngleDeg) +
                      ", \"geometry_folder\": " + json_string(folder_.path().string()) + "}");
   }
 
@@ -121,16 +119,22 @@ class CyclesSceneBackend final : public SceneBackend {
     return handle;
   }
 
+  /// Behind everything, its shadows could fall nowhere the camera sees: an ordinary body.
+  BodyHandle add_backdrop(const Mesh& mesh, std::uint8_t id) override { return add_body(mesh, id); }
+
   void set_body_pose(BodyHandle body, const Pose& world_T_body) override { bodies_.at(body).world_T_body = world_T_body; }
   void set_body_visible(BodyHandle body, bool visible) override { bodies_.at(body).visible = visible; }
 
   cv::Mat render_color(const Intrinsics& k, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& previous_wMc,
                        double exposure) override {
     const fs::path out = folder_.path() / "color.png";
-    std::string request = "{\"op\": \"color\", " + placement(k, to_pose(wMc)) +
-                          ", \"light_direction_in_camera\": " + json_list(light_.direction_in_camera) +
-                          ", \"ambient\": " + json_number(light_.ambient) +
-                          ", \"diffuse\": " + json_number(light_.diffuse) +
+    std::string lamps;
+    const std::vector<Eigen::Vector3d> directions = light_.directions_in_camera(wMc);
+    for (std::size_t i = 0; i < directions.size(); ++i)
+      lamps += std::string(i ? ", " : "") + "{\"direction_in_camera\": " + json_list(directions[i]) +
+               ", \"strength\": " + json_number(light_.lamps[i].strength) + "}";
+    std::string request = "{\"op\": \"color\", " + placement(k, to_pose(wMc)) + ", \"lamps\": [" + lamps +
+                          "], \"ambient\": " + json_number(light_.ambient) +
                           ", \"seed\": " + std::to_string((seed_ * 1000003u + renders_++) & 0x7fffffffu) +
                           ", \"out\": " + json_string(out.string());
     if (exposure > 0.0)
@@ -162,9 +166,6 @@ class CyclesSceneBackend final : public SceneBackend {
   }
 
  private:
-  /// A light of this angular size (degrees) casts soft-edged shadows, as a lamp does.
-  static constexpr double kLightAngleDeg = 2.0;
-
   struct BodyState {
     Pose world_T_body;
     bool visible = true;
@@ -200,9 +201,8 @@ class CyclesSceneBackend final : public SceneBackend {
 
 }  // namespace
 
-std::unique_ptr<SceneBackend> make_cycles_backend(const CyclesSpec& cycles, const LightingSpec& lighting,
-                                                  std::uint64_t seed) {
-  return std::make_unique<CyclesSceneBackend>(cycles, lighting, seed);
+std::unique_ptr<SceneBackend> make_cycles_backend(const CyclesSpec& cycles, std::uint64_t seed) {
+  return std::make_unique<CyclesSceneBackend>(cycles, seed);
 }
 
 }  // namespace icgp::servo

@@ -19,6 +19,7 @@
 #include "icgp/servo/scene_backend.h"
 #include "icgp/servo/true_object.h"
 #include "icgp/visp/conversions.h"
+#include "camera_response.h"
 
 namespace icgp::servo {
 namespace {
@@ -58,6 +59,8 @@ struct RgbdSimulator::Impl {
   /// The colour lens's distortion as cv::remap maps; empty without. The image through the
   /// lens is made in `through_lens`, kept from frame to frame.
   cv::Mat lens_map_u, lens_map_v, through_lens;
+  cv::Mat vignetting;  ///< vignetting_gains of the colour lens; empty without
+  AutoExposure exposure;
   std::unique_ptr<SceneBackend> scene;
   SceneBackend::BodyHandle object{}, occluder{}, gripper{};  ///< occluder, gripper: when the scenario has one
   vpHomogeneousMatrix world_T_camera_start, world_T_object_start;
@@ -67,12 +70,19 @@ struct RgbdSimulator::Impl {
 
   Impl(const Scenario& s, const TrueCalibration& truth, const vpHomogeneousMatrix& wMc, const vpHomogeneousMatrix& wMo,
        std::uint64_t seed)
-      : scenario(s), truth(truth), nominal(s.camera), world_T_camera_start(wMc), world_T_object_start(wMo), noise(seed) {
+      : scenario(s),
+        truth(truth),
+        nominal(s.camera),
+        exposure(s.camera.auto_exposure),
+        world_T_camera_start(wMc),
+        world_T_object_start(wMo),
+        noise(seed) {
     scenario.camera.color = truth.color;
     scenario.camera.depth = truth.depth;
     scenario.camera.depth_T_color = truth.depth_T_color;
     scene = make_scene_backend(scenario, seed);
     if (truth.color_k1 != 0.0) std::tie(lens_map_u, lens_map_v) = lens_maps(truth.color, truth.color_k1);
+    if (s.camera.vignetting > 0.0) vignetting = vignetting_gains(truth.color, s.camera.vignetting);
   }
 
   void add_background(std::uint64_t seed) {
@@ -93,7 +103,7 @@ struct RgbdSimulator::Impl {
     const double half_extent = 2.0 * depth * std::max(k.width / k.fu, k.height / k.fv) + 0.2;
     const vpHomogeneousMatrix c_M_plane(vpTranslationVector(cMo[0][3], cMo[1][3], depth),
                                         vpRotationMatrix(vpThetaUVector(kPi, 0, 0)));
-    const SceneBackend::BodyHandle plane = scene->add_body(tiled_plane(texture, half_extent, 0.3), 2);
+    const SceneBackend::BodyHandle plane = scene->add_backdrop(tiled_plane(texture, half_extent, 0.3), 2);
     scene->set_body_pose(plane, to_pose(world_T_camera_start * c_M_plane));
   }
 
@@ -183,8 +193,11 @@ RgbdCapture& RgbdSimulator::capture(double time, const vpHomogeneousMatrix& wMc,
   d.scene->set_body_pose(d.object, to_pose(wMo));
   if (gripper) d.scene->set_body_pose(d.gripper, to_pose(*gripper));
   d.place_occluder(time);
-  d.scene->set_light(light_at(d.scenario.lighting, time));
+  d.scene->set_light(light_at(d.scenario.lighting, time, to_pose(d.world_T_camera_start).rotation()));
   cv::Mat color = d.scene->render_color(d.scenario.camera.color, wMc, previous_wMc, d.scenario.camera.noise.motion_blur);
+  // Light through the lens, then the sensor's exposure of it.
+  if (!d.vignetting.empty()) scale_linear_light(color, d.vignetting, 1.0);
+  d.exposure.expose(color, time);
   if (!d.lens_map_u.empty()) {
     // The lens bends the image before the sensor's noise; what it brings in from beyond
     // the pinhole's field of view is black.

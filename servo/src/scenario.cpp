@@ -56,6 +56,7 @@ constexpr Interval kLightDirection{-1000.0, 1000.0};    ///< per axis; normalise
 constexpr Interval kFraction{0.0, 1.0};
 constexpr Interval kLightTurnRateDeg{-3600.0, 3600.0};  ///< deg/s
 constexpr Interval kFlickerHz{0.0, 10000.0};            ///< Hz
+constexpr Interval kTimeConstantS{0.0, 60.0, true};     ///< s: auto-exposure
 constexpr Interval kProbability{0.0, 1.0, false, true};  ///< [0, 1): 1 would drop every frame or pixel
 constexpr Interval kColorSigma{0.0, 255.0};             ///< 8-bit levels
 constexpr Interval kDepthSigmaAt1m{0.0, 1.0};           ///< m
@@ -203,13 +204,31 @@ void read_background(const Value& v, BackgroundSpec& background, const fs::path&
 }
 
 void read_lighting(const Value& v, LightingSpec& lighting) {
-  const Map s(v, {"direction", "ambient", "diffuse", "motion", "flicker"});
+  const Map s(v, {"direction", "ambient", "diffuse", "lamps", "motion", "flicker"});
   if (auto x = s.get("direction")) {
     lighting.direction_in_camera = numbers<3>(*x, kLightDirection);
     if (!(lighting.direction_in_camera.norm() > 0.0)) x->expected("a non-zero direction");
   }
   if (auto x = s.get("ambient")) lighting.ambient = x->number_in(kFraction);
   if (auto x = s.get("diffuse")) lighting.diffuse = x->number_in(kFraction);
+  if (auto x = s.get("lamps")) {
+    const std::vector<Value> lamps = x->elements("a list of lamps, each {direction, strength}");
+    if (lamps.size() > static_cast<std::size_t>(kMaxSceneLamps))
+      x->expected("at most " + std::to_string(kMaxSceneLamps) + " lamps (the camera's makes the renderers' four)");
+    for (const Value& lamp : lamps) {
+      const Map l(lamp, {"direction", "strength"});
+      SceneLampSpec spec;
+      const Value direction = l.required("direction");
+      spec.direction_in_start_camera = numbers<3>(direction, kLightDirection);
+      if (!(spec.direction_in_start_camera.norm() > 0.0)) direction.expected("a non-zero direction");
+      spec.strength = l.required("strength").number_in(kFraction);
+      lighting.scene_lamps.push_back(spec);
+    }
+  }
+  double strongest = std::max(lighting.ambient, lighting.diffuse);
+  for (const SceneLampSpec& lamp : lighting.scene_lamps) strongest = std::max(strongest, lamp.strength);
+  if (strongest == 0.0)
+    v.expected("a light: ambient, diffuse and every lamp's strength are 0, and the camera would see black");
   if (auto x = s.get("motion")) {
     const Map motion(*x, {"axis", "deg_per_s"});
     if (auto y = motion.get("axis")) {
@@ -255,9 +274,10 @@ void read_cycles(const Value& v, CyclesSpec& cycles) {
 }
 
 void read_camera(const Value& v, CameraSpec& camera) {
-  const Map s(v, {"renderer", "cycles", "color", "depth", "depth_T_color", "rate_hz", "noise", "latency_ms", "jitter"});
+  const Map s(v, {"renderer", "cycles", "color", "depth", "depth_T_color", "rate_hz", "noise", "vignetting",
+                  "auto_exposure", "latency_ms", "jitter"});
   if (auto x = s.get("renderer"))
-    camera.renderer = x->choice<RendererKind>({{"opengl", RendererKind::kOpenGl}, {"cycles", RendererKind::kCycles}});
+    camera.renderer = x->choice<RendererKind>(renderer_names());
   if (auto x = s.get("cycles")) read_cycles(*x, camera.cycles);
   if (auto x = s.get("color")) camera.color = intrinsics(*x, camera.color);
   camera.depth = camera.color;
@@ -265,6 +285,12 @@ void read_camera(const Value& v, CameraSpec& camera) {
   if (auto x = s.get("depth_T_color")) camera.depth_T_color = pose(*x);
   if (auto x = s.get("rate_hz")) camera.rate_hz = x->number_in(kRateHz);
   if (auto x = s.get("noise")) read_noise(*x, camera.noise);
+  if (auto x = s.get("vignetting")) camera.vignetting = x->number_in(kFraction);
+  if (auto x = s.get("auto_exposure")) {
+    const Map exposure(*x, {"target", "time_constant_s"});
+    camera.auto_exposure.target = exposure.required("target").number_in(kFraction);
+    if (auto y = exposure.get("time_constant_s")) camera.auto_exposure.time_constant = y->number_in(kTimeConstantS);
+  }
   if (auto x = s.get("latency_ms")) camera.latency = x->number_in(kDelayMs) * 1e-3;
   if (auto x = s.get("jitter")) read_jitter(*x, camera.jitter);
 }
@@ -420,6 +446,12 @@ const std::vector<std::pair<std::string, TrackerKind>>& tracker_names() {
       {"visp", TrackerKind::kVisp},
       {"oracle", TrackerKind::kOracle},
       {"image_oracle", TrackerKind::kImageOracle}};
+  return names;
+}
+
+const std::vector<std::pair<std::string, RendererKind>>& renderer_names() {
+  static const std::vector<std::pair<std::string, RendererKind>> names = {{"opengl", RendererKind::kOpenGl},
+                                                                          {"cycles", RendererKind::kCycles}};
   return names;
 }
 

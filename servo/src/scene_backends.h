@@ -14,11 +14,11 @@ namespace icgp::servo {
 /// an exposure of that fraction of a step began.
 vpHomogeneousMatrix pose_along_motion(const vpHomogeneousMatrix& from, const vpHomogeneousMatrix& to, double fraction);
 
-/// icgp's OpenGL renderer (EGL, headless): Lambertian shading by a light fixed to the camera.
-std::unique_ptr<SceneBackend> make_opengl_backend(const LightingSpec& lighting);
+/// icgp's OpenGL renderer (EGL, headless), physically based shading (PhysicalLighting):
+/// GGX highlights, the lamps' soft shadows, antialiased edges.
+std::unique_ptr<SceneBackend> make_opengl_backend();
 
 /// Blender's Cycles path tracer in a Blender process of its own (servo/blender/cycles_server.py).
-std::unique_ptr<SceneBackend> make_cycles_backend(const CyclesSpec& cycles, const LightingSpec& lighting,
-                                                  std::uint64_t seed);
+std::unique_ptr<SceneBackend> make_cycles_backend(const CyclesSpec& cycles, std::uint64_t seed);
 
 }  // namespace icgp::servo

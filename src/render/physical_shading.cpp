@@ -70,9 +70,9 @@ float lit_fraction(int i, vec3 p, vec3 n) {
   float bias = 2.0 * lamp_texel[i];
   float search = max(lamp_spread[i] * m.z, lamp_texel[i]);
   float blockers = 0.0, blocker_depth = 0.0;
-  for (int y = -2; y <= 2; ++y)
-    for (int x = -2; x <= 2; ++x) {
-      float d = texture(lamp_shadow[i], m.xy + vec2(x, y) * 0.5 * search).r;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) {
+      float d = texture(lamp_shadow[i], m.xy + vec2(x, y) * search).r;
       if (blocks(d, m.z - bias)) {
         blockers += 1.0;
         blocker_depth += d;
@@ -81,10 +81,10 @@ float lit_fraction(int i, vec3 p, vec3 n) {
   if (blockers == 0.0) return 1.0;
   float radius = max(lamp_spread[i] * (m.z - blocker_depth / blockers), lamp_texel[i]);
   float lit = 0.0;
-  for (int y = -2; y <= 2; ++y)
-    for (int x = -2; x <= 2; ++x)
-      lit += blocks(texture(lamp_shadow[i], m.xy + vec2(x, y) * 0.5 * radius).r, m.z - bias) ? 0.0 : 1.0;
-  return lit / 25.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x)
+      lit += blocks(texture(lamp_shadow[i], m.xy + vec2(x, y) * radius).r, m.z - bias) ? 0.0 : 1.0;
+  return lit / 9.0;
 }
 
 void main() {

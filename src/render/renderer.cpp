@@ -102,8 +102,8 @@ layout(location = 0) out uint out_id;
 void main() { out_id = body_id; }
 )";
 
-/// Texels per side of a lamp's shadow map: 0.1 mm on a 0.2 m object, 2 mm over a 4 m scene.
-constexpr int kShadowMapSize = 2048;
+/// Texels per side of a lamp's shadow map: 0.2 mm on the 0.2 m box and its props.
+constexpr int kShadowMapSize = 1024;
 
 enum Attachment { kDepthAttachment = 0, kNormalAttachment, kIdAttachment, kColorAttachment, kAttachmentCount };
 

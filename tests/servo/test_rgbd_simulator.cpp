@@ -3,9 +3,11 @@
 // analytic geometry, and each imperfection has the statistics the scenario asks for.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 #include <opencv2/core.hpp>
 #include <visp3/core/vpImageConvert.h>
 
+#include "../unit/test_temp_dir.h"
 #include "icgp/servo/rgbd_simulator.h"
 #include "icgp/servo/simulated_robot.h"
 #include "icgp/visp/conversions.h"
@@ -169,43 +171,108 @@ TEST_CASE("rgbd simulator: an object taken away is out of every view, then back 
     for (int c = 0; c < 4; ++c) CHECK(back[r][c] == Approx(expected[r][c]).margin(1e-12));
 }
 
-TEST_CASE("rgbd simulator: the scenario's lighting shades the object") {
-  Scenario front = facing_box(0.4);
-  Scenario ambient_only = front;
-  ambient_only.lighting.direction_in_camera = Eigen::Vector3d(0, 0, -1);  // light from behind the object
-  Rig a(front), b(ambient_only);
-  cv::Mat lit, dark;
-  vpImageConvert::convert(a.capture().grey, lit);
-  vpImageConvert::convert(b.capture().grey, dark);
-  const cv::Rect face(150, 100, 20, 40);
-  // Headlight: ambient + diffuse = 1 on the facing front; from behind: ambient 0.35 only.
-  CHECK(cv::mean(dark(face))[0] == Approx(0.35 * cv::mean(lit(face))[0]).epsilon(0.05));
+namespace {
+
+/// The facing box with a matte label (no highlight: roughness 1, specular 0), so that its
+/// front reads albedo x (ambient + Σ strength x cos) in linear light, a closed form.
+Scenario matte_facing_box(const icgp::test::TempDir& dir) {
+  namespace fs = std::filesystem;
+  for (const char* file : {"textured_box.obj", "textured_box.png"})
+    fs::copy_file(fs::path(ICGP_MODELS_DIR) / "textured_box" / file, dir.path() / file);
+  dir.write("textured_box.mtl", "newmtl label\nKd 1 1 1\nKs 0 0 0\nPr 1\nmap_Kd textured_box.png\n");
+  Scenario s = facing_box(0.4);
+  s.object.model = (dir.path() / "textured_box.obj").string();
+  s.lighting.ambient = 0.2;
+  s.lighting.diffuse = 0.5;  // at most 0.2 + 0.5 x 1.3 < 1: nothing saturates
+  return s;
 }
 
-TEST_CASE("rgbd simulator: a flickering light and a moving one shade the facing face as their closed forms say") {
-  // The facing front under the headlight reads (ambient + diffuse·s·cos θ) · albedo: check
-  // the ratio of two captures against the same ratio of the closed form.
-  const cv::Rect face(150, 100, 20, 40);
-  const auto brightness = [&](const Scenario& s, double time) {
-    Rig rig(s);
-    cv::Mat grey;
-    vpImageConvert::convert(rig.capture(time).grey, grey);
-    return cv::mean(grey(face))[0];
-  };
-  // Ambient 0.2 and diffuse 0.5, so that no pixel saturates even at the flicker's peak.
-  Scenario steady = facing_box(0.4);
-  steady.lighting.ambient = 0.2;
-  steady.lighting.diffuse = 0.5;
-  Scenario flicker = steady;
-  flicker.lighting.flicker_amplitude = 0.3;
-  flicker.lighting.flicker_hz = 100.0;
-  // sin(2π 100 t) is +1 at t = 2.5 ms and -1 at t = 7.5 ms.
-  const double bright = brightness(flicker, 0.0025), dim = brightness(flicker, 0.0075);
-  CHECK(bright / dim == Approx((0.2 + 0.5 * 1.3) / (0.2 + 0.5 * 0.7)).epsilon(0.03));
-  CHECK(brightness(flicker, 0.0) == Approx(brightness(steady, 0.0)).epsilon(0.01));
+/// Mean linear light (sRGB decoded) of a capture over `region` and the three channels, as
+/// the auto-exposure meters it.
+double linear_mean(const RgbdCapture& capture, const cv::Rect& region) {
+  const vpImage<vpRGBa>& color = capture.color;
+  double sum = 0.0;
+  for (int row = region.y; row < region.br().y; ++row)
+    for (int col = region.x; col < region.br().x; ++col)
+      for (const unsigned char level : {color[row][col].R, color[row][col].G, color[row][col].B}) {
+        const double c = level / 255.0;
+        sum += c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+      }
+  return sum / (3.0 * region.area());
+}
 
-  Scenario moving = steady;
-  moving.lighting.motion_axis = Eigen::Vector3d(0, 1, 0);
-  moving.lighting.motion_rate = 30.0 * kDegree;  // 60° away after 2 s
-  CHECK(brightness(moving, 2.0) / brightness(moving, 0.0) == Approx((0.2 + 0.5 * 0.5) / (0.2 + 0.5)).epsilon(0.03));
+/// The same at `time` of a fresh run of `s`.
+double linear_mean(const Scenario& s, const cv::Rect& region, double time = 0.0) {
+  Rig rig(s);
+  return linear_mean(rig.capture(time), region);
+}
+
+/// A patch of the box's front, facing the camera.
+const cv::Rect kFront(150, 100, 20, 40);
+
+}  // namespace
+
+TEST_CASE("rgbd simulator: the scenario's lights shade the object as their closed forms say") {
+  icgp::test::TempDir dir("icgp-matte");
+  const Scenario front = matte_facing_box(dir);
+  // The lamp from behind the object leaves its front the ambient light alone.
+  Scenario from_behind = front;
+  from_behind.lighting.direction_in_camera = Eigen::Vector3d(0, 0, -1);
+  const double lit = linear_mean(front, kFront), ambient = linear_mean(from_behind, kFront);
+  CHECK(ambient / lit == Approx(0.2 / (0.2 + 0.5)).epsilon(0.03));
+
+  SECTION("flicker scales every lamp's strength by 1 + amplitude sin(2π f t)") {
+    Scenario flicker = front;
+    flicker.lighting.flicker_amplitude = 0.3;
+    flicker.lighting.flicker_hz = 100.0;
+    // sin(2π 100 t) is +1 at t = 2.5 ms and -1 at t = 7.5 ms.
+    const double bright = linear_mean(flicker, kFront, 0.0025), dim = linear_mean(flicker, kFront, 0.0075);
+    CHECK(bright / dim == Approx((0.2 + 0.5 * 1.3) / (0.2 + 0.5 * 0.7)).epsilon(0.02));
+    CHECK(linear_mean(flicker, kFront, 0.0) == Approx(lit).epsilon(0.01));
+  }
+  SECTION("a moving light turns the camera's lamp: 60° off the face, half its light") {
+    Scenario moving = front;
+    moving.lighting.motion_axis = Eigen::Vector3d(0, 1, 0);
+    moving.lighting.motion_rate = 30.0 * kDegree;  // 60° away after 2 s
+    CHECK(linear_mean(moving, kFront, 2.0) / lit == Approx((0.2 + 0.5 * 0.5) / (0.2 + 0.5)).epsilon(0.02));
+  }
+  SECTION("a lamp fixed in the scene adds strength x cos, and stays in the scene as the camera turns") {
+    // In the start camera's frame the lamp shines 60° off the face's normal.
+    Scenario lamp = from_behind;
+    lamp.lighting.scene_lamps = {{Eigen::Vector3d(std::sin(60 * kDegree), 0, std::cos(60 * kDegree)), 0.4}};
+    CHECK(linear_mean(lamp, kFront) / ambient == Approx((0.2 + 0.4 * 0.5) / 0.2).epsilon(0.03));
+  }
+}
+
+TEST_CASE("rgbd simulator: vignetting darkens the image by 1 - v (1 - cos⁴θ) in linear light") {
+  icgp::test::TempDir dir("icgp-matte");
+  const Scenario plain = matte_facing_box(dir);
+  Scenario vignetted = plain;
+  vignetted.camera.vignetting = 0.6;
+  // The same scene with and without: patches on the box at the centre and on the background
+  // towards a corner, each a ratio of the two images.
+  const cv::Rect centre(155, 115, 10, 10), corner(20, 15, 10, 10);
+  const icgp::Intrinsics k = plain.camera.color;
+  const double x = (corner.x + 4.5 - k.pu) / k.fu, y = (corner.y + 4.5 - k.pv) / k.fv;
+  const double cos2 = 1.0 / (1.0 + x * x + y * y);
+  const double expected = 1.0 - 0.6 * (1.0 - cos2 * cos2);
+  CHECK(linear_mean(vignetted, centre) / linear_mean(plain, centre) == Approx(1.0).epsilon(0.02));
+  CHECK(linear_mean(vignetted, corner) / linear_mean(plain, corner) == Approx(expected).epsilon(0.03));
+  CHECK(expected < 0.8);
+}
+
+TEST_CASE("rgbd simulator: auto-exposure corrects towards its target with its time constant") {
+  // Darkening towards half the scene's light: nothing saturates, so the image's light is the
+  // gain times the fixed exposure's, and log gain closes 1 - exp(-Δt / τ) of its gap to the
+  // target at each image.
+  icgp::test::TempDir dir("icgp-matte");
+  const Scenario fixed = matte_facing_box(dir);
+  const cv::Rect whole(0, 0, 320, 240);
+  const double nominal = linear_mean(fixed, whole);
+  Scenario automatic = fixed;
+  automatic.camera.auto_exposure = {nominal / 2.0, 0.2};
+  Rig rig(automatic);
+  CHECK(linear_mean(rig.capture(0.0), whole) == Approx(nominal).epsilon(0.01));
+  CHECK(linear_mean(rig.capture(0.2), whole) == Approx(nominal * std::pow(0.5, 1.0 - std::exp(-1.0))).epsilon(0.02));
+  CHECK(linear_mean(rig.capture(2.0), whole) == Approx(nominal / 2.0).epsilon(0.02));
 }

@@ -720,6 +720,49 @@ TEST_CASE("lighting: a light on the camera, its direction must not be zero") {
   check_refusals(dir, cases);
 }
 
+TEST_CASE("lighting: lamps fixed in the scene, and some light somewhere; the camera's vignetting and auto-exposure") {
+  TempDir dir("icgp-scenario");
+  const Scenario s = load_scenario(
+      dir.write("lamps.yaml", kMinimal + "lighting: {lamps: [{direction: [0, 2, 0], strength: 0.4}, "
+                                         "{direction: [1, 0, 1], strength: 0}]}\n"),
+      ICGP_MODELS_DIR);
+  REQUIRE(s.lighting.scene_lamps.size() == 2);
+  CHECK(s.lighting.scene_lamps[0].direction_in_start_camera.isApprox(Eigen::Vector3d(0, 2, 0)));
+  CHECK(s.lighting.scene_lamps[0].strength == 0.4);
+  CHECK(s.lighting.scene_lamps[1].strength == 0.0);
+  const Scenario only_lamp = load_scenario(
+      dir.write("only_lamp.yaml",
+                kMinimal + "lighting: {ambient: 0, diffuse: 0, lamps: [{direction: [0, 1, 0], strength: 0.1}]}\n"),
+      ICGP_MODELS_DIR);
+  CHECK(only_lamp.lighting.scene_lamps.size() == 1);
+  const Scenario exposed = load_scenario(
+      dir.write("exposed.yaml", kMinimal + "camera: {vignetting: 0.4, auto_exposure: {target: 0.3, time_constant_s: 0.5}}\n"),
+      ICGP_MODELS_DIR);
+  CHECK((exposed.camera.vignetting == 0.4 && exposed.camera.auto_exposure.target == 0.3 &&
+         exposed.camera.auto_exposure.time_constant == 0.5));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"lighting: {ambient: 0, diffuse: 0}",
+       "lighting: expected a light: ambient, diffuse and every lamp's strength are 0, and the camera would see black"},
+      {"lighting: {ambient: 0, diffuse: 0, lamps: [{direction: [0, 1, 0], strength: 0}]}",
+       "lighting: expected a light: ambient, diffuse and every lamp's strength are 0"},
+      {"lighting: {lamps: [{direction: [0, 0, 0], strength: 0.5}]}",
+       "lighting.lamps[0].direction: expected a non-zero direction"},
+      {"lighting: {lamps: [{direction: [0, 1, 0]}]}", "lighting.lamps[0].strength: required"},
+      {"lighting: {lamps: [{direction: [0, 1, 0], strength: 2}]}",
+       "lighting.lamps[0].strength: expected a number in [0, 1], got 2"},
+      {"lighting: {lamps: {direction: [0, 1, 0], strength: 0.5}}",
+       "lighting.lamps: expected a list of lamps, each {direction, strength}"},
+      {"lighting: {lamps: [{direction: [0, 1, 0], strength: 0.1}, {direction: [0, 1, 0], strength: 0.1}, "
+       "{direction: [0, 1, 0], strength: 0.1}, {direction: [0, 1, 0], strength: 0.1}]}",
+       "lighting.lamps: expected at most 3 lamps"},
+      {"camera: {vignetting: 1.5}", "camera.vignetting: expected a number in [0, 1], got 1.5"},
+      {"camera: {auto_exposure: {time_constant_s: 0.5}}", "camera.auto_exposure.target: required"},
+      {"camera: {auto_exposure: {target: 0.4, time_constant_s: 0}}",
+       "camera.auto_exposure.time_constant_s: expected a number in (0, 60], got 0"},
+  };
+  check_refusals(dir, cases);
+}
+
 TEST_CASE("a scenario's camera renders with OpenGL unless it asks for Cycles, whose settings are bounded") {
   TempDir dir("icgp-scenario");
   const Scenario opengl = load_scenario(dir.write("opengl.yaml", kMinimal), ICGP_MODELS_DIR);

@@ -134,17 +134,30 @@ struct BackgroundSpec {
   double distance = 0.3;  ///< metres behind the object's origin, along the initial optical axis
 };
 
-/// How the scene is lit: a light fixed to the colour camera (Lambertian shading), which may
-/// change over time as a real cell's light does.
+/// Lamps a scene may have besides the camera's: the renderers take four in all.
+inline constexpr int kMaxSceneLamps = 3;
+
+/// A lamp fixed in the scene (YAML lighting.lamps: [{direction, strength}]).
+struct SceneLampSpec {
+  /// The direction its light travels, in the frame of the camera at its start (x right,
+  /// y down, z forward), as the scenario's other placements are.
+  Eigen::Vector3d direction_in_start_camera{0.0, 1.0, 0.0};
+  double strength = 0.5;  ///< what a white Lambertian surface facing it reads
+};
+
+/// How the scene is lit: a lamp fixed to the colour camera (a ring light), lamps fixed in
+/// the scene, and a uniform ambient environment, which may change over time as a real
+/// cell's light does. Zero everywhere is refused: the camera would see black.
 struct LightingSpec {
   Eigen::Vector3d direction_in_camera{0.0, 0.0, 1.0};  ///< direction the light travels, at time 0
   double ambient = 0.35;
-  double diffuse = 0.65;
-  /// A moving light (YAML motion: {axis, deg_per_s}): its direction turns about this
+  double diffuse = 0.65;  ///< the camera's lamp's strength
+  std::vector<SceneLampSpec> scene_lamps;  ///< at most kMaxSceneLamps
+  /// A moving light (YAML motion: {axis, deg_per_s}): the camera lamp's direction turns about this
   /// camera-frame axis at this rate (rad/s). 0: it stays.
   Eigen::Vector3d motion_axis{0.0, 1.0, 0.0};
   double motion_rate = 0.0;
-  /// Flicker (YAML flicker: {amplitude, hz}): the light's strength times
+  /// Flicker (YAML flicker: {amplitude, hz}): every lamp's strength times
   /// 1 + amplitude sin(2π hz t), as mains-powered lamps flicker at twice the mains
   /// frequency. 0: steady.
   double flicker_amplitude = 0.0;
@@ -175,6 +188,8 @@ enum class RendererKind {
   kOpenGl,  ///< "opengl": icgp's rasteriser, fast: a run at tens of steps per second
   kCycles,  ///< "cycles": Blender's Cycles path tracer, slow: about a second a frame (docs/servo.md)
 };
+/// The names of camera.renderer, which `icgp servo --renderer` takes too, in declaration order.
+const std::vector<std::pair<std::string, RendererKind>>& renderer_names();
 
 /// The Cycles backend's settings (YAML camera.cycles).
 struct CyclesSpec {
@@ -187,6 +202,15 @@ struct CyclesSpec {
   double timeout_s = 300.0;
 };
 
+/// The colour camera's auto-exposure (YAML camera.auto_exposure: {target, time_constant_s}):
+/// it scales each image so that its mean linear light approaches `target`, correcting from
+/// the images it has taken with this time constant, so that it lags behind a change of light
+/// as a camera's control loop does. Target 0: a fixed exposure.
+struct AutoExposureSpec {
+  double target = 0.0;
+  double time_constant = 0.2;  ///< seconds
+};
+
 /// The RGB-D sensor.
 struct CameraSpec {
   RendererKind renderer = RendererKind::kOpenGl;
@@ -196,6 +220,10 @@ struct CameraSpec {
   Pose depth_T_color;  ///< colour camera -> depth camera (ViSP's depth_M_color)
   double rate_hz = 30.0;
   NoiseSpec noise;
+  /// The colour lens's vignetting: brightness (in linear light) times 1 - v (1 - cos⁴θ) at
+  /// the angle θ off the optical axis; 1: a simple lens's whole cos⁴ law, 0: none.
+  double vignetting = 0.0;
+  AutoExposureSpec auto_exposure;
   /// Seconds from a frame's exposure to the command computed from it reaching the robot
   /// (YAML latency_ms): readout, transport, the control computation, the robot's interface.
   /// The tracker's own time comes on top when TrackerSpec::real_timing says so.
