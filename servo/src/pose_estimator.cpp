@@ -97,6 +97,8 @@ class IcgpEstimator : public PoseEstimator {
       if (!gripper_->tracked() && !estimate.lost) estimate.why_lost = "the gripper is lost";
       estimate.lost = estimate.lost || !gripper_->tracked();
     }
+    for (const vpMbIcgTracker::CueQuality& cue : tracker_.getCueQualities())
+      estimate.cues.push_back({cue.cue, cue.camera, cue.quality});
     return estimate;
   }
 

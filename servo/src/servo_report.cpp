@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <system_error>
 #include <utility>
+#include <visp3/core/vpThetaUVector.h>
 
 #include "icgp/base/pose.h"
 #include "icgp/eval/gnuplot.h"
@@ -63,13 +64,6 @@ void create_parent_folder(const std::string& path) {
                              "': " + error.message());
 }
 
-void write_text_file(const std::string& path, const std::string& text, const char* what) {
-  create_parent_folder(path);
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error(std::string("cannot write ") + what + " '" + path + "'");
-}
 
 // --- step data -------------------------------------------------------------------------
 
@@ -92,15 +86,32 @@ std::string data_number(double value) {
   return format("%.9g", value);
 }
 
+/// A number as it is, digit for digit (%.17g, which reads back to the same double): the
+/// camera path a replay renders again.
+std::string exact_number(double value) {
+  if (!std::isfinite(value)) return data_number(value);
+  return format("%.17g", value);
+}
+
+/// The camera pose columns of a step: wMc's translation (m) and θu rotation (rad).
+void append_camera_pose(std::string& line, char separator, const vpHomogeneousMatrix& wMc) {
+  const vpTranslationVector t = wMc.getTranslationVector();
+  const vpThetaUVector tu(wMc.getRotationMatrix());
+  for (double value : {t[0], t[1], t[2], tu[0], tu[1], tu[2]}) line += separator + exact_number(value);
+}
+
 /// The step table shared by the CSV and the plot data: one line per step, `separator`
-/// between columns.
+/// between columns. Columns are only ever appended, so that readers of older logs keep
+/// finding theirs.
 std::string step_table(const ServoResult& result, char separator, bool header) {
   const unsigned n = velocity_columns(result);
   std::string out;
   if (header) {
     out += "time,servo_t_mm,servo_r_deg,track_t_mm,track_r_deg,error_norm";
     for (unsigned i = 0; i < n; ++i) out += ",v" + std::to_string(i);
-    out += ",lost,safety_stop,dropped,render_ms,track_ms,control_ms,skipped,command_delay_ms\n";
+    out += ",lost,safety_stop,dropped,render_ms,track_ms,control_ms,skipped,command_delay_ms";
+    for (const char* name : kCameraPoseColumns) out += std::string(",") + name;
+    out += "\n";
     if (separator != ',') std::replace(out.begin(), out.end(), ',', separator);
   }
   for (const ServoStep& step : result.steps) {
@@ -120,6 +131,7 @@ std::string step_table(const ServoResult& result, char separator, bool header) {
     column(data_number(step.control_ms));
     column(step.skipped ? "1" : "0");
     column(data_number(step.command_delay * kMs));
+    append_camera_pose(line, separator, step.wMc_true);
     out += line + "\n";
   }
   return out;
@@ -131,7 +143,7 @@ std::string plot_script(const ServoResult& result) {
   const unsigned n = velocity_columns(result);
   // Columns of step_table: 1 time, 2 servo_t_mm, 3 servo_r_deg, 4 track_t_mm, 5 track_r_deg,
   // 6 error_norm, 7..6+n velocity, then lost, safety_stop, dropped, render, track, control ms,
-  // skipped, command delay ms.
+  // skipped, command delay ms, and the camera pose (not plotted).
   const unsigned first_velocity = 7;
   const unsigned safety_column = first_velocity + n + 1;
   bool any_safety_stop = false, any_lost = false;
@@ -223,7 +235,8 @@ JsonObject summary_json(const TrialsSummary& s) {
                              .add("max_vouched", s.max_vouched_track_t * kMm))
       .add("track_r_deg", pair("mean", s.mean_track_r * kDeg, "max", s.max_track_r * kDeg)
                               .add("max_vouched", s.max_vouched_track_r * kDeg))
-      .add("interrupted", s.interrupted);
+      .add("interrupted", s.interrupted)
+      .add("seed", s.seed ? static_cast<double>(*s.seed) : kNaN);  // null: runs of several seeds
 }
 
 bool succeeded(const ServoResult& result, const StopSpec& stop) {
@@ -238,6 +251,9 @@ TrialsSummary summarise(const std::vector<ServoResult>& results, const StopSpec&
   s.tracker = results.front().tracker;
   s.trials = static_cast<int>(results.size());
   s.interrupted = std::any_of(results.begin(), results.end(), [](const ServoResult& r) { return r.interrupted; });
+  const unsigned first_seed = results.front().seed;
+  if (std::all_of(results.begin(), results.end(), [&](const ServoResult& r) { return r.seed == first_seed; }))
+    s.seed = first_seed;
 
   std::vector<double> final_t, final_r, converged_times, track_ms, steps_per_s;
   double sum_track_t = 0.0, sum_track_r = 0.0;
@@ -350,6 +366,14 @@ void write_summary_json(const std::vector<TrialsSummary>& summaries, const std::
   std::vector<JsonObject> array;
   for (const TrialsSummary& s : summaries) array.push_back(summary_json(s));
   JsonObject::write_array(array, path);
+}
+
+void write_text_file(const std::string& path, const std::string& text, const char* what) {
+  create_parent_folder(path);
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(std::string("cannot write ") + what + " '" + path + "'");
 }
 
 void write_step_csv(const ServoResult& result, const std::string& path) {

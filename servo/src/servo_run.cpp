@@ -9,7 +9,6 @@
 #include <random>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 
 #include "icgp/base/splitmix64.h"
 #include "icgp/base/stop_request.h"
@@ -19,6 +18,7 @@
 #include "icgp/servo/servo_controller.h"
 #include "icgp/servo/simulated_robot.h"
 #include "icgp/visp/conversions.h"
+#include "tracker_in_loop.h"
 
 namespace icgp::servo {
 namespace {
@@ -119,57 +119,6 @@ class PipelineTiming {
   SplitMix64 random_;
   double busy_until_ = -std::numeric_limits<double>::infinity();
 };
-
-/// The pose the control law drives: the camera's to the object (cMo), or in a grasp the
-/// gripper's to the object, gMo = cMg^-1 cMo.
-vpHomogeneousMatrix servoed_pose(const vpHomogeneousMatrix& cMo, const std::optional<vpHomogeneousMatrix>& cMg) {
-  return cMg ? cMg->inverse() * cMo : cMo;
-}
-
-/// Of the detected pose and its symmetric equivalents, the one whose servoed pose is the
-/// least rotation (then translation) from the goal `desired`.
-vpHomogeneousMatrix nearest_to_goal(const PoseEstimate& estimate, const vpHomogeneousMatrix& desired) {
-  vpHomogeneousMatrix nearest = estimate.cMo;
-  PoseError least = pose_error(servoed_pose(nearest, estimate.cMg), desired);
-  for (const vpHomogeneousMatrix& cMo : estimate.equivalents) {
-    const PoseError error = pose_error(servoed_pose(cMo, estimate.cMg), desired);
-    if (std::tie(error.rotation, error.translation) < std::tie(least.rotation, least.translation)) {
-      nearest = cMo;
-      least = error;
-    }
-  }
-  return nearest;
-}
-
-/// How many times the tracker refines its pose on the frame a goal is taught with: the
-/// robot stands still there, so a tracker settles as it would over so many frames.
-constexpr int kTeachingIterations = 10;
-
-/// The goal as the cell's own camera and tracker see it (ControlSpec::taught_by_showing):
-/// the camera (or, eye-to-hand, the object the arm holds) put at the scenario's desired
-/// pose `desired_cMo` at time 0, and the pose the tracker measures there. A tracker that
-/// detects finds the object itself; the others start at the truth, as they do in the loop.
-vpHomogeneousMatrix shown_goal(const SimulatedRobot& robot, RgbdSimulator& simulator, PoseEstimator& estimator,
-                               const vpHomogeneousMatrix& desired_cMo, bool by_detection) {
-  vpHomogeneousMatrix wMc = robot.world_T_camera();
-  std::optional<vpHomogeneousMatrix> held = robot.world_T_held_object();
-  if (held)
-    held = wMc * desired_cMo;
-  else
-    wMc = simulator.world_T_object(0.0) * desired_cMo.inverse();
-  const RgbdCapture& shown = simulator.capture(0.0, wMc, wMc, held, robot.world_T_gripper());
-  PoseEstimate estimate;
-  if (by_detection && estimator.detects()) {
-    estimate = estimator.detect(shown, std::nullopt);
-    if (estimate.lost)
-      throw std::runtime_error("teaching by showing: the tracker did not find the object at the desired pose" +
-                               (estimate.why_lost.empty() ? std::string() : " (" + estimate.why_lost + ")"));
-  } else {
-    estimator.start(shown, shown.cMo_true, shown.cMg_true);
-  }
-  for (int i = 0; i < kTeachingIterations; ++i) estimate = estimator.track(shown);
-  return estimate.cMo;
-}
 
 /// What the values of a velocity for `robot` are (velocity_size), for error messages.
 std::string velocity_meaning(RobotKind robot) {
@@ -272,7 +221,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
                                                    bounding_box_corners(scenario.object.model), *robot);
   // A tracker that follows the object alone gets the gripper from the arm's encoders,
   // kinematics and calibrated camera pose, as a real cell's would.
-  const auto kinematic_cMg = [&] { return robot->kinematic_camera_T_gripper(); };
+  TrackerInLoop tracker(*estimator, scenario.tracker, goal, [&] { return robot->kinematic_camera_T_gripper(); });
 
   ServoResult result;
   result.scenario = scenario.name;
@@ -282,26 +231,17 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   const double dt = 1.0 / scenario.camera.rate_hz;
   const double motion_end = scenario.object.settled_time();
   vpHomogeneousMatrix previous_wMc = robot->world_T_camera();
-  vpHomogeneousMatrix trusted_cMo;  ///< the last pose the tracker did not report lost
-  std::string last_why_lost;        ///< the tracker's last reason for a loss
-  std::optional<vpHomogeneousMatrix> trusted_cMg;  ///< the same for the gripper (grasp)
   // Detection: the tracker finds the object in the frames of the loop itself, the robot
   // holding still until it does. Otherwise it starts at the true poses (for comparison).
-  bool started = !(scenario.tracker.init_by_detection && estimator->detects());
-  if (started) {
-    const RgbdCapture& first =
-        simulator.capture(0.0, previous_wMc, previous_wMc, robot->world_T_held_object(), robot->world_T_gripper());
-    trusted_cMo = first.cMo_true;
-    trusted_cMg = first.cMg_true;
-    estimator->start(first, trusted_cMo, trusted_cMg);
-  }
+  if (tracker.starts_from_truth())
+    tracker.start_at_truth(
+        simulator.capture(0.0, previous_wMc, previous_wMc, robot->world_T_held_object(), robot->world_T_gripper()));
 
   PipelineTiming timing(scenario, options.seed);
   CommandChannel channel(vpColVector(velocity_size(scenario.robot), 0.0));
   RobotResponse response(scenario.robot_response, scenario.robot);
   ConvergenceMonitor convergence(scenario.stop);
   ProgressLine progress(options.progress);
-  PoseEstimate estimate;
   bool stopped = false;
   const auto loop_begin = Clock::now();
   // check_run_length bounds it to [1, kMaxSimulatedSteps]: the conversion cannot overflow.
@@ -318,41 +258,13 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     step.dropped = capture.dropped;
     step.skipped = !capture.dropped && !timing.tracker_free(step.time);
     const bool tracked = !capture.dropped && !step.skipped;
-    if (tracked && !started) {
-      estimate = estimator->detect(capture, kinematic_cMg());
-      started = !estimate.lost;
-      if (!estimate.cMg) estimate.cMg = kinematic_cMg();
-      if (started && !estimate.equivalents.empty()) {
-        // A symmetric object looks the same at each of these poses: servo on the one that
-        // needs the smallest motion to the goal, not on whichever the detector ranked first.
-        const vpHomogeneousMatrix nearest = nearest_to_goal(estimate, goal);
-        if (nearest != estimate.cMo) {
-          estimate.cMo = nearest;
-          estimator->start(capture, estimate.cMo, estimate.cMg);
-        }
-      }
-      if (started) {
-        trusted_cMo = estimate.cMo;
-        trusted_cMg = estimate.cMg;
-      }
-    } else if (tracked) {
-      estimate = estimator->track(capture);
-      if (!estimate.cMg) estimate.cMg = kinematic_cMg();
-      if (estimate.lost && !estimator->recovers()) {
-        // The robot stops, so the poses last trusted still hold for a static object: restart
-        // the tracker there for the next frame rather than let it wander while lost.
-        estimator->start(capture, trusted_cMo, trusted_cMg);
-      } else if (!estimate.lost) {
-        trusted_cMo = estimate.cMo;
-        trusted_cMg = estimate.cMg;
-      }
-    }
+    if (tracked) tracker.take(capture);
+    const PoseEstimate& estimate = tracker.estimate();
     const vpHomogeneousMatrix servoed_estimate = servoed_pose(estimate.cMo, estimate.cMg);
     const vpHomogeneousMatrix servoed_truth = servoed_pose(capture.cMo_true, capture.cMg_true);
     const auto t2 = Clock::now();
 
     step.lost = estimate.lost;
-    if (estimate.lost && !estimate.why_lost.empty()) last_why_lost = estimate.why_lost;
     // With real timing a command follows only a frame the tracker took; ideally the law also
     // runs again on the last estimate when the sensor lost the frame.
     step.command_delay = std::numeric_limits<double>::quiet_NaN();
@@ -383,6 +295,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     if (robot->joint_limit_stops() > limit_stops_before) ++result.joint_limit_stops;
     const auto t3 = Clock::now();
 
+    step.wMc_true = wMc;
     step.cMo_true = capture.cMo_true;
     step.cMo_estimated = estimate.cMo;
     const PoseError servo = pose_error(servoed_truth, desired);
@@ -394,7 +307,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     if (!simulator.object_present(step.time)) step.servo_t = step.servo_r = kNaN;
     // No truth to compare with while the object is away, no estimate before it is found.
-    if (!simulator.object_present(step.time) || !started) step.track_t = step.track_r = kNaN;
+    if (!simulator.object_present(step.time) || !tracker.started()) step.track_t = step.track_r = kNaN;
     step.render_ms = ms_between(t0, t1);
     step.track_ms = step.dropped ? 0.0 : estimate.track_ms;
     step.control_ms = ms_between(t2, t3);
@@ -422,7 +335,7 @@ ServoResult run_servo(const Scenario& original, const ServoRunOptions& options) 
   result.final_t = result.steps.back().servo_t;
   result.final_r = result.steps.back().servo_r;
   result.recovered = !result.steps.back().lost;
-  if (result.steps.back().lost) result.lost_reason = last_why_lost;
+  if (result.steps.back().lost) result.lost_reason = tracker.last_why_lost();
   result.steps_per_s = result.steps.size() / std::max(loop_seconds, 1e-9);
   summarise_tracking(result);
   return result;

@@ -93,12 +93,13 @@ SweepValue sweep_value(double value, const std::vector<std::vector<ServoResult>>
 
 SweepValue run_sweep_value(const std::string& scenario_file, const std::string& models_dir, const SweepSpec& sweep,
                            std::size_t index, const std::vector<TrackerKind>& trackers, int trials, unsigned seed,
-                           const RunDone& on_run) {
+                           std::optional<RendererKind> renderer, const RunDone& on_run) {
   SweepValue out;
   out.value = sweep.values.at(index);
   try {
     Scenario scenario = load_scenario(scenario_file, models_dir, {{sweep.field, out.value}});
     if (seed != 0) scenario.seed = seed;
+    if (renderer) scenario.camera.renderer = *renderer;
     std::string failures;
     const TrialBatch batch =
         run_trials(scenario, trackers, trials, on_run, {}, [&](int trial, TrackerKind tracker, const std::exception& e) {

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // `icgp servo SCENARIO`: the closed loop tracker -> ViSP control law -> simulated robot, one
 // run with its log and plots, batch trials, or trackers compared on identical trials.
-#include <chrono>
 #include <cstdio>
 #include <cerrno>
 #include <csignal>
@@ -18,6 +17,7 @@
 #include <visp3/gui/vpDisplayX.h>
 
 #include "commands.h"
+#include "eta_progress.h"
 #include "icgp/base/camera_names.h"
 #include "icgp/base/stop_request.h"
 #include "icgp/servo/blender_process.h"
@@ -29,6 +29,7 @@
 #include "icgp/visp/conversions.h"
 #include "option_ranges.h"
 #include "overlay_video.h"
+#include "servo_replay_command.h"
 
 namespace icgp::app {
 namespace {
@@ -56,6 +57,8 @@ struct ServoOptions {
   std::string scheduler;  ///< a Dask scheduler's address: the trials run on its workers
   int jobs = 0;           ///< > 0: the trials run on this many local worker processes
   std::string sweep;      ///< FIELD=V1,V2,...: the trials at each value of a scenario field
+  std::string renderer;   ///< overrides the scenario's camera.renderer: opengl, cycles
+  std::string replay;     ///< a run's log.csv: its camera path rendered again and tracked open-loop
 };
 
 /// The names scenario files give trackers, which --tracker takes.
@@ -64,6 +67,17 @@ std::vector<std::string> tracker_choices() { return servo::names_in(servo::track
 TrackerKind tracker_kind(const std::string& name) {
   if (const std::optional<TrackerKind> kind = servo::kind_named(name, servo::tracker_names())) return *kind;
   throw std::invalid_argument("--tracker: expected one of " + yaml::join(tracker_choices()) + ", got '" + name + "'");
+}
+
+/// The names scenario files give renderers (camera.renderer), which --renderer takes.
+std::vector<std::string> renderer_choices() { return servo::names_in(servo::renderer_names()); }
+
+/// --renderer's renderer; none when it is not given.
+std::optional<servo::RendererKind> renderer_kind(const std::string& name) {
+  if (name.empty()) return std::nullopt;
+  if (const std::optional<servo::RendererKind> kind = servo::kind_named(name, servo::renderer_names())) return kind;
+  throw std::invalid_argument("--renderer: expected one of " + yaml::join(renderer_choices()) + ", got '" + name +
+                              "'");
 }
 
 /// Writes the overlay video and shows the live window of a single run.
@@ -108,24 +122,6 @@ class RunViewer {
   Intrinsics intrinsics_;
 };
 
-/// Trials run of all a command runs, the time elapsed and an estimate of the time left.
-class BatchProgress {
- public:
-  explicit BatchProgress(int total) : total_(total), begin_(std::chrono::steady_clock::now()) {}
-  std::string trial_done() {
-    ++done_;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
-    const double left = elapsed / done_ * (total_ - done_);
-    char text[96];
-    std::snprintf(text, sizeof text, "[%d/%d, elapsed %.0f s, ETA %.0f s]", done_, total_, elapsed, left);
-    return text;
-  }
-
- private:
-  int total_, done_ = 0;
-  std::chrono::steady_clock::time_point begin_;
-};
-
 /// "visp 93 of 100, icgp 1 of 100": the trackers some of whose runs did not succeed.
 std::string failures(const std::vector<servo::TrialsSummary>& summaries) {
   std::string text;
@@ -157,7 +153,7 @@ void run_batch(const ServoOptions& o, const Scenario& scenario, const std::strin
   const std::vector<TrackerKind> kinds =
       o.compare ? std::vector<TrackerKind>{TrackerKind::kOracle, TrackerKind::kVisp, TrackerKind::kIcgp}
                 : std::vector<TrackerKind>{scenario.tracker.kind};
-  BatchProgress progress(o.trials * static_cast<int>(kinds.size()));
+  EtaProgress progress(o.trials * static_cast<int>(kinds.size()));
   const auto run_done = [&](int trial, const ServoResult& r) {
     std::fprintf(stderr, "trial %d/%d %s: %s, final %.3f mm %.3f deg, tracker max %.2f mm%s%s %s\n", trial + 1,
                  o.trials, r.tracker.c_str(),
@@ -165,14 +161,14 @@ void run_batch(const ServoOptions& o, const Scenario& scenario, const std::strin
                  1e3 * r.final_t, r.final_r / servo::kDegree, 1e3 * r.max_track_t,
                  r.safety_stops > 0 ? (", " + std::to_string(r.safety_stops) + " safety stop(s)").c_str() : "",
                  r.lost_reason.empty() ? "" : (", lost at the end: " + r.lost_reason).c_str(),
-                 progress.trial_done().c_str());
+                 progress.done().c_str());
   };
   std::vector<std::string> errors;
   const auto run_failed = [&](int trial, TrackerKind tracker, const std::exception& e) {
     const std::string what = "trial " + std::to_string(trial + 1) + " (" +
                              servo::name_of(tracker, servo::tracker_names()) + "): " + e.what();
     std::fprintf(stderr, "trial %d/%d failed, left out: %s %s\n", trial + 1, o.trials, what.c_str(),
-                 progress.trial_done().c_str());
+                 progress.done().c_str());
     errors.push_back(what);
   };
   const servo::TrialBatch batch = servo::run_trials(scenario, kinds, o.trials, run_done, {}, run_failed);
@@ -289,15 +285,16 @@ void run_sweep(const ServoOptions& o, const fs::path& out) {
       o.compare ? std::vector<TrackerKind>{TrackerKind::kOracle, TrackerKind::kVisp, TrackerKind::kIcgp}
                 : std::vector<TrackerKind>{o.tracker.empty() ? scenario.tracker.kind : tracker_kind(o.tracker)};
   const std::string json = o.summary.empty() ? (out / "sweep.json").string() : o.summary;
-  BatchProgress progress(o.trials * static_cast<int>(kinds.size() * sweep.values.size()));
+  EtaProgress progress(o.trials * static_cast<int>(kinds.size() * sweep.values.size()));
   std::vector<servo::SweepValue> values;
   for (std::size_t i = 0; i < sweep.values.size() && !stop_requested(); ++i) {
     values.push_back(servo::run_sweep_value(
-        o.scenario, models_dir(), sweep, i, kinds, o.trials, o.seed, [&](int trial, const ServoResult& r) {
+        o.scenario, models_dir(), sweep, i, kinds, o.trials, o.seed, renderer_kind(o.renderer),
+        [&](int trial, const ServoResult& r) {
           std::fprintf(stderr, "%s %s trial %d/%d %s: %s, final %.3f mm %.3f deg %s\n", sweep.field.c_str(),
                        yaml::plain_number(sweep.values[i]).c_str(), trial + 1, o.trials, r.tracker.c_str(),
                        servo::succeeded(r, scenario.stop) ? "success" : "failure", 1e3 * r.final_t,
-                       r.final_r / servo::kDegree, progress.trial_done().c_str());
+                       r.final_r / servo::kDegree, progress.done().c_str());
         }));
     if (!values.back().error.empty())
       std::fprintf(stderr, "%s %s: %s\n", sweep.field.c_str(), yaml::plain_number(sweep.values[i]).c_str(),
@@ -312,11 +309,28 @@ void run_sweep(const ServoOptions& o, const fs::path& out) {
                                                std::to_string(sweep.values.size()) + " values swept, in " + json);
 }
 
+/// --replay: the folder of its files, --out or else the log's own.
+fs::path replay_folder(const ServoOptions& o) {
+  if (!o.out.empty()) return o.out;
+  const fs::path log_folder = fs::path(o.replay).parent_path();
+  return log_folder.empty() ? fs::path(".") : log_folder;
+}
+
 void run_command(const ServoOptions& o) {
+  const bool on_workers = !o.scheduler.empty() || o.jobs > 0;
+  // The workers read the scenario file again (its numeric fields set over it travel with
+  // it, a renderer does not): refused rather than ignored.
+  if (on_workers && !o.renderer.empty()) {
+    const std::string option = o.jobs > 0 ? "--jobs" : "--scheduler";
+    throw std::invalid_argument(option + " runs the trials on Dask workers, which --renderer does not reach: set "
+                                "camera.renderer in the scenario file, or leave " + option +
+                                " out to run the trials here");
+  }
   Scenario scenario = servo::load_scenario(o.scenario, models_dir());
+  if (const std::optional<servo::RendererKind> renderer = renderer_kind(o.renderer)) scenario.camera.renderer = *renderer;
   // Without Blender every trial would fail alike: say so once, before anything runs.
   if (scenario.camera.renderer == servo::RendererKind::kCycles) servo::blender_executable();
-  if (!o.scheduler.empty() || o.jobs > 0) run_on_workers(o);
+  if (on_workers) run_on_workers(o);
   // Runs and batches can take hours: Ctrl-C stops them at the next step, writing what is done.
   install_stop_on_sigint();
   if (!o.tracker.empty()) scenario.tracker.kind = tracker_kind(o.tracker);
@@ -324,7 +338,10 @@ void run_command(const ServoOptions& o) {
   const fs::path out = o.out.empty() ? fs::path("out") / "servo" / scenario.name : fs::path(o.out);
   const std::string summary = o.summary.empty() ? (out / "summary.json").string() : o.summary;
   std::cerr << "scenario " << scenario.name << (scenario.description.empty() ? "" : ": " + scenario.description) << "\n";
-  if (!o.sweep.empty())
+  if (!o.replay.empty())
+    run_servo_replay(scenario, o.replay, o.seed != 0 ? std::optional<unsigned>(o.seed) : std::nullopt,
+                     replay_folder(o).string(), o.quiet);
+  else if (!o.sweep.empty())
     run_sweep(o, out);
   else if (o.compare || o.trials > 1)
     run_batch(o, scenario, summary);
@@ -348,28 +365,47 @@ void register_servo_command(CLI::App& app) {
   cmd->add_option("scenario", o->scenario, "Scenario file (YAML, see scenarios/)")->check(CLI::ExistingFile)->capture_default_str();
   cmd->add_option("--tracker", o->tracker, "Tracker in the loop instead of the scenario's: " + yaml::join(tracker_choices()))
       ->check(CLI::IsMember(tracker_choices()));
-  cmd->add_option("--trials", o->trials,
+  CLI::Option* trials = cmd->add_option("--trials", o->trials,
                   "Batch: runs from random starts within the scenario's trial ranges (Ctrl-C stops it and writes "
                   "the trials done)")
       ->check(integer_in(1, kMaxTrials));
   cmd->add_option("--seed", o->seed, "Seed of the noise and of the random starts (default: the scenario's)")
       ->check(integer_in(0, std::numeric_limits<unsigned>::max()));
-  cmd->add_flag("--compare", o->compare, "Run the oracle, visp and icgp trackers on identical trials, one table");
-  cmd->add_option("--summary", o->summary, "Summary JSON (default: OUT/summary.json)");
+  CLI::Option* compare =
+      cmd->add_flag("--compare", o->compare, "Run the oracle, visp and icgp trackers on identical trials, one table");
+  CLI::Option* summary = cmd->add_option("--summary", o->summary, "Summary JSON (default: OUT/summary.json)");
   cmd->add_option("--out", o->out, "Folder for the log and plots (default: out/servo/<scenario name>)");
-  cmd->add_option("--video", o->video, "Overlay video (.avi) of a single run: estimated (red) and true (green) outline");
-  cmd->add_flag("--display", o->display, "Show the run in a ViSP window (needs an X display)");
+  CLI::Option* video =
+      cmd->add_option("--video", o->video, "Overlay video (.avi) of a single run: estimated (red) and true (green) outline");
+  CLI::Option* display = cmd->add_flag("--display", o->display, "Show the run in a ViSP window (needs an X display)");
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   CLI::Option* scheduler =
       cmd->add_option("--scheduler", o->scheduler,
                       "Batch: run the trials on the workers of this Dask scheduler (tcp://HOST:PORT), through "
                       "icgp's Python package; each worker needs the package and the scenario's files");
-  cmd->add_option("--sweep", o->sweep,
+  CLI::Option* sweep = cmd->add_option("--sweep", o->sweep,
                   "FIELD=V1,V2,...: the trials (--trials, --compare) at each value of a numeric scenario field, "
                   "e.g. camera.latency_ms=0,50,100; writes OUT/sweep.json and OUT/sweep.png");
-  cmd->add_option("--jobs", o->jobs, "Batch: run the trials on this many local worker processes (Dask)")
+  CLI::Option* jobs = cmd->add_option("--jobs", o->jobs, "Batch: run the trials on this many local worker processes (Dask)")
       ->check(integer_in(1, 1024))
       ->excludes(scheduler);
+  cmd->add_option("--renderer", o->renderer,
+                  "Renderer of the camera's images instead of the scenario's camera.renderer: " +
+                      yaml::join(renderer_choices()) + " (not with --jobs or --scheduler)")
+      ->check(CLI::IsMember(renderer_choices()));
+  cmd->add_option("--replay", o->replay,
+                  "A run's log.csv: render its camera path again (with --renderer, or the scenario's renderer) and "
+                  "track it open-loop with the scenario's tracker, seeded as the run (its summary.json); writes "
+                  "OUT/replay.csv and OUT/replay.json (default OUT: the log's folder)")
+      ->check(CLI::ExistingFile)
+      ->excludes(trials)
+      ->excludes(compare)
+      ->excludes(sweep)
+      ->excludes(scheduler)
+      ->excludes(jobs)
+      ->excludes(video)
+      ->excludes(display)
+      ->excludes(summary);
   cmd->callback([o] { run_command(*o); });
 }
 

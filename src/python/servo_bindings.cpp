@@ -70,6 +70,7 @@ py::array_t<double> vector_of(const vpColVector& v) {
 py::dict step_dict(const servo::ServoStep& s) {
   py::dict d;
   d["time"] = s.time;
+  d["wMc_true"] = matrix_of(s.wMc_true);
   d["cMo_true"] = matrix_of(s.cMo_true);
   d["cMo_estimated"] = matrix_of(s.cMo_estimated);
   d["servo_t_mm"] = s.servo_t * kMm;
@@ -244,7 +245,8 @@ pose to the desired one at the end), mean/max_track_t_mm and mean/max_track_r_de
 error over the run), max_vouched_track_t_mm / max_vouched_track_r_deg (the largest on frames
 the tracker took and did not report lost), median_track_ms, steps_per_s, safety_stops, recovered, lost_reason
 (lost at the end: the tracker's last reason, such as why the object was never found;
-empty otherwise), joint_limit_stops, interrupted, and steps: one dict per step with time, cMo_true and
+empty otherwise), joint_limit_stops, interrupted, and steps: one dict per step with time, wMc_true
+(4x4, where the camera truly was in the world: log.csv's camera pose), cMo_true and
 cMo_estimated (4x4), servo_t_mm / servo_r_deg (true servoed pose to the desired one),
 track_t_mm / track_r_deg (estimated to true), velocity (the one the robot follows at the
 end of the step), servo_error_norm, lost, safety_stop, dropped, render_ms, track_ms,

@@ -295,6 +295,20 @@ void vpMbIcgTracker::testTracking() {
 
 double vpMbIcgTracker::getTrackingQuality() const { return impl_->quality; }
 
+std::vector<vpMbIcgTracker::CueQuality> vpMbIcgTracker::getCueQualities() const {
+  const Impl& d = *impl_;
+  const auto result = d.body_results.find(Impl::kBody);
+  if (!d.tracker || result == d.body_results.end()) return {};
+  // The tracker's modalities and the result's qualities are in the same order, the order
+  // the cues were added (icgp::BodyResult::modalities).
+  const std::vector<const icgp::Modality*> cues = d.tracker->modalities(Impl::kBody);
+  const std::vector<icgp::ModalityQuality>& qualities = result->second.modalities;
+  std::vector<CueQuality> out;
+  if (cues.size() != qualities.size()) return out;  // a frame of cues since rebuilt: not theirs
+  for (std::size_t i = 0; i < cues.size(); ++i) out.push_back({cues[i]->name(), cues[i]->camera(), qualities[i]});
+  return out;
+}
+
 void vpMbIcgTracker::setMask(const vpImage<bool>& mask) {
   guarded("setMask", [&] {
     vpMbTracker::setMask(mask);

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """icgp.servo: runs from Python match `icgp servo`'s, callbacks see every step, a control
 law written in Python drives the robot, and errors arrive as they were raised."""
+import csv
 import json
 import math
 import os
@@ -81,6 +82,15 @@ def test_run_converges_as_the_command_line_run(scenario, tmp_path):
     assert result["final_t_mm"] == pytest.approx(cli["final_t_mm"]["median"], rel=1e-8)
     assert result["final_r_deg"] == pytest.approx(cli["final_r_deg"]["median"], rel=1e-8)
     assert result["converged_time"] == pytest.approx(cli["converged_time_s_median"], rel=1e-8)
+    assert cli["seed"] == scenario.seed
+    # Each step's true camera pose, as the command's log.csv gives it (a replay reads it).
+    with open(tmp_path / "log.csv", newline="") as log:
+        rows = list(csv.DictReader(log))
+    assert len(rows) == len(result["steps"])
+    last = result["steps"][-1]["wMc_true"]
+    assert np.linalg.norm(last[:3, 3]) > 0.05  # the camera moved from the world's origin
+    np.testing.assert_allclose([float(rows[-1][c]) for c in ("camera_tx", "camera_ty", "camera_tz")], last[:3, 3],
+                               atol=1e-12)
 
 
 def test_trial_i_is_the_command_line_trial_i(scenario, tmp_path):

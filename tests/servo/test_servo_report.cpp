@@ -245,9 +245,10 @@ TEST_CASE("write_summary_json writes the contract keys in mm and degrees", "[ser
   REQUIRE(json.IsMap());
   for (const char* key : {"scenario", "tracker", "trials", "converged", "success_rate", "final_t_mm", "final_r_deg",
                           "median_track_ms", "steps_per_s", "safety_stops", "recovered", "converged_time_s_median",
-                          "track_t_mm", "track_r_deg", "interrupted"})
+                          "track_t_mm", "track_r_deg", "interrupted", "seed"})
     CHECK(json[key].IsDefined());
-  CHECK(json.size() == 15);
+  CHECK(json.size() == 16);
+  CHECK(json["seed"].IsNull());  // four runs of four seeds
   CHECK_FALSE(json["interrupted"].as<bool>());
   CHECK(json["scenario"].as<std::string>() == "pbvs_box");
   CHECK(json["tracker"].as<std::string>() == "icgp");
@@ -282,6 +283,7 @@ TEST_CASE("write_summary_json writes the contract keys in mm and degrees", "[ser
   CHECK(array[1]["tracker"].as<std::string>() == "visp");
   CHECK(array[1]["success_rate"].as<double>() == 0.0);
   CHECK(array[1]["converged_time_s_median"].IsNull());
+  CHECK(array[1]["seed"].as<unsigned>() == 2);  // one run: its seed, which a replay of its log takes
 }
 
 TEST_CASE("write_step_csv writes a header and one line per step", "[servo][report]") {
@@ -289,17 +291,22 @@ TEST_CASE("write_step_csv writes a header and one line per step", "[servo][repor
   ServoResult r = run_a();
   r.steps[1].velocity = vpColVector();  // an empty velocity is written as zeros
   r.steps[2].dropped = true;
+  r.steps[2].wMc_true = vpHomogeneousMatrix(0.1, -0.2, 0.3, 0.0, 0.0, 0.0);  // written with every digit
   const fs::path path = dir.path() / "sub" / "steps.csv";
   icgp::servo::write_step_csv(r, path.string());
   const std::vector<std::string> lines = lines_of(read(path));
   REQUIRE(lines.size() == 1 + 3);
   CHECK(lines[0] ==
         "time,servo_t_mm,servo_r_deg,track_t_mm,track_r_deg,error_norm,v0,v1,v2,v3,v4,v5,"
-        "lost,safety_stop,dropped,render_ms,track_ms,control_ms,skipped,command_delay_ms");
-  for (const std::string& line : lines) CHECK(count(line, ',') == 19);
+        "lost,safety_stop,dropped,render_ms,track_ms,control_ms,skipped,command_delay_ms,"
+        "camera_tx,camera_ty,camera_tz,camera_tux,camera_tuy,camera_tuz");
+  for (const std::string& line : lines) CHECK(count(line, ',') == 25);
   CHECK(lines[1].rfind("0,20,", 0) == 0);  // time 0 s, servo error 20 mm
   CHECK(lines[2].find(",0,0,0,0,0,0,0,0,0,") != std::string::npos);  // zero velocity, flags
-  CHECK(lines[3].find(",0,0,1,3,14,0.1,0,0") != std::string::npos);  // dropped, timings, not skipped, no delay
+  CHECK(lines[3].find(",0,0,1,3,14,0.1,0,0,") != std::string::npos);  // dropped, timings, not skipped, no delay
+  CHECK(lines[1].substr(lines[1].size() - 12) == ",0,0,0,0,0,0");      // the camera at the world's origin
+  CHECK(lines[3].substr(lines[3].size() - 67) ==
+        ",0.10000000000000001,-0.20000000000000001,0.29999999999999999,0,0,0");
 }
 
 TEST_CASE("plot_run draws error.png and velocity.png with gnuplot", "[servo][report]") {

@@ -80,7 +80,7 @@ TEST_CASE("sweep: the PBVS gain with a frame of latency succeeds below the delay
   const SweepSpec sweep = parse_sweep("control.gain=16,22");
   std::vector<SweepValue> values;
   for (std::size_t i = 0; i < sweep.values.size(); ++i)
-    values.push_back(run_sweep_value(file, ICGP_MODELS_DIR, sweep, i, {TrackerKind::kOracle}, 2, 0, {}));
+    values.push_back(run_sweep_value(file, ICGP_MODELS_DIR, sweep, i, {TrackerKind::kOracle}, 2, 0, std::nullopt, {}));
   REQUIRE(values.size() == 2);
   for (const SweepValue& v : values) {
     INFO("gain " << v.value << ": " << v.error);
@@ -92,7 +92,7 @@ TEST_CASE("sweep: the PBVS gain with a frame of latency succeeds below the delay
   CHECK(values[1].rows[0].summary.success_rate == 0.0);
   CHECK(values[1].rows[0].summary.final_t_median > 0.01);  // diverged: centimetres off
   // The same seeded starts at every value: a sweep is a comparison.
-  const SweepValue again = run_sweep_value(file, ICGP_MODELS_DIR, sweep, 0, {TrackerKind::kOracle}, 2, 0, {});
+  const SweepValue again = run_sweep_value(file, ICGP_MODELS_DIR, sweep, 0, {TrackerKind::kOracle}, 2, 0, std::nullopt, {});
   CHECK(again.rows[0].summary.final_t_median == values[0].rows[0].summary.final_t_median);
 }
 
@@ -130,7 +130,7 @@ TEST_CASE("sweep: a trial that throws is reported with its number and tracker, a
                           kDelayed.substr(0, kDelayed.find("stop:")) + "stop: {max_time: 1}\n");
   const SweepSpec sweep = parse_sweep("camera.latency_ms=0,50");
   for (std::size_t i = 0; i < sweep.values.size(); ++i) {
-    const SweepValue v = run_sweep_value(file, ICGP_MODELS_DIR, sweep, i, {TrackerKind::kOracle}, 2, 0, {});
+    const SweepValue v = run_sweep_value(file, ICGP_MODELS_DIR, sweep, i, {TrackerKind::kOracle}, 2, 0, std::nullopt, {});
     INFO(v.error);
     CHECK(v.rows.empty());
     CHECK_THAT(v.error, Contains("trial 1 (oracle): Viper 850: initial joint 3"));

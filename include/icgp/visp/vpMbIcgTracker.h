@@ -355,8 +355,20 @@ class vpMbIcgTracker : public vpMbTracker {
   /// Throws vpTrackingException::fatalError when the last frame's quality is below the
   /// configured threshold (TrackerParams::quality_threshold).
   void testTracking() override;
-  /// Mean score in [0, 1] of the cues on the last frame (1: perfect fit), 0 before tracking.
+  /// Median score in [0, 1] of the cues on the last frame (1: perfect fit), 0 before tracking.
   double getTrackingQuality() const;
+  /// icgp's extension: how one of the object's cues fit the last frame tracked (the
+  /// quality combines their scores): its name ("region", "depth", ...), the camera it reads,
+  /// and its score, noise sigma, valid fraction and whether it had data
+  /// (icgp::ModalityQuality).
+  struct CueQuality {
+    std::string cue;
+    std::string camera;
+    icgp::ModalityQuality quality;
+  };
+  /// The object's cues on the last frame tracked, in the order they were added; empty
+  /// before the first track() (a detection alone tracks no frame).
+  std::vector<CueQuality> getCueQualities() const;
   /// Pixels the cues may use (true), for every camera whose images have the mask's size.
   void setMask(const vpImage<bool>& mask) override;
   //@}

@@ -8,10 +8,22 @@
 #include <vector>
 #include <visp3/core/vpHomogeneousMatrix.h>
 
+#include "icgp/modality/modality.h"
 #include "icgp/servo/rgbd_simulator.h"
 #include "icgp/servo/scenario.h"
 
 namespace icgp::servo {
+
+/// How one cue of the tracker fit a frame, as the tracker reports it
+/// (vpMbIcgTracker::getCueQualities).
+struct CueFit {
+  std::string cue;     ///< "region", "depth", "texture", ...
+  std::string camera;  ///< the camera it reads: "Camera1" (colour), "Camera2" (depth)
+  /// Its score in [0, 1] (the tracker's quality is their median), the noise sigma it was
+  /// weighed with (pixels; depth: metres at 1 m), the share of its points with data, and
+  /// whether it had nothing to measure (abstained).
+  ModalityQuality quality;
+};
 
 /// What a tracker says after a frame.
 struct PoseEstimate {
@@ -25,6 +37,9 @@ struct PoseEstimate {
   /// cMo, which a symmetry of the object makes indistinguishable from it.
   std::vector<vpHomogeneousMatrix> equivalents;
   std::string why_lost;  ///< when lost, the tracker's reason, when it gives one
+  /// After track(): each cue's fit on the frame, from a tracker that reports it (icgp);
+  /// empty from the others, and after a detection.
+  std::vector<CueFit> cues;
 };
 
 /// A pose tracker fed with the simulated RGB-D captures through ViSP's API.

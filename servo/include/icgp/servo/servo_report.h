@@ -3,6 +3,8 @@
 // the plots.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -16,6 +18,9 @@ namespace icgp::servo {
 struct TrialsSummary {
   std::string scenario;
   std::string tracker;
+  /// The noise seed every run had, when they all had the same (a single run): the seed a
+  /// replay of its log builds the scene with. Unset for trials of several seeds.
+  std::optional<unsigned> seed;
   int trials = 0;
   int converged = 0;
   double success_rate = 0.0;  ///< converged / trials, and the final true error within the
@@ -48,13 +53,25 @@ void print_summaries(std::ostream& out, const std::vector<TrialsSummary>& summar
 /// The machine-readable summary: {"scenario", "tracker", "trials", "converged",
 /// "success_rate", "final_t_mm": {"median", "max"}, "final_r_deg": {"median", "max"},
 /// "median_track_ms", "steps_per_s", "safety_stops"} plus the other TrialsSummary fields
-/// ("interrupted": true when a stop request cut the work short);
+/// ("interrupted": true when a stop request cut the work short; "seed", null for runs of
+/// several seeds);
 /// with several summaries (--compare) an array of them.
 void write_summary_json(const std::vector<TrialsSummary>& summaries, const std::string& path);
 /// One summary as write_summary_json writes it.
 JsonObject summary_json(const TrialsSummary& summary);
 
-/// One line per step: time, true and estimated errors, tracker error, velocity, flags, timings.
+/// Writes `text` into the file `path`, creating its folder; throws std::runtime_error
+/// naming `what` ("step CSV") and the file when it cannot.
+void write_text_file(const std::string& path, const std::string& text, const char* what);
+
+/// The last columns of write_step_csv: the camera's true pose in the world at each step
+/// (ServoStep::wMc_true), translation in metres and θu rotation in radians, written with
+/// every digit so that replay_camera_path renders the frames at the poses of the run.
+inline constexpr std::array<const char*, 6> kCameraPoseColumns = {"camera_tx",  "camera_ty",  "camera_tz",
+                                                                  "camera_tux", "camera_tuy", "camera_tuz"};
+
+/// One line per step: time, true and estimated errors, tracker error, velocity, flags,
+/// timings, then the camera pose (kCameraPoseColumns).
 void write_step_csv(const ServoResult& result, const std::string& path);
 
 /// error.png (servo and tracker errors over time) and velocity.png (the applied velocity)

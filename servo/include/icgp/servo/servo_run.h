@@ -20,6 +20,10 @@ namespace icgp::servo {
 /// servoed pose: cMo, or in a grasp gMo (the object in the gripper frame).
 struct ServoStep {
   double time = 0.0;                  ///< seconds of simulated time at the capture
+  /// Where the colour camera truly was in the world at the capture (also for a frame the
+  /// sensor dropped or the tracker skipped): the camera path that replay_camera_path
+  /// renders again.
+  vpHomogeneousMatrix wMc_true;
   vpHomogeneousMatrix cMo_true;       ///< ground truth at the capture
   vpHomogeneousMatrix cMo_estimated;  ///< what the tracker said
   double servo_t = 0.0, servo_r = 0.0;  ///< true servoed pose to the desired pose

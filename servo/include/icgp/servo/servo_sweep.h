@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -50,12 +51,13 @@ SweepValue sweep_value(double value, const std::vector<std::vector<ServoResult>>
 
 /// The rows at one value of `sweep`: the scenario read with the field set to it, then its
 /// trials with every tracker of `trackers` on the same seeded starts at every value (the
-/// scenario's seed, or `seed` when not 0). `on_run` reports each run as run_trials does.
+/// scenario's seed, or `seed` when not 0), rendered with `renderer` when given (the
+/// scenario's camera.renderer otherwise). `on_run` reports each run as run_trials does.
 /// A value whose scenario cannot be read (a value out of the field's range) or whose trials
 /// throw gives a SweepValue with its error, and the next value runs.
 SweepValue run_sweep_value(const std::string& scenario_file, const std::string& models_dir, const SweepSpec& sweep,
                            std::size_t index, const std::vector<TrackerKind>& trackers, int trials, unsigned seed,
-                           const RunDone& on_run);
+                           std::optional<RendererKind> renderer, const RunDone& on_run);
 
 /// The table: value, tracker, how it started (detect or truth), success rate, final error
 /// median / p95 (mm, deg).
