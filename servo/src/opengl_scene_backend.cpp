@@ -46,7 +46,8 @@ class OpenGlSceneBackend final : public SceneBackend {
   }
 
  private:
-  /// The light's lamps follow the camera through the exposure as the world's do not.
+  /// The colour render of a camera at wMc: the camera's lamp moves with it through an
+  /// exposure, the scene's lamps stay where they are.
   cv::Mat render_color_at(const Intrinsics& k, const vpHomogeneousMatrix& wMc) {
     PhysicalLighting lighting;
     lighting.ambient = static_cast<float>(light_.ambient);
