@@ -234,16 +234,6 @@ std::vector<CueSummary> summarise_cues(const std::vector<ReplayFrame>& frames) {
   return cues;
 }
 
-std::string number(double value, const char* pattern = "%.9g") {
-  if (std::isnan(value)) return "NaN";
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
-
-/// A number for the printed table: "-" when undefined.
-std::string shown(double value, const char* pattern) { return std::isfinite(value) ? number(value, pattern) : "-"; }
-
 /// Pixels for the image cues; the depth cue's sigma is metres at 1 m (ModalityQuality).
 const char* sigma_unit(const std::string& cue) { return cue == "depth" ? "m at 1 m" : "px"; }
 
@@ -283,26 +273,26 @@ void print_replay(std::ostream& out, const ReplayResult& replay) {
   out << line;
   out << "tracker        " << replay.tracker << "\n";
   std::snprintf(line, sizeof line, "tracker error  mean %s mm, %s deg; max %s mm, %s deg (the run's own: mean %s mm, %s deg)\n",
-                shown(s.mean_track_t * kMm, "%.3f").c_str(), shown(s.mean_track_r * kDeg, "%.3f").c_str(),
-                shown(s.max_track_t * kMm, "%.3f").c_str(), shown(s.max_track_r * kDeg, "%.3f").c_str(),
-                shown(s.recorded_mean_track_t * kMm, "%.3f").c_str(),
-                shown(s.recorded_mean_track_r * kDeg, "%.3f").c_str());
+                fixed(s.mean_track_t * kMm, 3).c_str(), fixed(s.mean_track_r * kDeg, 3).c_str(),
+                fixed(s.max_track_t * kMm, 3).c_str(), fixed(s.max_track_r * kDeg, 3).c_str(),
+                fixed(s.recorded_mean_track_t * kMm, 3).c_str(),
+                fixed(s.recorded_mean_track_r * kDeg, 3).c_str());
   out << line;
   std::snprintf(line, sizeof line, "lost           %d of %d frames (dropped %d, skipped %d); median render %s ms\n",
-                s.lost, s.frames, s.dropped, s.skipped, shown(s.median_render_ms, "%.1f").c_str());
+                s.lost, s.frames, s.dropped, s.skipped, fixed(s.median_render_ms, 1).c_str());
   out << line;
   if (s.cues.empty()) {
     out << "cues           the tracker reports none\n";
     return;
   }
-  std::snprintf(line, sizeof line, "%-10s %-8s %7s %8s %11s %10s %12s %10s\n", "cue", "camera", "frames", "no data",
+  std::snprintf(line, sizeof line, "%-10s %-8s %7s %8s %11s %10s %15s %10s\n", "cue", "camera", "frames", "no data",
                 "score mean", "score min", "sigma mean", "valid");
   out << line;
   for (const CueSummary& c : s.cues) {
-    std::snprintf(line, sizeof line, "%-10s %-8s %7d %8d %11s %10s %12s %10s  (sigma in %s)\n", c.cue.c_str(),
-                  c.camera.c_str(), c.frames, c.abstained, shown(c.mean_score, "%.3f").c_str(),
-                  shown(c.min_score, "%.3f").c_str(), shown(c.mean_sigma, "%.4g").c_str(),
-                  shown(c.mean_valid_fraction, "%.3f").c_str(), sigma_unit(c.cue));
+    std::snprintf(line, sizeof line, "%-10s %-8s %7d %8d %11s %10s %15s %10s  (sigma in %s)\n", c.cue.c_str(),
+                  c.camera.c_str(), c.frames, c.abstained, fixed(c.mean_score, 3).c_str(),
+                  fixed(c.min_score, 3).c_str(), data_number(c.mean_sigma).c_str(),
+                  fixed(c.mean_valid_fraction, 3).c_str(), sigma_unit(c.cue));
     out << line;
   }
 }
@@ -317,10 +307,10 @@ void write_replay_csv(const ReplayResult& replay, const std::string& path) {
     text += "," + key + "_score," + key + "_sigma," + key + "_valid_fraction," + key + "_abstained";
   text += "\n";
   for (const ReplayFrame& f : replay.frames) {
-    text += number(f.time) + "," + replay.renderer + "," + number(f.track_t * kMm) + "," + number(f.track_r * kDeg) +
+    text += data_number(f.time) + "," + replay.renderer + "," + data_number(f.track_t * kMm) + "," + data_number(f.track_r * kDeg) +
             "," + (f.lost ? "1" : "0") + "," + (f.dropped ? "1" : "0") + "," + (f.skipped ? "1" : "0") + "," +
-            number(f.render_ms) + "," + number(f.track_ms) + "," + number(f.recorded_track_t * kMm) + "," +
-            number(f.recorded_track_r * kDeg);
+            data_number(f.render_ms) + "," + data_number(f.track_ms) + "," + data_number(f.recorded_track_t * kMm) + "," +
+            data_number(f.recorded_track_r * kDeg);
     for (const CueSummary& c : cues) {
       const auto fit = std::find_if(f.cues.begin(), f.cues.end(),
                                     [&](const CueFit& x) { return x.cue == c.cue && x.camera == c.camera; });
@@ -329,7 +319,7 @@ void write_replay_csv(const ReplayResult& replay, const std::string& path) {
         continue;
       }
       const ModalityQuality& q = fit->quality;
-      text += "," + number(q.score) + "," + number(q.sigma) + "," + number(q.valid_fraction) + "," +
+      text += "," + data_number(q.score) + "," + data_number(q.sigma) + "," + data_number(q.valid_fraction) + "," +
               (q.abstained ? "1" : "0");
     }
     text += "\n";

@@ -46,12 +46,6 @@ std::string format(const char* pattern, ...) {
   return text;
 }
 
-/// A number for the text tables: "-" when undefined.
-std::string fixed(double value, int decimals) {
-  if (!std::isfinite(value)) return "-";
-  return format("%.*f", decimals, value);
-}
-
 /// Creates the parent folder of `path` (when it has one); throws std::runtime_error naming
 /// the folder and the file when that is impossible.
 void create_parent_folder(const std::string& path) {
@@ -77,13 +71,6 @@ unsigned velocity_columns(const ServoResult& result) {
 
 double velocity_component(const ServoStep& step, unsigned i) {
   return i < step.velocity.size() ? step.velocity[i] : 0.0;
-}
-
-/// A CSV / gnuplot number: %.9g, NaN for undefined.
-std::string data_number(double value) {
-  if (std::isnan(value)) return "NaN";
-  if (std::isinf(value)) return value > 0 ? "Inf" : "-Inf";
-  return format("%.9g", value);
 }
 
 /// A number as it is, digit for digit (%.17g, which reads back to the same double): the
@@ -214,6 +201,17 @@ std::string plot_script(const ServoResult& result) {
 }
 
 }  // namespace
+
+std::string fixed(double value, int decimals) {
+  if (!std::isfinite(value)) return "-";
+  return format("%.*f", decimals, value);
+}
+
+std::string data_number(double value) {
+  if (std::isnan(value)) return "NaN";
+  if (std::isinf(value)) return value > 0 ? "Inf" : "-Inf";
+  return format("%.9g", value);
+}
 
 JsonObject summary_json(const TrialsSummary& s) {
   const auto pair = [](const char* a, double va, const char* b, double vb) { return JsonObject().add(a, va).add(b, vb); };

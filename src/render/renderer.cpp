@@ -102,6 +102,9 @@ layout(location = 0) out uint out_id;
 void main() { out_id = body_id; }
 )";
 
+/// Whether each lamp has a shadow map in this render (a uniform array of the shader).
+using LampShadows = std::array<GLint, kMaxLamps>;
+
 /// Texels per side of a lamp's shadow map: 0.2 mm on the 0.2 m box and its props.
 constexpr int kShadowMapSize = 1024;
 
@@ -262,7 +265,6 @@ struct Renderer::Impl {
   std::optional<PhysicalLighting> physical;
   GLuint physical_program = 0;
   std::unique_ptr<ShadowMaps> shadow_maps;
-  GLint lamp_has_shadow[kMaxLamps] = {};  ///< of the last shadow pass
   struct {
     GLint camera_T_body, projection, body_id, has_texture, diffuse_texture, diffuse_rgb, light_direction, ambient,
         diffuse;
@@ -351,7 +353,7 @@ struct Renderer::Impl {
     if (!multisampled) multisampled = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_RGBA8}, color_samples);
     auto& resolved = resolve_framebuffers[{W, H}];
     if (!resolved) resolved = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_RGBA8});
-    if (physical) draw_shadow_maps(camera_T_world);
+    const LampShadows shadows = physical ? draw_shadow_maps(camera_T_world) : LampShadows{};
 
     glBindFramebuffer(GL_FRAMEBUFFER, multisampled->fbo);
     glViewport(0, 0, W, H);
@@ -362,7 +364,7 @@ struct Renderer::Impl {
     glClearBufferfv(GL_COLOR, kColorAttachment, background.data());
     clear_depth_for_drawing();
     if (physical) {
-      draw_physical(k, camera_T_world, near, far);
+      draw_physical(k, camera_T_world, near, far, shadows);
     } else {
       draw(k, camera_T_world, near, far);
     }
@@ -470,24 +472,27 @@ struct Renderer::Impl {
     glBindVertexArray(0);
   }
 
-  /// Each lit lamp's depth map of the shadow casters, for draw_physical.
-  void draw_shadow_maps(const Pose& camera_T_world) {
+  /// Each lit lamp's depth map of the shadow casters, for draw_physical; which lamps have one.
+  LampShadows draw_shadow_maps(const Pose& camera_T_world) {
+    LampShadows has_shadow{};
     std::vector<ShadowCaster> casters;
     for (const auto& b : bodies)
       if (b.visible && b.casts_shadows) casters.push_back({camera_T_world * b.world_T_body * b.centre, b.radius});
     const std::vector<Lamp>& lamps = physical->lamps;
     for (std::size_t i = 0; i < lamps.size(); ++i) {
       const int lamp = static_cast<int>(i);
-      lamp_has_shadow[i] =
+      has_shadow[i] =
           lamps[i].strength > 0.f && shadow_maps->fit(lamp, lamps[i].direction_in_camera.cast<double>(), casters);
-      if (!lamp_has_shadow[i]) continue;
+      if (!has_shadow[i]) continue;
       shadow_maps->begin_drawing(lamp);
       if (reversed_z) glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
       draw_silhouette(shadow_maps->clip_T_camera(lamp, reversed_z).cast<double>() * camera_T_world.matrix(), true);
     }
+    return has_shadow;
   }
 
-  void draw_physical(const Intrinsics& k, const Pose& camera_T_world, double near, double far) {
+  void draw_physical(const Intrinsics& k, const Pose& camera_T_world, double near, double far,
+                     const LampShadows& has_shadow) {
     glUseProgram(physical_program);
     const auto& u = physical_uniforms;
     const Eigen::Matrix4f P = projection(k, near, far);
@@ -507,7 +512,7 @@ struct Renderer::Impl {
       if (i >= count) continue;
       directions.col(i) = lamps[i].direction_in_camera.normalized();
       strengths[i] = lamps[i].strength;
-      if (!lamp_has_shadow[i]) continue;
+      if (!has_shadow[i]) continue;
       const Eigen::Matrix4f m = shadow_maps->map_T_camera(i);
       map_T_camera.col(i) = Eigen::Map<const Eigen::Matrix<float, 16, 1>>(m.data());
       const float texel_metres = shadow_maps->texel_metres(i);
@@ -520,7 +525,7 @@ struct Renderer::Impl {
     }
     glUniform3fv(u.lamp_direction, count, directions.data());
     glUniform1fv(u.lamp_strength, count, strengths);
-    glUniform1iv(u.lamp_has_shadow, count, lamp_has_shadow);
+    glUniform1iv(u.lamp_has_shadow, count, has_shadow.data());
     glUniformMatrix4fv(u.lamp_map_T_camera, count, GL_FALSE, map_T_camera.data());
     glUniform1fv(u.lamp_texel, count, texels);
     glUniform1fv(u.lamp_spread, count, spreads);

@@ -60,6 +60,11 @@ void write_summary_json(const std::vector<TrialsSummary>& summaries, const std::
 /// One summary as write_summary_json writes it.
 JsonObject summary_json(const TrialsSummary& summary);
 
+/// A number for the text tables: `decimals` after the point, "-" when undefined.
+std::string fixed(double value, int decimals);
+/// A CSV / gnuplot number: %.9g, NaN (Inf, -Inf) for undefined.
+std::string data_number(double value);
+
 /// Writes `text` into the file `path`, creating its folder; throws std::runtime_error
 /// naming `what` ("step CSV") and the file when it cannot.
 void write_text_file(const std::string& path, const std::string& text, const char* what);
