@@ -13,6 +13,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "framebuffer.h"
 #include "physical_shading.h"
@@ -102,8 +103,8 @@ layout(location = 0) out uint out_id;
 void main() { out_id = body_id; }
 )";
 
-/// Whether each lamp has a shadow map in this render (a uniform array of the shader).
-using LampShadows = std::array<GLint, kMaxLamps>;
+/// Which lamps have a shadow map in this render: bit i for lamp i.
+using LampShadows = unsigned;
 
 /// Texels per side of a lamp's shadow map: 0.2 mm on the 0.2 m box and its props.
 constexpr int kShadowMapSize = 1024;
@@ -143,6 +144,10 @@ GLuint link_program(const std::vector<GLuint>& shaders) {
 
 struct GpuPart {
   GLuint vao = 0, vertex_buffer = 0, texcoord_buffer = 0, index_buffer = 0, texture = 0;
+  /// The texture's copy as sRGB, which the sampler decodes to linear light for physical
+  /// renders; made with the first one. The texture itself stays raw for the Lambertian
+  /// shader (the tracker's renders), mipmaps included.
+  GLuint srgb_texture = 0;
   GLsizei index_count = 0;
   Eigen::Vector3f diffuse_rgb;
   float roughness = 0.5f, metallic = 0.f, specular = 0.5f;
@@ -236,6 +241,28 @@ void release_part(GpuPart& part) {
   const GLuint buffers[] = {part.vertex_buffer, part.texcoord_buffer, part.index_buffer};
   glDeleteBuffers(3, buffers);
   if (part.texture) glDeleteTextures(1, &part.texture);
+  if (part.srgb_texture) glDeleteTextures(1, &part.srgb_texture);
+}
+
+/// The texture's base level copied into an sRGB texture (same bytes, read as sRGB-encoded),
+/// with mipmaps averaged in linear light as a camera's pixels average it.
+GLuint srgb_copy(GLuint texture) {
+  GLint width = 0, height = 0;
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+  GLuint copy = 0;
+  glGenTextures(1, &copy);
+  glBindTexture(GL_TEXTURE_2D, copy);
+  const int levels = 1 + static_cast<int>(std::floor(std::log2(std::max(width, height))));
+  glTexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8, width, height);
+  glCopyImageSubData(texture, GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return copy;
 }
 
 void validate_mesh(const Mesh& mesh) {
@@ -255,15 +282,16 @@ struct Renderer::Impl {
   bool reversed_z = false;  ///< glClipControl available: float depth with uniform precision
   std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> framebuffers;
   std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> silhouette_framebuffers;
-  /// Antialiased colour: drawn into a multisampled target, resolved into a plain one.
-  std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> multisample_framebuffers, resolve_framebuffers;
+  /// Antialiased or physical colour: drawn into a multisampled target (by width, height and
+  /// samples, which a caller may switch from frame to frame), resolved into a plain one.
+  std::map<std::tuple<int, int, int>, std::unique_ptr<Framebuffer>> multisample_framebuffers;
+  std::map<std::pair<int, int>, std::unique_ptr<Framebuffer>> resolve_framebuffers;
   int color_samples = 0;
   std::vector<GpuBody> bodies;
   Lighting lighting;
-  /// Colour renders are physically based while this is set; the program and the shadow maps
-  /// are made with the first such lighting (a tracker's renderer never needs them).
+  /// Colour renders are physically based while this is set; the shadow maps are made with
+  /// the first such lighting (a tracker's renderer never needs them).
   std::optional<PhysicalLighting> physical;
-  GLuint physical_program = 0;
   std::unique_ptr<ShadowMaps> shadow_maps;
   struct {
     GLint camera_T_body, projection, body_id, has_texture, diffuse_texture, diffuse_rgb, light_direction, ambient,
@@ -272,11 +300,15 @@ struct Renderer::Impl {
   struct {
     GLint projection_T_body, body_id;
   } silhouette_uniforms{};
-  struct {
+  /// The physical shader compiled for each lamp count and set of shadowed lamps, made when
+  /// first used.
+  struct PhysicalProgram {
+    GLuint id = 0;
     GLint camera_T_body, projection, has_texture, diffuse_texture, diffuse_rgb, roughness, metallic, specular, ambient,
-        lamp_count, lamp_direction, lamp_strength, lamp_has_shadow, lamp_map_T_camera, lamp_texel, lamp_spread,
-        lamp_normal_offset, lamp_shadow;
-  } physical_uniforms{};
+        lamp_direction, lamp_strength, lamp_map_T_camera, lamp_texel, lamp_spread, lamp_normal_offset, lamp_shadow,
+        lamp_shadow_compare;
+  };
+  std::map<std::pair<int, LampShadows>, PhysicalProgram> physical_programs;
 
   Impl() {
     program = link_program({compile_shader(GL_VERTEX_SHADER, kVertexShader),
@@ -308,21 +340,25 @@ struct Renderer::Impl {
     shadow_maps.reset();
     glDeleteProgram(program);
     glDeleteProgram(silhouette_program);
-    if (physical_program) glDeleteProgram(physical_program);
+    for (const auto& [key, p] : physical_programs) glDeleteProgram(p.id);
   }
 
-  void make_physical_program() {
-    if (physical_program) return;
-    physical_program = link_program({compile_shader(GL_VERTEX_SHADER, kVertexShader),
-                                     compile_shader(GL_GEOMETRY_SHADER, kGeometryShader),
-                                     compile_shader(GL_FRAGMENT_SHADER, physical_fragment_shader())});
-    const auto at = [&](const char* name) { return glGetUniformLocation(physical_program, name); };
-    physical_uniforms = {at("camera_T_body"),     at("projection"),         at("has_texture"),     at("diffuse_texture"),
-                         at("diffuse_rgb"),       at("roughness"),          at("metallic"),        at("specular"),
-                         at("ambient"),           at("lamp_count"),         at("lamp_direction"),  at("lamp_strength"),
-                         at("lamp_has_shadow"),   at("lamp_map_T_camera"),  at("lamp_texel"),      at("lamp_spread"),
-                         at("lamp_normal_offset"), at("lamp_shadow")};
-    shadow_maps = std::make_unique<ShadowMaps>(kShadowMapSize);
+  const PhysicalProgram& physical_program(int lamp_count, LampShadows shadows) {
+    PhysicalProgram& p = physical_programs[{lamp_count, shadows}];
+    if (p.id) return p;
+    const std::string fragment_shader = physical_fragment_shader(lamp_count, shadows);
+    p.id = link_program({compile_shader(GL_VERTEX_SHADER, kVertexShader),
+                         compile_shader(GL_GEOMETRY_SHADER, kGeometryShader),
+                         compile_shader(GL_FRAGMENT_SHADER, fragment_shader.c_str())});
+    const auto at = [&](const char* name) { return glGetUniformLocation(p.id, name); };
+    p.camera_T_body = at("camera_T_body"), p.projection = at("projection"), p.has_texture = at("has_texture");
+    p.diffuse_texture = at("diffuse_texture"), p.diffuse_rgb = at("diffuse_rgb"), p.roughness = at("roughness");
+    p.metallic = at("metallic"), p.specular = at("specular"), p.ambient = at("ambient");
+    p.lamp_direction = at("lamp_direction"), p.lamp_strength = at("lamp_strength");
+    p.lamp_map_T_camera = at("lamp_map_T_camera");
+    p.lamp_texel = at("lamp_texel"), p.lamp_spread = at("lamp_spread"), p.lamp_normal_offset = at("lamp_normal_offset");
+    p.lamp_shadow = at("lamp_shadow"), p.lamp_shadow_compare = at("lamp_shadow_compare");
+    return p;
   }
 
   Eigen::Vector3f background_rgb() const { return physical ? physical->background_rgb : lighting.background_rgb; }
@@ -349,11 +385,11 @@ struct Renderer::Impl {
   void render_multisampled_color(const Intrinsics& k, const Pose& camera_T_world, double near, double far,
                                  const Eigen::Vector4f& background, cv::Mat& color) {
     const int W = k.width, H = k.height;
-    auto& multisampled = multisample_framebuffers[{W, H}];
+    auto& multisampled = multisample_framebuffers[{W, H, color_samples}];
     if (!multisampled) multisampled = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_RGBA8}, color_samples);
     auto& resolved = resolve_framebuffers[{W, H}];
     if (!resolved) resolved = std::make_unique<Framebuffer>(W, H, std::vector<GLenum>{GL_RGBA8});
-    const LampShadows shadows = physical ? draw_shadow_maps(camera_T_world) : LampShadows{};
+    const LampShadows shadows = physical ? draw_shadow_maps(camera_T_world) : 0u;
 
     glBindFramebuffer(GL_FRAMEBUFFER, multisampled->fbo);
     glViewport(0, 0, W, H);
@@ -474,76 +510,82 @@ struct Renderer::Impl {
 
   /// Each lit lamp's depth map of the shadow casters, for draw_physical; which lamps have one.
   LampShadows draw_shadow_maps(const Pose& camera_T_world) {
-    LampShadows has_shadow{};
+    LampShadows has_shadow = 0;
     std::vector<ShadowCaster> casters;
-    for (const auto& b : bodies)
-      if (b.visible && b.casts_shadows) casters.push_back({camera_T_world * b.world_T_body * b.centre, b.radius});
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const GpuBody& b = bodies[i];
+      if (b.visible && b.casts_shadows)
+        casters.push_back({static_cast<int>(i), b.world_T_body, b.world_T_body * b.centre, b.radius});
+    }
+    const Eigen::Matrix3d world_R_camera = camera_T_world.rotation().transpose();
     const std::vector<Lamp>& lamps = physical->lamps;
     for (std::size_t i = 0; i < lamps.size(); ++i) {
       const int lamp = static_cast<int>(i);
-      has_shadow[i] =
-          lamps[i].strength > 0.f && shadow_maps->fit(lamp, lamps[i].direction_in_camera.cast<double>(), casters);
-      if (!has_shadow[i]) continue;
+      const Eigen::Vector3d direction = world_R_camera * lamps[i].direction_in_camera.cast<double>();
+      if (!(lamps[i].strength > 0.f) || casters.empty()) continue;
+      has_shadow |= 1u << i;
+      if (shadow_maps->is_current(lamp, direction, casters)) continue;
+      shadow_maps->fit(lamp, direction, casters);
       shadow_maps->begin_drawing(lamp);
       if (reversed_z) glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-      draw_silhouette(shadow_maps->clip_T_camera(lamp, reversed_z).cast<double>() * camera_T_world.matrix(), true);
+      draw_silhouette(shadow_maps->clip_T_world(lamp, reversed_z).cast<double>(), true);
     }
     return has_shadow;
   }
 
   void draw_physical(const Intrinsics& k, const Pose& camera_T_world, double near, double far,
-                     const LampShadows& has_shadow) {
-    glUseProgram(physical_program);
-    const auto& u = physical_uniforms;
+                     LampShadows has_shadow) {
+    const std::vector<Lamp>& lamps = physical->lamps;
+    const auto count = static_cast<GLsizei>(lamps.size());
+    const PhysicalProgram& u = physical_program(count, has_shadow);
+    glUseProgram(u.id);
     const Eigen::Matrix4f P = projection(k, near, far);
     glUniformMatrix4fv(u.projection, 1, GL_FALSE, P.data());
     glUniform1f(u.ambient, physical->ambient);
-    const std::vector<Lamp>& lamps = physical->lamps;
-    const auto count = static_cast<GLsizei>(lamps.size());
-    glUniform1i(u.lamp_count, count);
     Eigen::Matrix<float, 3, kMaxLamps> directions = Eigen::Matrix<float, 3, kMaxLamps>::Zero();
     Eigen::Matrix<float, 16, kMaxLamps> map_T_camera = Eigen::Matrix<float, 16, kMaxLamps>::Zero();
     float strengths[kMaxLamps] = {}, texels[kMaxLamps] = {}, spreads[kMaxLamps] = {}, offsets[kMaxLamps] = {};
-    GLint units[kMaxLamps];
+    GLint depth_units[kMaxLamps], compare_units[kMaxLamps];
     for (int i = 0; i < kMaxLamps; ++i) {
-      units[i] = 1 + i;  // unit 0: the parts' textures
-      glActiveTexture(GL_TEXTURE1 + i);
-      glBindTexture(GL_TEXTURE_2D, shadow_maps->texture(i));
+      depth_units[i] = 1 + i;  // unit 0: the parts' textures
+      compare_units[i] = 1 + kMaxLamps + i;
       if (i >= count) continue;
       directions.col(i) = lamps[i].direction_in_camera.normalized();
       strengths[i] = lamps[i].strength;
-      if (!has_shadow[i]) continue;
-      const Eigen::Matrix4f m = shadow_maps->map_T_camera(i);
+      if (!(has_shadow & (1u << i))) continue;
+      shadow_maps->bind_for_lookup(i, depth_units[i], compare_units[i]);
+      const Eigen::Matrix4f m = (shadow_maps->map_T_world(i) * camera_T_world.inverse().matrix()).cast<float>();
       map_T_camera.col(i) = Eigen::Map<const Eigen::Matrix<float, 16, 1>>(m.data());
-      const float texel_metres = shadow_maps->texel_metres(i);
+      const auto texel_metres = static_cast<float>(shadow_maps->texel_metres(i));
       texels[i] = 1.f / static_cast<float>(shadow_maps->size());
       // A penumbra's radius is the gap from blocker to receiver times tan(half the lamp's
       // angle); the shader measures the gap in map depth, the radius in map widths.
       const auto half_angle = static_cast<float>(deg_to_rad(0.5 * lamps[i].angle_deg));
-      spreads[i] = std::tan(half_angle) * shadow_maps->depth_range_metres(i) * texels[i] / texel_metres;
+      spreads[i] = std::tan(half_angle) * static_cast<float>(shadow_maps->depth_range_metres(i)) * texels[i] / texel_metres;
       offsets[i] = 1.5f * texel_metres;  // off the surface by more than a texel's depth error
     }
     glUniform3fv(u.lamp_direction, count, directions.data());
     glUniform1fv(u.lamp_strength, count, strengths);
-    glUniform1iv(u.lamp_has_shadow, count, has_shadow.data());
     glUniformMatrix4fv(u.lamp_map_T_camera, count, GL_FALSE, map_T_camera.data());
     glUniform1fv(u.lamp_texel, count, texels);
     glUniform1fv(u.lamp_spread, count, spreads);
     glUniform1fv(u.lamp_normal_offset, count, offsets);
-    glUniform1iv(u.lamp_shadow, kMaxLamps, units);
+    glUniform1iv(u.lamp_shadow, kMaxLamps, depth_units);
+    glUniform1iv(u.lamp_shadow_compare, kMaxLamps, compare_units);
     glUniform1i(u.diffuse_texture, 0);
     glActiveTexture(GL_TEXTURE0);
-    for (const auto& b : bodies) {
+    for (auto& b : bodies) {
       if (!b.visible) continue;
       const Eigen::Matrix4f camera_T_body = (camera_T_world * b.world_T_body).matrix().cast<float>();
       glUniformMatrix4fv(u.camera_T_body, 1, GL_FALSE, camera_T_body.data());
-      for (const auto& part : b.parts) {
+      for (auto& part : b.parts) {
         glUniform1i(u.has_texture, part.texture != 0);
         glUniform3fv(u.diffuse_rgb, 1, part.diffuse_rgb.data());
         glUniform1f(u.roughness, part.roughness);
         glUniform1f(u.metallic, part.metallic);
         glUniform1f(u.specular, part.specular);
-        glBindTexture(GL_TEXTURE_2D, part.texture);
+        if (part.texture && !part.srgb_texture) part.srgb_texture = srgb_copy(part.texture);
+        glBindTexture(GL_TEXTURE_2D, part.srgb_texture);
         glBindVertexArray(part.vao);
         glDrawElements(GL_TRIANGLES, part.index_count, GL_UNSIGNED_INT, nullptr);
       }
@@ -655,7 +697,7 @@ void Renderer::set_physical_lighting(const PhysicalLighting& lighting) {
       throw std::invalid_argument(
           "renderer: a lamp needs a non-zero direction, a strength >= 0 and an angle in [0, 90) degrees");
   impl_->context.make_current();
-  impl_->make_physical_program();
+  if (!impl_->shadow_maps) impl_->shadow_maps = std::make_unique<ShadowMaps>(kShadowMapSize);
   impl_->physical = lighting;
 }
 
@@ -673,7 +715,6 @@ void Renderer::set_color_antialiasing(int samples) {
                                 std::to_string(max_samples) + " on this OpenGL implementation, got " +
                                 std::to_string(samples));
   impl_->color_samples = samples;
-  impl_->multisample_framebuffers.clear();  // they hold the previous sample count
 }
 
 int Renderer::color_antialiasing() const { return impl_->color_samples; }
@@ -806,6 +847,24 @@ void Renderer::render_silhouette(const Intrinsics& intrinsics, const Pose& camer
     cv::compare(inverse_depth, 0.f, ids, cv::CMP_GT);  // 255 where drawn
     if (single_id != 255) ids &= single_id;             // 255 & id == id
   }
+}
+
+double Renderer::image_motion(const Intrinsics& k, const Pose& camera_T_world, const Pose& other_camera_T_world) const {
+  double motion = 0.0;
+  for (const auto& b : impl_->bodies) {
+    if (!b.visible) continue;
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d corner((c & 1) ? b.box_max.x() : b.box_min.x(), (c & 2) ? b.box_max.y() : b.box_min.y(),
+                                   (c & 4) ? b.box_max.z() : b.box_min.z());
+      const Eigen::Vector3d world = b.world_T_body * corner;
+      const Eigen::Vector3d X = camera_T_world * world, other = other_camera_T_world * world;
+      if (!(X.z() > 0.0) || !(other.z() > 0.0)) continue;
+      const Eigen::Vector2d x = k.project<double>(X);
+      if (x.x() < -0.5 || x.y() < -0.5 || x.x() > k.width - 0.5 || x.y() > k.height - 0.5) continue;
+      motion = std::max(motion, (k.project<double>(other) - x).norm());
+    }
+  }
+  return motion;
 }
 
 std::string Renderer::description() const {

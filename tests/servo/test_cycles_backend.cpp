@@ -2,7 +2,8 @@
 // The Cycles backend against the OpenGL renderer's exact geometry: the same camera model
 // (off-centre principal point, non-square pixels), depth, normals and silhouettes; colour
 // that is the lit object where the geometry is, reproducible by seed; motion blur along the
-// camera's path. Needs Blender: without it every test exits with CTest's skip code.
+// camera's path, as the OpenGL backend blurs it. Needs Blender: without it every Cycles test
+// exits with CTest's skip code.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -109,9 +110,10 @@ TEST_CASE("cycles backend: colour is the lit object where the geometry is, the s
   CHECK(cv::norm(cv::mean(first, ~outside)) < 1.0);
 }
 
-TEST_CASE("cycles backend: motion blur spreads the object along the camera's path") {
-  skip_without_blender();
-  std::unique_ptr<SceneBackend> scene = backend(RendererKind::kCycles);
+/// Both backends blur a frame over the exposure's part of the camera's path, centred on its
+/// middle; OpenGL by a few renders along it (one per pixel of motion).
+void check_motion_blur(RendererKind kind) {
+  std::unique_ptr<SceneBackend> scene = backend(kind);
   const vpHomogeneousMatrix end(0.0, 0.0, 0.0, 0, 0, 0), start(-0.03, 0.0, 0.0, 0, 0, 0);
   const cv::Point2d sharp_end = object_centroid(scene->render_color(kCamera, end, end, 0.0));
   const cv::Point2d sharp_start = object_centroid(scene->render_color(kCamera, start, start, 0.0));
@@ -122,6 +124,15 @@ TEST_CASE("cycles backend: motion blur spreads the object along the camera's pat
   CHECK(blurred.x == Approx((sharp_start.x + sharp_end.x) / 2).margin(1.5));
   CHECK(half.x == Approx((3 * sharp_end.x + sharp_start.x) / 4).margin(1.5));
   CHECK(blurred.y == Approx(sharp_end.y).margin(1.0));
+}
+
+TEST_CASE("opengl backend: motion blur spreads the object along the camera's path") {
+  check_motion_blur(RendererKind::kOpenGl);
+}
+
+TEST_CASE("cycles backend: motion blur spreads the object along the camera's path") {
+  skip_without_blender();
+  check_motion_blur(RendererKind::kCycles);
 }
 
 TEST_CASE("cycles backend: each colour render takes the light last set") {

@@ -135,6 +135,28 @@ TEST_CASE("physical shading: a box's shadow falls where the lamp's rays past it 
     const cv::Mat unshadowed = renderer.render(kCamera, Pose(), kRenderColor).color;
     CHECK(pixel_at(unshadowed, 0.075, 0.0, 0.6)[1] == Approx(lit).margin(1.5));
   }
+  // The lamp's map is kept from render to render while nothing it shows moves: what moves
+  // must move the shadow.
+  SECTION("the shadow follows the box when the box moves") {
+    renderer.set_body_pose(box, Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.0, 0.05, 0.45)));
+    const cv::Mat moved = renderer.render(kCamera, Pose(), kRenderColor).color;
+    CHECK(pixel_at(moved, 0.075, 0.0, 0.6)[1] == Approx(lit).margin(1.5));
+    CHECK(pixel_at(moved, 0.075, 0.05, 0.6)[1] == Approx(shadowed).margin(1.5));
+  }
+  SECTION("the shadow follows the lamp when the lamp turns") {
+    renderer.set_physical_lighting(one_lamp({-0.5f, 0.f, 1.f}, 0.4f, 0.1f));  // shadow at x in [-0.1125, -0.0375]
+    const cv::Mat turned = renderer.render(kCamera, Pose(), kRenderColor).color;
+    CHECK(pixel_at(turned, 0.075, 0.0, 0.6)[1] == Approx(lit).margin(1.5));
+    CHECK(pixel_at(turned, -0.075, 0.0, 0.6)[1] == Approx(shadowed).margin(1.5));
+  }
+  SECTION("the shadow stays on the wall when the camera moves with the lamp fixed in the scene") {
+    // The camera 5 cm to the left (the scene shifts right in its frame), the lamp's
+    // direction given in the moved camera's frame, as the scene's lamps are: the same.
+    const Pose moved_camera_T_world(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.05, 0.0, 0.0));
+    const cv::Mat seen = renderer.render(kCamera, moved_camera_T_world, kRenderColor).color;
+    CHECK(pixel_at(seen, 0.125, 0.0, 0.6)[1] == Approx(shadowed).margin(1.5));  // world x 0.075
+    CHECK(pixel_at(seen, 0.175, 0.0, 0.6)[1] == Approx(lit).margin(1.5));       // world x 0.125
+  }
   SECTION("a lamp of some size softens the shadow's edge, not its core") {
     PhysicalLighting wide = one_lamp(direction, 0.4f, 0.1f);
     wide.lamps[0].angle_deg = 10.f;  // penumbra ±0.15 x tan 5° ≈ ±13 mm at the far edge

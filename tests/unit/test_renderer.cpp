@@ -282,6 +282,25 @@ TEST_CASE("renderer: one renderer per thread, identical results") {
   CHECK(cv::countNonZero(a) > 10000);
 }
 
+TEST_CASE("renderer: image motion is the largest shift of a body's corner in view") {
+  Renderer renderer;
+  const Intrinsics k = Intrinsics::centred(320, 240, 300.0);
+  const auto box = renderer.add_body(test::make_box(0.1f, 0.1f, 0.1f), 1);
+  renderer.set_body_pose(box, Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 0.5)));
+  const Pose still;
+  CHECK(renderer.image_motion(k, still, still) == 0.0);
+  // A sideways step of 1 cm shifts a point at depth Z by f 0.01 / Z: most for the near corners.
+  const Pose stepped(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.01, 0, 0));
+  CHECK(renderer.image_motion(k, still, stepped) == Approx(300.0 * 0.01 / 0.45).epsilon(1e-6));
+  // A turn of 0.01 rad about the optical axis moves a corner at image radius r by r 0.01.
+  const Pose turned(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()).toRotationMatrix(), Eigen::Vector3d::Zero());
+  const double corner_radius = 300.0 * std::hypot(0.05, 0.05) / 0.45;
+  CHECK(renderer.image_motion(k, still, turned) == Approx(2.0 * corner_radius * std::sin(0.005)).epsilon(1e-6));
+  // Nothing of the body in view: no corner to follow.
+  renderer.set_body_pose(box, Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5)));
+  CHECK(renderer.image_motion(k, still, stepped) == 0.0);
+}
+
 TEST_CASE("renderer: bad input gives clear errors") {
   Renderer renderer;
   CHECK_THROWS_WITH(renderer.add_body(test::make_box(0.1f, 0.1f, 0.1f), 0), Catch::Contains("reserved"));

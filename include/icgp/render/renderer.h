@@ -137,6 +137,12 @@ class Renderer {
   /// bodies cleared, drawn and read back.
   void render_silhouette(const Intrinsics& intrinsics, const Pose& camera_T_world, SilhouetteImages& out);
 
+  /// How far, in pixels, the scene moves in the image from a camera at camera_T_world to one
+  /// at other_camera_T_world: the largest shift of a visible body's bounding-box corner that
+  /// the first camera sees in its image (0 when it sees none, as for a backdrop reaching
+  /// beyond the image). What motion blur needs to sample.
+  double image_motion(const Intrinsics& intrinsics, const Pose& camera_T_world, const Pose& other_camera_T_world) const;
+
   std::string description() const;
 
  private:
