@@ -20,10 +20,11 @@ namespace icgp {
 constexpr int kMaxLamps = 4;
 
 /// The Principled BSDF's dielectric-and-metal model under sun lamps and a uniform ambient
-/// environment, in linear light. It samples textures whose sampler decodes sRGB, and writes
-/// linear colour for an sRGB framebuffer to encode as a camera's 8-bit output is. Same inputs as the Lambertian shader (camera-frame position, texture coordinates, face
-/// normal) and the same colour output location. The shader is written for `lamp_count`
-/// (0..kMaxLamps) lamps, those whose bit is set in `shadow_mask` with shadows.
+/// environment, in linear light, written sRGB-encoded as a camera's 8-bit output is; it
+/// samples textures whose sampler decodes sRGB. Same inputs as the Lambertian shader
+/// (camera-frame position, texture coordinates, face normal) and the same colour output
+/// location. The shader is written for `lamp_count` (0..kMaxLamps) lamps, those whose bit is
+/// set in `shadow_mask` with shadows.
 std::string physical_fragment_shader(int lamp_count, unsigned shadow_mask);
 
 /// A body that casts shadows, in the world frame: its bounding sphere is what a lamp's map
