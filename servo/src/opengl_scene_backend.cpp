@@ -65,7 +65,8 @@ class OpenGlSceneBackend final : public SceneBackend {
       return render_color_at(k, at_part(0));
     }
     renderer_.set_color_antialiasing(0);
-    return average_color_renders(renders, [&](int i) { return render_color_at(jitter_for(k, i, renders), at_part(i)); });
+    return average_color_renders(renders,
+                                 [&](int i) { return render_color_at(jitter_for(k, i, renders), at_part(i)); });
   }
 
   RenderOutput render_geometry(const Intrinsics& k, const Pose& camera_T_world, bool with_normals) override {

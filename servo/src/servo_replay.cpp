@@ -289,9 +289,10 @@ void print_replay(std::ostream& out, const ReplayResult& replay) {
                 "score mean", "score min", "sigma mean", "valid");
   out << line;
   for (const CueSummary& c : s.cues) {
+    const std::string sigma = std::isfinite(c.mean_sigma) ? data_number(c.mean_sigma) : "-";
     std::snprintf(line, sizeof line, "%-10s %-8s %7d %8d %11s %10s %15s %10s  (sigma in %s)\n", c.cue.c_str(),
                   c.camera.c_str(), c.frames, c.abstained, fixed(c.mean_score, 3).c_str(),
-                  fixed(c.min_score, 3).c_str(), (std::isfinite(c.mean_sigma) ? data_number(c.mean_sigma) : "-").c_str(),
+                  fixed(c.min_score, 3).c_str(), sigma.c_str(),
                   fixed(c.mean_valid_fraction, 3).c_str(), sigma_unit(c.cue));
     out << line;
   }

@@ -101,7 +101,8 @@ vec3 lamp_light(int i, vec3 n, vec3 v, float nv, float a2, vec3 f0, vec3 diffuse
   float vh = max(dot(v, h), 0.0);
   float m = 1.0 - vh, m2 = m * m;
   vec3 fresnel = f0 + (1.0 - f0) * (m2 * m2 * m);
-  vec3 specular_brdf = ggx(max(dot(n, h), 0.0), a2) * smith(nl, a2) * smith(nv, a2) * fresnel / max(4.0 * nl * nv, 1e-6);
+  vec3 specular_brdf =
+      ggx(max(dot(n, h), 0.0), a2) * smith(nl, a2) * smith(nv, a2) * fresnel / max(4.0 * nl * nv, 1e-6);
   return (diffuse_color + PI * specular_brdf) * lamp_strength[i] * nl;
 }
 
@@ -257,7 +258,8 @@ void ShadowMaps::begin_drawing(int lamp) {
 }
 
 void ShadowMaps::bind_for_lookup(int lamp, int depth_unit, int compare_unit) const {
-  for (const auto& [unit, sampler] : {std::pair{depth_unit, depth_sampler_}, std::pair{compare_unit, compare_sampler_}}) {
+  for (const auto& [unit, sampler] :
+       {std::pair{depth_unit, depth_sampler_}, std::pair{compare_unit, compare_sampler_}}) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D, textures_[lamp]);
     glBindSampler(unit, sampler);

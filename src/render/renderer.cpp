@@ -561,7 +561,8 @@ struct Renderer::Impl {
       // A penumbra's radius is the gap from blocker to receiver times tan(half the lamp's
       // angle); the shader measures the gap in map depth, the radius in map widths.
       const auto half_angle = static_cast<float>(deg_to_rad(0.5 * lamps[i].angle_deg));
-      spreads[i] = std::tan(half_angle) * static_cast<float>(shadow_maps->depth_range_metres(i)) * texels[i] / texel_metres;
+      const auto depth_range = static_cast<float>(shadow_maps->depth_range_metres(i));
+      spreads[i] = std::tan(half_angle) * depth_range * texels[i] / texel_metres;
       offsets[i] = 1.5f * texel_metres;  // off the surface by more than a texel's depth error
     }
     glUniform3fv(u.lamp_direction, count, directions.data());
